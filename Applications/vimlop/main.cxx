@@ -1,0 +1,38 @@
+// vimlop: the command-line program. Each subcommand lives in its own file and
+// registers itself here; errors the user can act on are vimlop::Error and end
+// the program with one line on stderr and exit code 1.
+
+#include "Error.h"
+#include "InfoCommand.h"
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv)
+{
+  CLI::App app{ "vimlop: video-CT registration for endoscopic sinus surgery (V-IMLOP)" };
+  app.set_version_flag("--version", std::string("vimlop ") + VIMLOP_VERSION);
+  app.require_subcommand(1);
+  vimlop::addInfoCommand(app);
+  try
+  {
+    app.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& e)
+  {
+    return app.exit(e);
+  }
+  catch (const vimlop::Error& e)
+  {
+    std::cerr << "vimlop: error: " << e.what() << "\n";
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "vimlop: internal error: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,25 @@
+# Compiler settings that apply to VIMLOP's own targets only (never to the
+# dependencies' headers, which are included as SYSTEM by their imported targets).
+
+find_program(VIMLOP_CCACHE ccache)
+if(VIMLOP_CCACHE)
+  set(CMAKE_C_COMPILER_LAUNCHER "${VIMLOP_CCACHE}")
+  set(CMAKE_CXX_COMPILER_LAUNCHER "${VIMLOP_CCACHE}")
+endif()
+
+# Every VIMLOP target links this interface target privately: C++17, warnings
+# and (optionally) sanitizers, without imposing them on code that consumes us.
+add_library(VIMLOPBuildSettings INTERFACE)
+add_library(VIMLOP::BuildSettings ALIAS VIMLOPBuildSettings)
+target_compile_features(VIMLOPBuildSettings INTERFACE cxx_std_17)
+target_compile_options(VIMLOPBuildSettings INTERFACE
+  $<$<COMPILE_LANG_AND_ID:CXX,GNU,Clang>:-Wall -Wextra -Wpedantic>)
+
+if(VIMLOP_ENABLE_SANITIZERS)
+  set(_vimlop_sanitizers -fsanitize=address,undefined -fno-omit-frame-pointer
+                         -fno-sanitize-recover=undefined)
+  target_compile_options(VIMLOPBuildSettings INTERFACE ${_vimlop_sanitizers})
+  target_link_options(VIMLOPBuildSettings INTERFACE ${_vimlop_sanitizers})
+endif()
+
+set(CMAKE_CXX_EXTENSIONS OFF)

@@ -1,0 +1,43 @@
+# Every third-party dependency is found here, once, with only the components
+# that the modules use. CMake/install-dependencies.sh installs the matching
+# Debian packages.
+
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(embree 3 REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 2 REQUIRED CONFIG)
+find_package(ZLIB REQUIRED)
+find_package(Threads REQUIRED)
+
+find_package(VTK 9.1 REQUIRED COMPONENTS
+  CommonCore
+  CommonDataModel
+  CommonExecutionModel
+  CommonMath
+  CommonTransforms
+  FiltersCore
+  FiltersGeneral
+  FiltersSources
+  IOCore
+  IOGeometry
+  IOImage
+  IOLegacy
+  IOPLY
+  IOXML
+  IOXMLParser
+  RenderingCore
+  RenderingOpenGL2)
+
+find_package(ITK 5.2 REQUIRED COMPONENTS
+  ITKCommon
+  ITKIOImageBase
+  ITKIOGDCM
+  ITKIOMeta
+  ITKIONIFTI
+  ITKIONRRD)
+
+find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio)
+
+if(BUILD_TESTING)
+  find_package(GTest 1.10 REQUIRED)
+endif()

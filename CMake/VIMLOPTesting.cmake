@@ -1,0 +1,57 @@
+# Test helpers.
+#
+#   vimlop_add_gtest(<name> SOURCES <file>... LIBRARIES <lib>... [RENDERING])
+#
+# builds one GoogleTest executable into bin/ and registers each of its tests
+# with CTest. RENDERING tests need an X display (VTK 9.1 here is built for X11):
+# they run through CMake/run-with-display.sh, which starts `xvfb-run -a` (Mesa
+# llvmpipe) when no display is set.
+
+include(GoogleTest)
+
+set(VIMLOP_TEST_OUTPUT_DIR "${CMAKE_BINARY_DIR}/Testing/Temporary")
+file(MAKE_DIRECTORY "${VIMLOP_TEST_OUTPUT_DIR}")
+set(VIMLOP_DISPLAY_LAUNCHER "${PROJECT_SOURCE_DIR}/CMake/run-with-display.sh")
+
+function(vimlop_add_gtest name)
+  cmake_parse_arguments(arg "RENDERING" "" "SOURCES;LIBRARIES" ${ARGN})
+  add_executable(${name} ${arg_SOURCES})
+  target_link_libraries(${name} PRIVATE ${arg_LIBRARIES} GTest::gtest GTest::gtest_main
+                                        VIMLOP::BuildSettings)
+  target_compile_definitions(${name} PRIVATE
+    VIMLOP_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/Testing/Data"
+    VIMLOP_TEST_OUTPUT_DIR="${VIMLOP_TEST_OUTPUT_DIR}")
+  set(labels "${name}")
+  if(arg_RENDERING)
+    list(APPEND labels rendering)
+    # GoogleTest discovery and every test run go through this launcher.
+    set_target_properties(${name} PROPERTIES CROSSCOMPILING_EMULATOR "${VIMLOP_DISPLAY_LAUNCHER}")
+  endif()
+  # Discovery at test time keeps configuring fast and lists every TEST in ctest.
+  gtest_discover_tests(${name}
+    DISCOVERY_MODE PRE_TEST
+    DISCOVERY_TIMEOUT 60
+    PROPERTIES LABELS "${labels}")
+endfunction()
+
+#   vimlop_add_cli_test(<name> COMMAND <args>... [PASS_REGEX <re>] [EXPECT_ERROR <re>]
+#                       [RENDERING])
+#
+# runs the `vimlop` program. PASS_REGEX checks the output of a successful run;
+# EXPECT_ERROR demands a non-zero exit code without a crash and an output that
+# matches <re> (the one-line message the user sees).
+function(vimlop_add_cli_test name)
+  cmake_parse_arguments(arg "RENDERING" "PASS_REGEX;EXPECT_ERROR" "COMMAND" ${ARGN})
+  set(command $<TARGET_FILE:vimlop> ${arg_COMMAND})
+  if(arg_RENDERING)
+    set(command "${VIMLOP_DISPLAY_LAUNCHER}" ${command})
+  endif()
+  if(DEFINED arg_EXPECT_ERROR)
+    set(command "${PROJECT_SOURCE_DIR}/CMake/expect-error.sh" "${arg_EXPECT_ERROR}" ${command})
+  endif()
+  add_test(NAME ${name} COMMAND ${command} WORKING_DIRECTORY "${VIMLOP_TEST_OUTPUT_DIR}")
+  set_tests_properties(${name} PROPERTIES LABELS "cli")
+  if(arg_PASS_REGEX)
+    set_tests_properties(${name} PROPERTIES PASS_REGULAR_EXPRESSION "${arg_PASS_REGEX}")
+  endif()
+endfunction()

@@ -1,0 +1,54 @@
+#!/bin/sh
+# Installs the Debian 12 packages VIMLOP needs to build, test and run its demo.
+# Only missing packages are requested; apt runs as root or through sudo.
+set -eu
+
+packages="
+cmake
+ninja-build
+g++
+make
+ccache
+libeigen3-dev
+libembree-dev
+libvtk9-dev
+libinsighttoolkit5-dev
+libgdcm-dev
+libgdcm-tools
+libopencv-dev
+libgtest-dev
+libgmock-dev
+libcli11-dev
+nlohmann-json3-dev
+zlib1g-dev
+xvfb
+xauth
+libgl1-mesa-dri
+invesalius-examples
+"
+
+missing=""
+for p in $packages; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing="$missing $p"
+  fi
+done
+
+if [ -z "$missing" ]; then
+  echo "install-dependencies: all $(echo $packages | wc -w) packages are installed"
+  exit 0
+fi
+
+echo "install-dependencies: installing:$missing"
+if [ "$(id -u)" -eq 0 ]; then
+  sudo=""
+elif command -v sudo >/dev/null 2>&1; then
+  sudo="sudo"
+else
+  echo "install-dependencies: need root or sudo to run: apt-get install$missing" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -q
+# shellcheck disable=SC2086
+$sudo apt-get install -y -q --no-install-recommends $missing

@@ -1,0 +1,62 @@
+#include "PinholeCamera.h"
+
+#include "Error.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace vimlop
+{
+
+Eigen::Matrix3d PinholeCamera::matrix() const
+{
+  Eigen::Matrix3d k;
+  k << fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0;
+  return k;
+}
+
+PinholeCamera PinholeCamera::fromMatrix(const Eigen::Matrix3d& k, int widthPx, int heightPx)
+{
+  PinholeCamera camera;
+  camera.fx = k(0, 0);
+  camera.fy = k(1, 1);
+  camera.cx = k(0, 2);
+  camera.cy = k(1, 2);
+  camera.widthPx = widthPx;
+  camera.heightPx = heightPx;
+  if (k(0, 1) != 0.0 || k(1, 0) != 0.0 || k(2, 0) != 0.0 || k(2, 1) != 0.0 || k(2, 2) != 1.0)
+  {
+    throw Error("camera matrix must have the form [fx 0 cx; 0 fy cy; 0 0 1] (no skew)");
+  }
+  camera.validate();
+  return camera;
+}
+
+void PinholeCamera::validate() const
+{
+  std::ostringstream problem;
+  if (!(std::isfinite(fx) && std::isfinite(fy) && std::isfinite(cx) && std::isfinite(cy)) ||
+    !distortion.allFinite())
+  {
+    problem << "intrinsics contain non-finite values";
+  }
+  else if (!(fx > 0.0) || !(fy > 0.0))
+  {
+    problem << "focal lengths must be positive (fx=" << fx << ", fy=" << fy << ")";
+  }
+  else if (widthPx <= 0 || heightPx <= 0)
+  {
+    problem << "image size must be positive (" << widthPx << "x" << heightPx << ")";
+  }
+  else if (cx < -widthPx || cx > 2.0 * widthPx || cy < -heightPx || cy > 2.0 * heightPx)
+  {
+    problem << "principal point (" << cx << ", " << cy << ") is far outside the " << widthPx << "x"
+            << heightPx << " image";
+  }
+  if (!problem.str().empty())
+  {
+    throw Error(problem.str());
+  }
+}
+
+} // namespace vimlop

@@ -1,0 +1,121 @@
+#ifndef vimlop_TestMeshes_h
+#define vimlop_TestMeshes_h
+
+// Meshes that tests build in memory, with known geometry.
+
+#include "TriangleMesh.h"
+
+#include <Eigen/Core>
+
+#include <map>
+#include <random>
+#include <utility>
+#include <vector>
+
+namespace vimlop::fixtures
+{
+
+/// Icosphere of `radius` (mm) centred at `centre`; normals inward (into the
+/// cavity, VIMLOP's convention for an airway) unless `outward`.
+inline TriangleMesh makeSphere(double radius, int subdivisions,
+  const Eigen::Vector3d& centre = Eigen::Vector3d::Zero(), bool outward = false)
+{
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Eigen::Vector3d> v = { { -1, t, 0 }, { 1, t, 0 }, { -1, -t, 0 }, { 1, -t, 0 },
+    { 0, -1, t }, { 0, 1, t }, { 0, -1, -t }, { 0, 1, -t }, { t, 0, -1 }, { t, 0, 1 },
+    { -t, 0, -1 }, { -t, 0, 1 } };
+  std::vector<Eigen::Vector3i> f = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 },
+    { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 }, { 3, 9, 4 },
+    { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 }, { 2, 4, 11 }, { 6, 2, 10 },
+    { 8, 6, 7 }, { 9, 8, 1 } };
+  for (Eigen::Vector3d& p : v)
+  {
+    p.normalize();
+  }
+  for (int s = 0; s < subdivisions; ++s)
+  {
+    std::map<std::pair<int, int>, int> midpoints;
+    auto midpoint = [&](int a, int b)
+    {
+      const std::pair<int, int> key(std::min(a, b), std::max(a, b));
+      auto it = midpoints.find(key);
+      if (it != midpoints.end())
+      {
+        return it->second;
+      }
+      v.push_back((v[a] + v[b]).normalized());
+      midpoints[key] = static_cast<int>(v.size()) - 1;
+      return static_cast<int>(v.size()) - 1;
+    };
+    std::vector<Eigen::Vector3i> refined;
+    for (const Eigen::Vector3i& tri : f)
+    {
+      const int ab = midpoint(tri[0], tri[1]);
+      const int bc = midpoint(tri[1], tri[2]);
+      const int ca = midpoint(tri[2], tri[0]);
+      refined.push_back({ tri[0], ab, ca });
+      refined.push_back({ tri[1], bc, ab });
+      refined.push_back({ tri[2], ca, bc });
+      refined.push_back({ ab, bc, ca });
+    }
+    f = std::move(refined);
+  }
+  for (Eigen::Vector3d& p : v)
+  {
+    p = centre + radius * p;
+  }
+  if (!outward)
+  {
+    for (Eigen::Vector3i& tri : f)
+    {
+      std::swap(tri[1], tri[2]);
+    }
+  }
+  return TriangleMesh(std::move(v), std::move(f));
+}
+
+/// Axis-aligned box [lo, hi], two triangles per side; normals inward unless `outward`.
+inline TriangleMesh makeBox(
+  const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, bool outward = false)
+{
+  std::vector<Eigen::Vector3d> v;
+  for (int i = 0; i < 8; ++i)
+  {
+    v.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+  }
+  // Outward-facing quads (counter-clockwise seen from outside).
+  const int quads[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 },
+    { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
+  std::vector<Eigen::Vector3i> f;
+  for (const auto& q : quads)
+  {
+    f.push_back({ q[0], q[1], q[2] });
+    f.push_back({ q[0], q[2], q[3] });
+  }
+  TriangleMesh mesh(std::move(v), std::move(f));
+  return outward ? mesh : mesh.flipped();
+}
+
+/// A soup of `n` random triangles in [-size, size]^3 (edges up to `edge` mm).
+inline TriangleMesh makeRandomSoup(int n, unsigned seed, double size = 20.0, double edge = 4.0)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> where(-size, size);
+  std::uniform_real_distribution<double> offset(-edge, edge);
+  std::vector<Eigen::Vector3d> v;
+  std::vector<Eigen::Vector3i> f;
+  for (int i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d c(where(rng), where(rng), where(rng));
+    for (int k = 0; k < 3; ++k)
+    {
+      v.push_back(c + Eigen::Vector3d(offset(rng), offset(rng), offset(rng)));
+    }
+    f.push_back({ 3 * i, 3 * i + 1, 3 * i + 2 });
+  }
+  return TriangleMesh(std::move(v), std::move(f));
+}
+
+} // namespace vimlop::fixtures
+
+#endif

@@ -1,0 +1,90 @@
+#include "Error.h"
+#include "PinholeCamera.h"
+
+#include <gtest/gtest.h>
+
+using namespace vimlop;
+
+namespace
+{
+
+PinholeCamera makeCamera()
+{
+  PinholeCamera camera;
+  camera.fx = 500.0;
+  camera.fy = 480.0;
+  camera.cx = 319.5;
+  camera.cy = 240.0;
+  camera.widthPx = 640;
+  camera.heightPx = 480;
+  return camera;
+}
+
+} // namespace
+
+TEST(PinholeCamera, ProjectsWithTheOpenCVConvention)
+{
+  const PinholeCamera camera = makeCamera();
+  // On the optical axis: the principal point.
+  EXPECT_LT((camera.project({ 0, 0, 10 }) - Eigen::Vector2d(319.5, 240.0)).norm(), 1e-12);
+  // x right, y down.
+  const Eigen::Vector2d p = camera.project({ 1.0, 2.0, 10.0 });
+  EXPECT_NEAR(p.x(), 319.5 + 50.0, 1e-12);
+  EXPECT_NEAR(p.y(), 240.0 + 96.0, 1e-12);
+}
+
+TEST(PinholeCamera, BackProjectInvertsProject)
+{
+  const PinholeCamera camera = makeCamera();
+  const Eigen::Vector3d x(-3.0, 1.5, 25.0);
+  const Eigen::Vector2d pixel = camera.project(x);
+  EXPECT_LT((camera.backProject(pixel, x.z()) - x).norm(), 1e-12);
+  EXPECT_LT((camera.rayDirection(pixel) - x.normalized()).norm(), 1e-12);
+}
+
+TEST(PinholeCamera, InImageUsesPixelCentres)
+{
+  const PinholeCamera camera = makeCamera();
+  EXPECT_TRUE(camera.isInImage({ -0.5, -0.5 }));
+  EXPECT_TRUE(camera.isInImage({ 639.5, 479.5 }));
+  EXPECT_FALSE(camera.isInImage({ 639.6, 10.0 }));
+  EXPECT_FALSE(camera.isInImage({ 10.0, -0.6 }));
+  EXPECT_FALSE(camera.isInImage({ 2.0, 100.0 }, 3.0));
+  EXPECT_TRUE(camera.isInImage({ 2.5, 100.0 }, 3.0));
+}
+
+TEST(PinholeCamera, MatrixRoundTrip)
+{
+  const PinholeCamera camera = makeCamera();
+  const PinholeCamera back = PinholeCamera::fromMatrix(camera.matrix(), 640, 480);
+  EXPECT_EQ(back.fx, camera.fx);
+  EXPECT_EQ(back.cy, camera.cy);
+  Eigen::Matrix3d skewed = camera.matrix();
+  skewed(0, 1) = 1.0;
+  EXPECT_THROW(PinholeCamera::fromMatrix(skewed, 640, 480), Error);
+}
+
+TEST(PinholeCamera, ValidateNamesTheProblem)
+{
+  PinholeCamera camera = makeCamera();
+  EXPECT_NO_THROW(camera.validate());
+  camera.fy = 0.0;
+  try
+  {
+    camera.validate();
+    FAIL();
+  }
+  catch (const Error& e)
+  {
+    EXPECT_STREQ(e.what(), "focal lengths must be positive (fx=500, fy=0)");
+  }
+  camera = makeCamera();
+  camera.widthPx = 0;
+  EXPECT_THROW(camera.validate(), Error);
+  camera = makeCamera();
+  camera.cx = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(camera.validate(), Error);
+  camera = makeCamera();
+  camera.cx = 5000.0;
+  EXPECT_THROW(camera.validate(), Error);
+}

@@ -1,0 +1,77 @@
+#ifndef vimlop_TriangleMesh_h
+#define vimlop_TriangleMesh_h
+
+#include "MeshEdge.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace vimlop
+{
+
+/**
+ * @brief An indexed triangle mesh with face normals and edge-face adjacency.
+ *
+ * Vertices are in mm in the mesh's frame (the CT frame for airway models).
+ * Face normals follow the right-hand rule on the vertex order; by VIMLOP's
+ * convention a model's faces are ordered so that normals point into the air,
+ * i.e. into the cavity where the endoscope is. Zero-area faces keep a zero
+ * normal. The mesh is immutable once built, so derived data stay consistent.
+ */
+class TriangleMesh
+{
+public:
+  TriangleMesh() = default;
+
+  /**
+   * @brief Builds the mesh and its derived data (normals, areas, edges).
+   * @throws vimlop::Error for non-finite vertices, face indices out of range or
+   * faces that repeat a vertex.
+   */
+  TriangleMesh(std::vector<Eigen::Vector3d> vertices, std::vector<Eigen::Vector3i> faces);
+
+  const std::vector<Eigen::Vector3d>& vertices() const { return this->Vertices; }
+  const std::vector<Eigen::Vector3i>& faces() const { return this->Faces; }
+  /// @brief Unit face normals (zero for zero-area faces).
+  const std::vector<Eigen::Vector3d>& faceNormals() const { return this->FaceNormals; }
+  /// @brief Face areas in mm^2.
+  const std::vector<double>& faceAreas() const { return this->FaceAreas; }
+  /// @brief Every edge once, sorted by (vertex0, vertex1).
+  const std::vector<MeshEdge>& edges() const { return this->Edges; }
+
+  int numberOfVertices() const { return static_cast<int>(this->Vertices.size()); }
+  int numberOfFaces() const { return static_cast<int>(this->Faces.size()); }
+
+  /// @brief Corner `corner` (0..2) of face `face`.
+  const Eigen::Vector3d& corner(int face, int corner) const
+  {
+    return this->Vertices[this->Faces[face][corner]];
+  }
+  /// @brief Centroid of face `face` (mm).
+  Eigen::Vector3d faceCentroid(int face) const;
+
+  /// @brief Number of edges with a single face (open boundary).
+  int numberOfBoundaryEdges() const;
+  /// @brief Number of edges shared by more than two faces.
+  int numberOfNonManifoldEdges() const;
+  /// @brief Total area in mm^2.
+  double totalArea() const;
+
+  /// @brief Axis-aligned bounds: column 0 the minimum, column 1 the maximum corner.
+  Eigen::Matrix<double, 3, 2> bounds() const;
+
+  /// @brief The same surface with every face reversed (normals flipped).
+  TriangleMesh flipped() const;
+
+private:
+  std::vector<Eigen::Vector3d> Vertices;
+  std::vector<Eigen::Vector3i> Faces;
+  std::vector<Eigen::Vector3d> FaceNormals;
+  std::vector<double> FaceAreas;
+  std::vector<MeshEdge> Edges;
+};
+
+} // namespace vimlop
+
+#endif

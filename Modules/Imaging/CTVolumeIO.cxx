@@ -1,0 +1,379 @@
+// The one translation unit of the Imaging module that instantiates ITK's
+// image IO templates (they are heavy to compile). Like every ITK translation
+// unit it includes no Eigen: Debian's ITK 5.2 brings its own older Eigen under
+// the same include guards, and the two cannot meet in one file.
+#include "CTVolumeIO.h"
+
+#include "Error.h"
+#include "InVesaliusProjectReader.h"
+
+#include <itkGDCMImageIO.h>
+#include <itkGDCMImageIOFactory.h>
+#include <itkGDCMSeriesFileNames.h>
+#include <itkImage.h>
+#include <itkImageFileReader.h>
+#include <itkImageFileWriter.h>
+#include <itkImageIOFactory.h>
+#include <itkImageSeriesReader.h>
+#include <itkMetaImageIOFactory.h>
+#include <itkNiftiImageIOFactory.h>
+#include <itkNrrdImageIOFactory.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+
+namespace vimlop
+{
+
+namespace
+{
+
+using ImageType = itk::Image<float, 3>;
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem)
+{
+  throw Error("'" + path + "': " + problem);
+}
+
+std::string lowerCase(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+bool endsWith(const std::string& s, const std::string& suffix)
+{
+  return s.size() >= suffix.size() &&
+    s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/// ITK's messages span several lines with source locations; keep the gist.
+std::string itkMessage(const itk::ExceptionObject& e)
+{
+  std::string text = e.GetDescription();
+  const auto newline = text.find('\n');
+  if (newline != std::string::npos)
+  {
+    text.resize(newline);
+  }
+  return text;
+}
+
+void registerImageIOs()
+{
+  // Explicit registration: we do not rely on ITK's generated factory lists.
+  static std::once_flag once;
+  std::call_once(once,
+    []
+    {
+      itk::NiftiImageIOFactory::RegisterOneFactory();
+      itk::NrrdImageIOFactory::RegisterOneFactory();
+      itk::MetaImageIOFactory::RegisterOneFactory();
+      itk::GDCMImageIOFactory::RegisterOneFactory();
+    });
+}
+
+CTVolume toVolume(const ImageType* image)
+{
+  CTVolume volume;
+  const ImageType::RegionType region = image->GetLargestPossibleRegion();
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    volume.dims[axis] = static_cast<int>(region.GetSize(axis));
+    volume.spacingMm[axis] = image->GetSpacing()[axis];
+    volume.originMm[axis] = image->GetOrigin()[axis];
+    for (int row = 0; row < 3; ++row)
+    {
+      volume.direction[3 * row + axis] = image->GetDirection()(row, axis);
+    }
+  }
+  const float* buffer = image->GetBufferPointer();
+  volume.intensities.assign(buffer, buffer + volume.numberOfVoxels());
+  return volume;
+}
+
+/// The Series Instance UID (0020,000e) stored in a DICOM file, trimmed.
+std::string seriesInstanceUID(const std::string& file)
+{
+  auto io = itk::GDCMImageIO::New();
+  io->SetFileName(file);
+  std::string uid;
+  try
+  {
+    io->ReadImageInformation();
+    io->GetValueFromTag("0020|000e", uid);
+  }
+  catch (const itk::ExceptionObject&)
+  {
+    return std::string();
+  }
+  while (!uid.empty() && (uid.back() == ' ' || uid.back() == '\0'))
+  {
+    uid.pop_back();
+  }
+  return uid;
+}
+
+CTVolume readDicomSeries(const std::string& folder, const std::string& seriesUID)
+{
+  // Series details split a series whose slices differ in size or orientation
+  // (scout images, say); each group is named by the series UID plus details.
+  auto names = itk::GDCMSeriesFileNames::New();
+  names->SetUseSeriesDetails(true);
+  names->SetDirectory(folder);
+  const std::vector<std::string> groups = names->GetSeriesUIDs();
+  if (groups.empty())
+  {
+    fail(folder, "the folder holds no DICOM series");
+  }
+  std::string chosen;
+  size_t most = 0;
+  for (const std::string& group : groups)
+  {
+    const std::vector<std::string> files = names->GetFileNames(group);
+    const bool wanted = seriesUID.empty() || seriesInstanceUID(files.front()) == seriesUID;
+    if (wanted && files.size() > most)
+    {
+      most = files.size();
+      chosen = group;
+    }
+  }
+  if (chosen.empty())
+  {
+    fail(folder, "no DICOM series with UID '" + seriesUID + "' in the folder");
+  }
+  std::vector<std::string> warnings;
+  if (groups.size() > 1 && seriesUID.empty())
+  {
+    std::ostringstream msg;
+    msg << "the folder holds " << groups.size() << " DICOM series; read the largest ("
+        << seriesInstanceUID(names->GetFileNames(chosen).front()) << ", " << most
+        << " slices); choose another by its series UID";
+    warnings.push_back(msg.str());
+  }
+  const std::vector<std::string> files = names->GetFileNames(chosen);
+  if (files.size() < 2)
+  {
+    fail(folder, "the DICOM series has a single slice; a 3-D CT is needed");
+  }
+  auto reader = itk::ImageSeriesReader<ImageType>::New();
+  reader->SetImageIO(itk::GDCMImageIO::New());
+  reader->SetFileNames(files);
+  try
+  {
+    reader->Update();
+  }
+  catch (const itk::ExceptionObject& e)
+  {
+    fail(folder, "cannot read the DICOM series (" + itkMessage(e) + ")");
+  }
+  CTVolume volume = toVolume(reader->GetOutput());
+  volume.format = "DICOM series";
+  volume.warnings = std::move(warnings);
+  return volume;
+}
+
+std::string formatName(const std::string& lowerPath)
+{
+  if (endsWith(lowerPath, ".nii") || endsWith(lowerPath, ".nii.gz"))
+  {
+    return "NIfTI";
+  }
+  if (endsWith(lowerPath, ".nrrd") || endsWith(lowerPath, ".nhdr"))
+  {
+    return "NRRD";
+  }
+  if (endsWith(lowerPath, ".mha") || endsWith(lowerPath, ".mhd"))
+  {
+    return "MetaImage";
+  }
+  if (endsWith(lowerPath, ".dcm"))
+  {
+    return "DICOM";
+  }
+  return "";
+}
+
+/// ITK's NIfTI reader fills a short file's missing voxels silently; compare
+/// the size of an uncompressed NIfTI-1 file with what its header promises.
+void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
+{
+  std::ifstream file(path, std::ios::binary);
+  unsigned char header[112] = {};
+  if (!file.read(reinterpret_cast<char*>(header), sizeof(header)))
+  {
+    return; // ITK has already judged the header
+  }
+  auto u32 = [&](int at, bool little)
+  {
+    return little ? std::uint32_t(header[at]) | std::uint32_t(header[at + 1]) << 8 |
+        std::uint32_t(header[at + 2]) << 16 | std::uint32_t(header[at + 3]) << 24
+                  : std::uint32_t(header[at + 3]) | std::uint32_t(header[at + 2]) << 8 |
+        std::uint32_t(header[at + 1]) << 16 | std::uint32_t(header[at]) << 24;
+  };
+  bool little = true;
+  if (u32(0, true) != 348)
+  {
+    if (u32(0, false) != 348)
+    {
+      return; // not NIfTI-1 (NIfTI-2 files are left to ITK)
+    }
+    little = false;
+  }
+  const std::uint32_t bits = u32(108, little);
+  float voxOffset = 0.0f;
+  std::memcpy(&voxOffset, &bits, sizeof(voxOffset));
+  const std::uint64_t expected =
+    static_cast<std::uint64_t>(std::max(voxOffset, 348.0f)) + voxelBytes;
+  std::error_code ec;
+  const std::uint64_t actual = std::filesystem::file_size(path, ec);
+  if (!ec && actual < expected)
+  {
+    fail(path,
+      "the file is truncated (" + std::to_string(actual) + " bytes, the header promises " +
+        std::to_string(expected) + ")");
+  }
+}
+
+CTVolume readImageFile(const std::string& path, const std::string& format)
+{
+  itk::ImageIOBase::Pointer io =
+    itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
+  if (!io)
+  {
+    fail(path, "not a readable " + format + " file");
+  }
+  io->SetFileName(path);
+  try
+  {
+    io->ReadImageInformation();
+  }
+  catch (const itk::ExceptionObject& e)
+  {
+    fail(path, "cannot read the " + format + " header (" + itkMessage(e) + ")");
+  }
+  const unsigned dimensions = io->GetNumberOfDimensions();
+  if (dimensions < 3 || io->GetDimensions(2) < 2)
+  {
+    fail(path, "the image is 2-D; a 3-D CT volume is needed");
+  }
+  if (dimensions > 3 && io->GetDimensions(3) > 1)
+  {
+    fail(path, "the image is 4-D (a time series); a 3-D CT volume is needed");
+  }
+  if (io->GetNumberOfComponents() != 1)
+  {
+    fail(path,
+      "the image has " + std::to_string(io->GetNumberOfComponents()) +
+        " components per voxel; a scalar CT volume is needed");
+  }
+  if (endsWith(lowerCase(path), ".nii"))
+  {
+    checkNiftiLength(path, io->GetImageSizeInBytes());
+  }
+  auto reader = itk::ImageFileReader<ImageType>::New();
+  reader->SetFileName(path);
+  reader->SetImageIO(io);
+  try
+  {
+    reader->Update();
+  }
+  catch (const itk::ExceptionObject& e)
+  {
+    fail(path, "cannot read the image data (" + itkMessage(e) + ")");
+  }
+  CTVolume volume = toVolume(reader->GetOutput());
+  volume.format = format;
+  return volume;
+}
+
+} // namespace
+
+bool isCTVolumePath(const std::string& path)
+{
+  const std::string lower = lowerCase(path);
+  return std::filesystem::is_directory(path) || endsWith(lower, ".inv3") ||
+    !formatName(lower).empty();
+}
+
+CTVolume readCTVolume(const std::string& path, const std::string& dicomSeriesUID)
+{
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+  {
+    fail(path, "no such file or folder");
+  }
+  registerImageIOs();
+  if (std::filesystem::is_directory(path, ec))
+  {
+    return readDicomSeries(path, dicomSeriesUID);
+  }
+  const std::string lower = lowerCase(path);
+  if (endsWith(lower, ".inv3"))
+  {
+    return readInVesaliusProject(path);
+  }
+  const std::string format = formatName(lower);
+  if (format.empty())
+  {
+    fail(path,
+      "unsupported CT file type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd, .dcm, "
+      ".inv3 or a DICOM folder)");
+  }
+  return readImageFile(path, format);
+}
+
+void writeCTVolume(const CTVolume& volume, const std::string& path)
+{
+  const std::string format = formatName(lowerCase(path));
+  if (format.empty() || format == "DICOM")
+  {
+    fail(path, "unsupported output type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
+  }
+  if (volume.intensities.size() != volume.numberOfVoxels() || volume.numberOfVoxels() == 0)
+  {
+    fail(path, "the volume to write is empty or inconsistent");
+  }
+  registerImageIOs();
+  auto image = ImageType::New();
+  ImageType::SizeType size;
+  ImageType::SpacingType spacing;
+  ImageType::PointType origin;
+  ImageType::DirectionType direction;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    size[axis] = static_cast<itk::SizeValueType>(volume.dims[axis]);
+    spacing[axis] = volume.spacingMm[axis];
+    origin[axis] = volume.originMm[axis];
+    for (int row = 0; row < 3; ++row)
+    {
+      direction(row, axis) = volume.direction[3 * row + axis];
+    }
+  }
+  image->SetRegions(ImageType::RegionType(size));
+  image->SetSpacing(spacing);
+  image->SetOrigin(origin);
+  image->SetDirection(direction);
+  image->Allocate();
+  std::copy(volume.intensities.begin(), volume.intensities.end(), image->GetBufferPointer());
+  auto writer = itk::ImageFileWriter<ImageType>::New();
+  writer->SetFileName(path);
+  writer->SetInput(image);
+  writer->SetUseCompression(true);
+  try
+  {
+    writer->Update();
+  }
+  catch (const itk::ExceptionObject& e)
+  {
+    fail(path, "cannot write the image (" + itkMessage(e) + ")");
+  }
+}
+
+} // namespace vimlop

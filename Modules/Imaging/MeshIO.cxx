@@ -1,0 +1,161 @@
+#include "MeshIO.h"
+
+#include "Error.h"
+
+#include <vtkNew.h>
+#include <vtkOBJReader.h>
+#include <vtkPLYReader.h>
+#include <vtkPLYWriter.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataReader.h>
+#include <vtkPolyDataWriter.h>
+#include <vtkSTLReader.h>
+#include <vtkSTLWriter.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+namespace vimlop
+{
+
+namespace
+{
+
+std::string extensionOf(const std::string& path)
+{
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(
+    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem)
+{
+  throw Error("'" + path + "': " + problem);
+}
+
+/// Runs a VTK reader and turns its silent failures into an exception.
+template <typename Reader>
+vtkSmartPointer<vtkPolyData> runReader(Reader* reader, const std::string& path)
+{
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* output = reader->GetOutput();
+  if (reader->GetErrorCode() != 0 || !output || output->GetNumberOfPoints() == 0)
+  {
+    fail(path, "not a readable mesh (no points could be read)");
+  }
+  vtkSmartPointer<vtkPolyData> mesh = output;
+  return mesh;
+}
+
+} // namespace
+
+bool isMeshPath(const std::string& path)
+{
+  const std::string ext = extensionOf(path);
+  return ext == ".vtp" || ext == ".vtk" || ext == ".stl" || ext == ".ply" || ext == ".obj";
+}
+
+vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
+{
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+  {
+    fail(path, "no such file");
+  }
+  const std::string ext = extensionOf(path);
+  if (ext == ".vtp")
+  {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    // The XML reader reports parse errors through its own error observer.
+    reader->SetFileName(path.c_str());
+    if (!reader->CanReadFile(path.c_str()))
+    {
+      fail(path, "not a VTK XML polydata file");
+    }
+    return runReader(reader.Get(), path);
+  }
+  if (ext == ".vtk")
+  {
+    vtkNew<vtkPolyDataReader> reader;
+    reader->SetFileName(path.c_str());
+    if (!reader->IsFilePolyData())
+    {
+      fail(path, "not a legacy VTK polydata file");
+    }
+    return runReader(reader.Get(), path);
+  }
+  if (ext == ".stl")
+  {
+    vtkNew<vtkSTLReader> reader;
+    return runReader(reader.Get(), path);
+  }
+  if (ext == ".ply")
+  {
+    vtkNew<vtkPLYReader> reader;
+    if (!reader->CanReadFile(path.c_str()))
+    {
+      fail(path, "not a PLY file");
+    }
+    return runReader(reader.Get(), path);
+  }
+  if (ext == ".obj")
+  {
+    vtkNew<vtkOBJReader> reader;
+    return runReader(reader.Get(), path);
+  }
+  fail(path, "unsupported mesh file type (expected .vtp, .vtk, .stl, .ply or .obj)");
+}
+
+void writePolyData(vtkPolyData* mesh, const std::string& path)
+{
+  const std::string ext = extensionOf(path);
+  int ok = 0;
+  if (ext == ".vtp")
+  {
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(mesh);
+    writer->SetFileName(path.c_str());
+    writer->SetDataModeToAppended();
+    writer->SetCompressorTypeToZLib();
+    ok = writer->Write();
+  }
+  else if (ext == ".vtk")
+  {
+    vtkNew<vtkPolyDataWriter> writer;
+    writer->SetInputData(mesh);
+    writer->SetFileName(path.c_str());
+    writer->SetFileTypeToBinary();
+    ok = writer->Write();
+  }
+  else if (ext == ".stl")
+  {
+    vtkNew<vtkSTLWriter> writer;
+    writer->SetInputData(mesh);
+    writer->SetFileName(path.c_str());
+    writer->SetFileTypeToBinary();
+    ok = writer->Write();
+  }
+  else if (ext == ".ply")
+  {
+    vtkNew<vtkPLYWriter> writer;
+    writer->SetInputData(mesh);
+    writer->SetFileName(path.c_str());
+    writer->SetFileTypeToBinary();
+    ok = writer->Write();
+  }
+  else
+  {
+    fail(path, "unsupported mesh output type (expected .vtp, .vtk, .stl or .ply)");
+  }
+  if (!ok)
+  {
+    fail(path, "could not write the mesh");
+  }
+}
+
+} // namespace vimlop

@@ -1,0 +1,73 @@
+#include "PolyDataConversion.h"
+
+#include "Error.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+namespace vimlop
+{
+
+TriangleMesh toTriangleMesh(vtkPolyData* polyData)
+{
+  if (!polyData || polyData->GetNumberOfPolys() == 0)
+  {
+    throw Error("the surface has no polygons");
+  }
+  std::vector<Eigen::Vector3d> vertices(static_cast<size_t>(polyData->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < polyData->GetNumberOfPoints(); ++i)
+  {
+    polyData->GetPoint(i, vertices[static_cast<size_t>(i)].data());
+  }
+  std::vector<Eigen::Vector3i> faces;
+  faces.reserve(static_cast<size_t>(polyData->GetNumberOfPolys()));
+  auto it = vtk::TakeSmartPointer(polyData->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    it->GetCurrentCell(n, ids);
+    // A fan keeps the polygon's orientation; airway surfaces are triangles anyway.
+    for (vtkIdType k = 1; k + 1 < n; ++k)
+    {
+      faces.emplace_back(
+        static_cast<int>(ids[0]), static_cast<int>(ids[k]), static_cast<int>(ids[k + 1]));
+    }
+  }
+  return TriangleMesh(std::move(vertices), std::move(faces));
+}
+
+vtkSmartPointer<vtkPolyData> toPolyData(const TriangleMesh& mesh)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh.numberOfVertices());
+  for (int i = 0; i < mesh.numberOfVertices(); ++i)
+  {
+    points->SetPoint(i, mesh.vertices()[i].data());
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(mesh.numberOfFaces(), 3 * mesh.numberOfFaces());
+  vtkNew<vtkDoubleArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(mesh.numberOfFaces());
+  for (int f = 0; f < mesh.numberOfFaces(); ++f)
+  {
+    const vtkIdType ids[3] = { mesh.faces()[f][0], mesh.faces()[f][1], mesh.faces()[f][2] };
+    polys->InsertNextCell(3, ids);
+    normals->SetTuple(f, mesh.faceNormals()[f].data());
+  }
+  auto polyData = vtkSmartPointer<vtkPolyData>::New();
+  polyData->SetPoints(points);
+  polyData->SetPolys(polys);
+  polyData->GetCellData()->SetNormals(normals);
+  return polyData;
+}
+
+} // namespace vimlop

@@ -1,0 +1,151 @@
+#include "CTVolumeIO.h"
+#include "Error.h"
+#include "Rotation.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace vimlop;
+
+namespace
+{
+
+const std::string out = VIMLOP_TEST_OUTPUT_DIR;
+
+CTVolume makeVolume()
+{
+  CTVolume v;
+  v.dims = { 7, 5, 4 };
+  v.spacingMm = { 0.8, 0.9, 1.7 };
+  v.originMm = { -12.5, 40.0, 3.25 };
+  // An oblique acquisition: rotated axes.
+  const Eigen::Matrix3d r = rotationFromVector(Eigen::Vector3d(0.1, -0.2, 0.3));
+  for (int i = 0; i < 9; ++i)
+  {
+    v.direction[i] = r(i / 3, i % 3);
+  }
+  v.intensities.resize(v.numberOfVoxels());
+  for (size_t i = 0; i < v.intensities.size(); ++i)
+  {
+    v.intensities[i] = static_cast<float>(static_cast<int>(i) * 7 - 1000);
+  }
+  return v;
+}
+
+std::string messageOf(const std::string& path)
+{
+  try
+  {
+    readCTVolume(path);
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "no error";
+}
+
+} // namespace
+
+class CTVolumeRoundTrip : public ::testing::TestWithParam<std::string>
+{
+};
+
+TEST_P(CTVolumeRoundTrip, KeepsGeometryAndIntensities)
+{
+  const CTVolume v = makeVolume();
+  const std::string path = out + "/roundtrip" + GetParam();
+  writeCTVolume(v, path);
+  const CTVolume back = readCTVolume(path);
+  EXPECT_EQ(back.dims, v.dims);
+  for (int i = 0; i < 3; ++i)
+  {
+    EXPECT_NEAR(back.spacingMm[i], v.spacingMm[i], 1e-5);
+    EXPECT_NEAR(back.originMm[i], v.originMm[i], 1e-4);
+  }
+  for (int i = 0; i < 9; ++i)
+  {
+    EXPECT_NEAR(back.direction[i], v.direction[i], 1e-5);
+  }
+  ASSERT_EQ(back.intensities.size(), v.intensities.size());
+  for (size_t i = 0; i < v.intensities.size(); ++i)
+  {
+    ASSERT_EQ(back.intensities[i], v.intensities[i]);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, CTVolumeRoundTrip,
+  ::testing::Values(".nii.gz", ".nii", ".nrrd", ".mha", ".mhd"),
+  [](const auto& info)
+  {
+    std::string name = info.param.substr(1);
+    std::replace(name.begin(), name.end(), '.', '_');
+    return name;
+  });
+
+TEST(CTVolumeIO, ReadsADicomSeriesSortedByPosition)
+{
+  // Fixture: two series in one folder (Testing/Data/DicomTwoSeries/README.md):
+  // 1.2.826.0.1.3680043.2.1125.1001 with 6 slices of 10x12 whose file names
+  // are shuffled, and ...1002 with 3 slices.
+  const std::string folder = std::string(VIMLOP_TEST_DATA_DIR) + "/DicomTwoSeries";
+  const CTVolume largest = readCTVolume(folder);
+  EXPECT_EQ(largest.format, "DICOM series");
+  EXPECT_EQ(largest.dims, (std::array<int, 3>{ 10, 12, 6 }));
+  ASSERT_EQ(largest.warnings.size(), 1u);
+  EXPECT_NE(largest.warnings[0].find("holds 2 DICOM series"), std::string::npos);
+  // The value of slice k is 100 k - 1000 HU (after rescale) everywhere: the
+  // slices come out in position order whatever the file names.
+  for (int k = 0; k < 6; ++k)
+  {
+    EXPECT_EQ(largest.intensities[static_cast<size_t>(k) * 120 + 17], 100.0f * k - 1000.0f) << k;
+  }
+  EXPECT_NEAR(largest.spacingMm[2], 2.5, 1e-6);
+  const CTVolume small = readCTVolume(folder, "1.2.826.0.1.3680043.2.1125.1002");
+  EXPECT_EQ(small.dims[2], 3);
+  EXPECT_TRUE(small.warnings.empty());
+  EXPECT_EQ(messageOf(folder + "/../DicomTwoSeries"), "no error");
+  try
+  {
+    readCTVolume(folder, "9.9.9");
+    FAIL();
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(
+      std::string(e.what()), "'" + folder + "': no DICOM series with UID '9.9.9' in the folder");
+  }
+}
+
+TEST(CTVolumeIO, ErrorsNameTheFileAndTheProblem)
+{
+  EXPECT_EQ(messageOf(out + "/nothing.nii"), "'" + out + "/nothing.nii': no such file or folder");
+
+  const std::string text = std::string(VIMLOP_TEST_DATA_DIR) + "/Bad/notes.txt";
+  EXPECT_NE(messageOf(text).find("unsupported CT file type"), std::string::npos);
+
+  const std::string truncated = std::string(VIMLOP_TEST_DATA_DIR) + "/Bad/truncated.nii";
+  EXPECT_EQ(messageOf(truncated),
+    "'" + truncated + "': the file is truncated (1376 bytes, the header promises 4448)");
+
+  // A 2-D image.
+  CTVolume flat = makeVolume();
+  flat.dims = { 7, 5, 1 };
+  flat.intensities.resize(35);
+  writeCTVolume(flat, out + "/flat.nrrd");
+  EXPECT_EQ(messageOf(out + "/flat.nrrd"),
+    "'" + out + "/flat.nrrd': the image is 2-D; a 3-D CT volume is needed");
+
+  // Garbage with a NIfTI name.
+  std::ofstream(out + "/garbage.nii") << "garbage";
+  EXPECT_EQ(messageOf(out + "/garbage.nii").rfind("'" + out + "/garbage.nii': ", 0), 0u);
+
+  // An empty folder holds no series.
+  std::filesystem::create_directories(out + "/emptyfolder");
+  EXPECT_EQ(
+    messageOf(out + "/emptyfolder"), "'" + out + "/emptyfolder': the folder holds no DICOM series");
+
+  EXPECT_THROW(writeCTVolume(makeVolume(), out + "/volume.png"), Error);
+}

@@ -1,0 +1,42 @@
+#ifndef vimlop_CameraPoseTable_h
+#define vimlop_CameraPoseTable_h
+
+#include "FramePose.h"
+
+#include "VIMLOPRegistrationModule.h"
+
+#include <vtkSmartPointer.h>
+
+#include <vector>
+
+class vtkTable;
+
+/**
+ * @file CameraPoseTable.h
+ * @brief Per-frame camera poses as a `vtkTable`, the form VTK pipelines and
+ * navigation software consume.
+ *
+ * One row per frame. Columns: "FrameId" (vtkIntArray) and "CameraToCT"
+ * (vtkDoubleArray, 16 components: the camera-to-CT 4x4 matrix in row-major
+ * order, as vtkMatrix4x4::DeepCopy(const double[16]) expects). Camera axes
+ * follow OpenCV (x right, y down, z forward); translation in mm.
+ */
+
+namespace vimlop
+{
+
+/// @brief The table of `poses`, in their order.
+VIMLOPREGISTRATION_EXPORT vtkSmartPointer<vtkTable> makeCameraPoseTable(
+  const std::vector<FramePose>& poses);
+
+/**
+ * @brief The poses held by a table made by makeCameraPoseTable() (or by hand
+ * with the same columns).
+ * @throws vimlop::Error if a column is missing or has the wrong number of
+ * components, or a matrix is not a rigid transform.
+ */
+VIMLOPREGISTRATION_EXPORT std::vector<FramePose> readCameraPoseTable(vtkTable* table);
+
+} // namespace vimlop
+
+#endif

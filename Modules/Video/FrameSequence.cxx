@@ -1,0 +1,176 @@
+#include "FrameSequence.h"
+
+#include "Error.h"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+namespace vimlop
+{
+
+namespace
+{
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem)
+{
+  throw Error("'" + path + "': " + problem);
+}
+
+/// "frame2" < "frame10": digit runs compare by value, the rest by character.
+bool naturalLess(const std::string& a, const std::string& b)
+{
+  size_t i = 0;
+  size_t j = 0;
+  while (i < a.size() && j < b.size())
+  {
+    if (std::isdigit(static_cast<unsigned char>(a[i])) &&
+      std::isdigit(static_cast<unsigned char>(b[j])))
+    {
+      size_t ie = i;
+      size_t je = j;
+      while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie])))
+      {
+        ++ie;
+      }
+      while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je])))
+      {
+        ++je;
+      }
+      // Compare numerically without overflow: strip leading zeros, then by length.
+      size_t ia = a.find_first_not_of('0', i);
+      size_t jb = b.find_first_not_of('0', j);
+      ia = (ia == std::string::npos || ia > ie) ? ie : ia;
+      jb = (jb == std::string::npos || jb > je) ? je : jb;
+      if (ie - ia != je - jb)
+      {
+        return ie - ia < je - jb;
+      }
+      const int c = a.compare(ia, ie - ia, b, jb, je - jb);
+      if (c != 0)
+      {
+        return c < 0;
+      }
+      i = ie;
+      j = je;
+    }
+    else
+    {
+      if (a[i] != b[j])
+      {
+        return a[i] < b[j];
+      }
+      ++i;
+      ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
+}
+
+cv::Mat toBGR8(const cv::Mat& image)
+{
+  cv::Mat out = image;
+  if (out.depth() != CV_8U)
+  {
+    // 16-bit frames (some endoscope grabbers) are scaled down to 8 bits.
+    out.convertTo(out, CV_8U, out.depth() == CV_16U ? 1.0 / 256.0 : 1.0);
+  }
+  if (out.channels() == 1)
+  {
+    cv::cvtColor(out, out, cv::COLOR_GRAY2BGR);
+  }
+  else if (out.channels() == 4)
+  {
+    cv::cvtColor(out, out, cv::COLOR_BGRA2BGR);
+  }
+  return out;
+}
+
+} // namespace
+
+bool FrameSequence::isImageFileName(const std::string& name)
+{
+  std::string ext = std::filesystem::path(name).extension().string();
+  std::transform(
+    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".tif" ||
+    ext == ".tiff";
+}
+
+FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
+{
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+  {
+    fail(path, "no such file or folder");
+  }
+  if (maxFrames < 1)
+  {
+    fail(path, "the number of frames to load must be at least 1");
+  }
+  FrameSequence sequence;
+  if (fs::is_directory(path, ec))
+  {
+    std::vector<std::string> names;
+    for (const fs::directory_entry& entry : fs::directory_iterator(path, ec))
+    {
+      if (entry.is_regular_file() && isImageFileName(entry.path().filename().string()))
+      {
+        names.push_back(entry.path().filename().string());
+      }
+    }
+    if (names.empty())
+    {
+      fail(path, "the folder holds no image files (.png, .jpg, .jpeg, .bmp, .tif, .tiff)");
+    }
+    std::sort(names.begin(), names.end(), naturalLess);
+    names.resize(std::min(names.size(), static_cast<size_t>(maxFrames)));
+    for (const std::string& name : names)
+    {
+      const std::string file = (fs::path(path) / name).string();
+      const cv::Mat image = cv::imread(file, cv::IMREAD_UNCHANGED);
+      if (image.empty())
+      {
+        fail(file, "not a readable image");
+      }
+      sequence.Frames.push_back(toBGR8(image));
+      sequence.Names.push_back(name);
+    }
+  }
+  else
+  {
+    cv::VideoCapture capture(path);
+    if (!capture.isOpened())
+    {
+      fail(path, "not a readable video file or image folder");
+    }
+    cv::Mat image;
+    while (sequence.size() < maxFrames && capture.read(image) && !image.empty())
+    {
+      sequence.Frames.push_back(toBGR8(image).clone());
+      sequence.Names.push_back("frame" + std::to_string(sequence.size() - 1));
+    }
+    if (sequence.empty())
+    {
+      fail(path, "the video has no readable frames");
+    }
+  }
+  for (int i = 1; i < sequence.size(); ++i)
+  {
+    if (sequence.Frames[i].size() != sequence.Frames[0].size())
+    {
+      fail(path,
+        "frame '" + sequence.Names[i] + "' is " + std::to_string(sequence.Frames[i].cols) + "x" +
+          std::to_string(sequence.Frames[i].rows) + " but '" + sequence.Names[0] + "' is " +
+          std::to_string(sequence.widthPx()) + "x" + std::to_string(sequence.heightPx()));
+    }
+  }
+  return sequence;
+}
+
+} // namespace vimlop

@@ -1,0 +1,51 @@
+#ifndef vimlop_FrameSequence_h
+#define vimlop_FrameSequence_h
+
+#include "VIMLOPVideoModule.h"
+
+#include <opencv2/core/mat.hpp>
+
+#include <string>
+#include <vector>
+
+namespace vimlop
+{
+
+/**
+ * @brief The frames of an endoscopic video sequence, in memory, in order.
+ *
+ * Frames come from a folder of images (`.png`, `.jpg`, `.jpeg`, `.bmp`,
+ * `.tif`, `.tiff`, sorted by name with digit runs compared as numbers, so
+ * `frame2.png` comes before `frame10.png`) or from a video file read through
+ * OpenCV. All frames are 8-bit BGR and share one size. Sequences for
+ * registration are short (about 30 frames), so they are held in memory.
+ */
+class VIMLOPVIDEO_EXPORT FrameSequence
+{
+public:
+  /**
+   * @brief Loads at most `maxFrames` frames from a folder or a video file.
+   * @throws vimlop::Error naming the path and the problem: missing, empty
+   * folder, unreadable image or video, frames of different sizes.
+   */
+  static FrameSequence load(const std::string& path, int maxFrames = 10000);
+
+  int size() const { return static_cast<int>(this->Frames.size()); }
+  bool empty() const { return this->Frames.empty(); }
+  const cv::Mat& frame(int i) const { return this->Frames.at(static_cast<size_t>(i)); }
+  /// @brief File name of frame i (folder input) or "frame<i>" (video input).
+  const std::string& name(int i) const { return this->Names.at(static_cast<size_t>(i)); }
+  int widthPx() const { return this->Frames.empty() ? 0 : this->Frames.front().cols; }
+  int heightPx() const { return this->Frames.empty() ? 0 : this->Frames.front().rows; }
+
+  /// @brief True when the name looks like an image file this class reads.
+  static bool isImageFileName(const std::string& name);
+
+private:
+  std::vector<cv::Mat> Frames;
+  std::vector<std::string> Names;
+};
+
+} // namespace vimlop
+
+#endif

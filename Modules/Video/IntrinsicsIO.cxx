@@ -1,0 +1,181 @@
+#include "IntrinsicsIO.h"
+
+#include "Error.h"
+
+#include <opencv2/core.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+namespace vimlop
+{
+
+namespace
+{
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem)
+{
+  throw Error("'" + path + "': " + problem);
+}
+
+std::string extensionOf(const std::string& path)
+{
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(
+    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+double readNumber(const cv::FileNode& root, const char* key, const std::string& path)
+{
+  const cv::FileNode node = root[key];
+  if (node.empty() || (!node.isReal() && !node.isInt()))
+  {
+    fail(path, std::string("missing or non-numeric entry '") + key + "'");
+  }
+  return static_cast<double>(node);
+}
+
+} // namespace
+
+bool isIntrinsicsPath(const std::string& path)
+{
+  const std::string ext = extensionOf(path);
+  return ext == ".yaml" || ext == ".yml" || ext == ".json" || ext == ".xml";
+}
+
+PinholeCamera readIntrinsics(const std::string& path)
+{
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+  {
+    fail(path, "no such file");
+  }
+  if (!isIntrinsicsPath(path))
+  {
+    fail(path, "unsupported intrinsics file type (expected .yaml, .yml, .json or .xml)");
+  }
+  PinholeCamera camera;
+  try
+  {
+    cv::FileStorage storage(path, cv::FileStorage::READ);
+    if (!storage.isOpened())
+    {
+      fail(path, "cannot open the intrinsics file");
+    }
+    const cv::FileNode root = storage.root();
+    if (!root["camera_matrix"].empty())
+    {
+      cv::Mat k;
+      root["camera_matrix"] >> k;
+      if (k.rows != 3 || k.cols != 3)
+      {
+        fail(path, "'camera_matrix' must be a 3x3 matrix");
+      }
+      k.convertTo(k, CV_64F);
+      camera.fx = k.at<double>(0, 0);
+      camera.fy = k.at<double>(1, 1);
+      camera.cx = k.at<double>(0, 2);
+      camera.cy = k.at<double>(1, 2);
+      if (k.at<double>(0, 1) != 0.0 || k.at<double>(1, 0) != 0.0 || k.at<double>(2, 0) != 0.0 ||
+        k.at<double>(2, 1) != 0.0 || k.at<double>(2, 2) != 1.0)
+      {
+        fail(path, "'camera_matrix' must have the form [fx 0 cx; 0 fy cy; 0 0 1]");
+      }
+      camera.widthPx = static_cast<int>(readNumber(root, "image_width", path));
+      camera.heightPx = static_cast<int>(readNumber(root, "image_height", path));
+      if (!root["distortion_coefficients"].empty())
+      {
+        cv::Mat d;
+        root["distortion_coefficients"] >> d;
+        d.convertTo(d, CV_64F);
+        d = d.reshape(1, 1);
+        camera.distortion.resize(d.cols);
+        for (int i = 0; i < d.cols; ++i)
+        {
+          camera.distortion[i] = d.at<double>(0, i);
+        }
+      }
+    }
+    else
+    {
+      camera.fx = readNumber(root, "fx", path);
+      camera.fy = readNumber(root, "fy", path);
+      camera.cx = readNumber(root, "cx", path);
+      camera.cy = readNumber(root, "cy", path);
+      camera.widthPx = static_cast<int>(readNumber(root, "width", path));
+      camera.heightPx = static_cast<int>(readNumber(root, "height", path));
+      const cv::FileNode d = root["distortion"];
+      if (!d.empty())
+      {
+        if (!d.isSeq())
+        {
+          fail(path, "'distortion' must be a list of numbers");
+        }
+        camera.distortion.resize(static_cast<Eigen::Index>(d.size()));
+        for (int i = 0; i < static_cast<int>(d.size()); ++i)
+        {
+          camera.distortion[i] = static_cast<double>(d[i]);
+        }
+      }
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    fail(path, "not a valid intrinsics file (" + e.err + ")");
+  }
+  try
+  {
+    camera.validate();
+  }
+  catch (const Error& e)
+  {
+    fail(path, e.what());
+  }
+  return camera;
+}
+
+void writeIntrinsics(const PinholeCamera& camera, const std::string& path)
+{
+  if (!isIntrinsicsPath(path))
+  {
+    fail(path, "unsupported intrinsics file type (expected .yaml, .yml, .json or .xml)");
+  }
+  try
+  {
+    camera.validate();
+  }
+  catch (const Error& e)
+  {
+    fail(path, std::string("refusing to write invalid intrinsics: ") + e.what());
+  }
+  try
+  {
+    cv::FileStorage storage(path, cv::FileStorage::WRITE);
+    if (!storage.isOpened())
+    {
+      fail(path, "cannot write the intrinsics file");
+    }
+    storage << "image_width" << camera.widthPx;
+    storage << "image_height" << camera.heightPx;
+    const cv::Mat k = (cv::Mat_<double>(3, 3) << camera.fx, 0.0, camera.cx, 0.0, camera.fy,
+      camera.cy, 0.0, 0.0, 1.0);
+    storage << "camera_matrix" << k;
+    cv::Mat d(1, static_cast<int>(camera.distortion.size()), CV_64F);
+    for (int i = 0; i < d.cols; ++i)
+    {
+      d.at<double>(0, i) = camera.distortion[i];
+    }
+    if (d.cols > 0)
+    {
+      storage << "distortion_coefficients" << d;
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    fail(path, "cannot write the intrinsics file (" + e.err + ")");
+  }
+}
+
+} // namespace vimlop

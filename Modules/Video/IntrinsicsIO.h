@@ -1,0 +1,38 @@
+#ifndef vimlop_IntrinsicsIO_h
+#define vimlop_IntrinsicsIO_h
+
+#include "PinholeCamera.h"
+
+#include "VIMLOPVideoModule.h"
+
+#include <string>
+
+namespace vimlop
+{
+
+/**
+ * @brief Reads camera intrinsics from an OpenCV FileStorage file (`.yaml`,
+ * `.yml`, `.json`, `.xml`).
+ *
+ * Two layouts are accepted: OpenCV's calibration output (`image_width`,
+ * `image_height`, `camera_matrix` as a 3x3 matrix, optional
+ * `distortion_coefficients`), or plain numbers `fx`, `fy`, `cx`, `cy`,
+ * `width`, `height` (optional `distortion` list). Pixel conventions are
+ * OpenCV's (see PinholeCamera).
+ *
+ * @throws vimlop::Error naming the file and the missing or invalid entry.
+ */
+VIMLOPVIDEO_EXPORT PinholeCamera readIntrinsics(const std::string& path);
+
+/**
+ * @brief Writes intrinsics in OpenCV's calibration layout; format by extension.
+ * @throws vimlop::Error for an unsupported extension or a failed write.
+ */
+VIMLOPVIDEO_EXPORT void writeIntrinsics(const PinholeCamera& camera, const std::string& path);
+
+/// @brief True when `path` has an extension readIntrinsics() accepts.
+VIMLOPVIDEO_EXPORT bool isIntrinsicsPath(const std::string& path);
+
+} // namespace vimlop
+
+#endif

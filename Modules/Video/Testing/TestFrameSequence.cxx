@@ -1,0 +1,115 @@
+#include "Error.h"
+#include "FrameSequence.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace vimlop;
+namespace fs = std::filesystem;
+
+namespace
+{
+
+const std::string out = VIMLOP_TEST_OUTPUT_DIR;
+
+/// A frame whose top-left pixel encodes its index.
+cv::Mat numberedFrame(int index, int width = 64, int height = 48)
+{
+  cv::Mat frame(height, width, CV_8UC3, cv::Scalar(20, 40, 60));
+  frame.at<cv::Vec3b>(0, 0) = cv::Vec3b(static_cast<uchar>(10 * index), 0, 0);
+  return frame;
+}
+
+std::string freshFolder(const std::string& name)
+{
+  const std::string folder = out + "/" + name;
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  return folder;
+}
+
+std::string messageOf(const std::string& path)
+{
+  try
+  {
+    FrameSequence::load(path);
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "no error";
+}
+
+} // namespace
+
+TEST(FrameSequence, LoadsAFolderInNaturalOrder)
+{
+  const std::string folder = freshFolder("frames");
+  // Written out of order, with names that sort wrongly as plain strings.
+  for (int i : { 10, 2, 1, 0, 11 })
+  {
+    cv::imwrite(folder + "/frame" + std::to_string(i) + ".png", numberedFrame(i));
+  }
+  std::ofstream(folder + "/notes.txt") << "not a frame";
+  const FrameSequence sequence = FrameSequence::load(folder);
+  ASSERT_EQ(sequence.size(), 5);
+  const int expected[] = { 0, 1, 2, 10, 11 };
+  for (int k = 0; k < 5; ++k)
+  {
+    EXPECT_EQ(sequence.frame(k).at<cv::Vec3b>(0, 0)[0], 10 * expected[k]) << k;
+    EXPECT_EQ(sequence.name(k), "frame" + std::to_string(expected[k]) + ".png");
+  }
+  EXPECT_EQ(sequence.widthPx(), 64);
+  EXPECT_EQ(sequence.heightPx(), 48);
+  EXPECT_EQ(FrameSequence::load(folder, 2).size(), 2);
+}
+
+TEST(FrameSequence, GreyFramesBecomeBGR)
+{
+  const std::string folder = freshFolder("grey");
+  cv::imwrite(folder + "/a.png", cv::Mat(10, 12, CV_8UC1, cv::Scalar(77)));
+  const FrameSequence sequence = FrameSequence::load(folder);
+  EXPECT_EQ(sequence.frame(0).type(), CV_8UC3);
+  EXPECT_EQ(sequence.frame(0).at<cv::Vec3b>(5, 5), cv::Vec3b(77, 77, 77));
+}
+
+TEST(FrameSequence, LoadsAVideoFile)
+{
+  const std::string path = out + "/clip.avi";
+  cv::VideoWriter writer(path, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10.0, cv::Size(64, 48));
+  ASSERT_TRUE(writer.isOpened()) << "OpenCV cannot write MJPG here";
+  for (int i = 0; i < 7; ++i)
+  {
+    writer.write(numberedFrame(i));
+  }
+  writer.release();
+  const FrameSequence sequence = FrameSequence::load(path);
+  EXPECT_EQ(sequence.size(), 7);
+  EXPECT_EQ(sequence.name(3), "frame3");
+  EXPECT_EQ(sequence.widthPx(), 64);
+}
+
+TEST(FrameSequence, ErrorsNameThePathAndTheProblem)
+{
+  EXPECT_EQ(
+    messageOf(out + "/no-such-folder"), "'" + out + "/no-such-folder': no such file or folder");
+  const std::string empty = freshFolder("noframes");
+  EXPECT_EQ(messageOf(empty),
+    "'" + empty + "': the folder holds no image files (.png, .jpg, .jpeg, .bmp, .tif, .tiff)");
+  const std::string mixed = freshFolder("mixedsizes");
+  cv::imwrite(mixed + "/0.png", numberedFrame(0, 64, 48));
+  cv::imwrite(mixed + "/1.png", numberedFrame(1, 32, 48));
+  EXPECT_EQ(messageOf(mixed), "'" + mixed + "': frame '1.png' is 32x48 but '0.png' is 64x48");
+  const std::string broken = freshFolder("brokenframe");
+  std::ofstream(broken + "/0.png") << "not a png";
+  EXPECT_EQ(messageOf(broken), "'" + broken + "/0.png': not a readable image");
+  std::ofstream(out + "/movie.mp4") << "not a movie";
+  EXPECT_EQ(messageOf(out + "/movie.mp4"),
+    "'" + out + "/movie.mp4': not a readable video file or image folder");
+}

@@ -1,0 +1,96 @@
+#include "Error.h"
+#include "IntrinsicsIO.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace vimlop;
+
+namespace
+{
+
+const std::string out = VIMLOP_TEST_OUTPUT_DIR;
+
+PinholeCamera makeCamera()
+{
+  PinholeCamera k;
+  k.fx = 412.5;
+  k.fy = 410.25;
+  k.cx = 319.75;
+  k.cy = 241.5;
+  k.widthPx = 640;
+  k.heightPx = 480;
+  k.distortion.resize(5);
+  k.distortion << -0.3, 0.1, 0.001, -0.002, 0.0;
+  return k;
+}
+
+std::string messageOf(const std::string& path)
+{
+  try
+  {
+    readIntrinsics(path);
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "no error";
+}
+
+} // namespace
+
+class IntrinsicsRoundTrip : public ::testing::TestWithParam<std::string>
+{
+};
+
+TEST_P(IntrinsicsRoundTrip, KeepsEveryValue)
+{
+  const PinholeCamera k = makeCamera();
+  const std::string path = out + "/intrinsics" + GetParam();
+  writeIntrinsics(k, path);
+  const PinholeCamera back = readIntrinsics(path);
+  EXPECT_EQ(back.fx, k.fx);
+  EXPECT_EQ(back.fy, k.fy);
+  EXPECT_EQ(back.cx, k.cx);
+  EXPECT_EQ(back.cy, k.cy);
+  EXPECT_EQ(back.widthPx, 640);
+  EXPECT_EQ(back.heightPx, 480);
+  ASSERT_EQ(back.distortion.size(), 5);
+  EXPECT_EQ(back.distortion, k.distortion);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, IntrinsicsRoundTrip, ::testing::Values(".yaml", ".json", ".xml"),
+  [](const auto& info) { return info.param.substr(1); });
+
+TEST(IntrinsicsIO, ReadsPlainNumbers)
+{
+  const std::string path = out + "/plain.json";
+  std::ofstream(path)
+    << R"({"fx": 500, "fy": 501.5, "cx": 320, "cy": 240, "width": 640, "height": 480})";
+  const PinholeCamera k = readIntrinsics(path);
+  EXPECT_EQ(k.fy, 501.5);
+  EXPECT_EQ(k.widthPx, 640);
+  EXPECT_EQ(k.distortion.size(), 0);
+}
+
+TEST(IntrinsicsIO, ErrorsNameTheFileAndTheProblem)
+{
+  EXPECT_EQ(messageOf(out + "/none.yaml"), "'" + out + "/none.yaml': no such file");
+  const std::string missing = out + "/missing-fy.json";
+  std::ofstream(missing) << R"({"fx": 500, "cx": 320, "cy": 240, "width": 640, "height": 480})";
+  EXPECT_EQ(messageOf(missing), "'" + missing + "': missing or non-numeric entry 'fy'");
+  const std::string negative = out + "/negative.json";
+  std::ofstream(negative)
+    << R"({"fx": -5, "fy": 5, "cx": 320, "cy": 240, "width": 640, "height": 480})";
+  EXPECT_EQ(
+    messageOf(negative), "'" + negative + "': focal lengths must be positive (fx=-5, fy=5)");
+  const std::string malformed = out + "/malformed.yaml";
+  std::ofstream(malformed) << "%YAML:1.0\n---\nfx: [1, 2\n";
+  EXPECT_EQ(messageOf(malformed).rfind("'" + malformed + "': ", 0), 0u) << messageOf(malformed);
+  const std::string text = out + "/intrinsics.txt";
+  std::ofstream(text) << "fx 500";
+  EXPECT_EQ(messageOf(text),
+    "'" + text + "': unsupported intrinsics file type (expected .yaml, .yml, .json or .xml)");
+}
