@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <sstream>
 #include <utility>
@@ -57,7 +58,8 @@ TriangleMesh::TriangleMesh(
       twiceArea > 0.0 ? Eigen::Vector3d(n / twiceArea) : Eigen::Vector3d::Zero();
   }
 
-  // Edge-face adjacency by sorting (edge key, face) pairs: O(F log F), no hashing.
+  // Edge-face adjacency by sorting (edge key, face corner) pairs: O(F log F),
+  // no hashing. Corner k of face f starts the edge from corner k to k + 1.
   std::vector<std::pair<std::uint64_t, int>> halfEdges;
   halfEdges.reserve(3 * static_cast<size_t>(nf));
   for (int f = 0; f < nf; ++f)
@@ -66,26 +68,79 @@ TriangleMesh::TriangleMesh(
     {
       const std::uint64_t a = static_cast<std::uint32_t>(this->Faces[f][k]);
       const std::uint64_t b = static_cast<std::uint32_t>(this->Faces[f][(k + 1) % 3]);
-      halfEdges.emplace_back(std::min(a, b) << 32 | std::max(a, b), f);
+      halfEdges.emplace_back(std::min(a, b) << 32 | std::max(a, b), 3 * f + k);
     }
   }
   std::sort(halfEdges.begin(), halfEdges.end());
+  this->FaceEdges.assign(static_cast<size_t>(nf), Eigen::Vector3i::Constant(-1));
   for (size_t i = 0; i < halfEdges.size();)
   {
     size_t j = i;
+    const int edgeIndex = static_cast<int>(this->Edges.size());
     while (j < halfEdges.size() && halfEdges[j].first == halfEdges[i].first)
     {
+      this->FaceEdges[halfEdges[j].second / 3][halfEdges[j].second % 3] = edgeIndex;
       ++j;
     }
     MeshEdge edge;
     edge.vertex0 = static_cast<int>(halfEdges[i].first >> 32);
     edge.vertex1 = static_cast<int>(halfEdges[i].first & 0xffffffffu);
-    edge.face0 = halfEdges[i].second;
-    edge.face1 = j - i > 1 ? halfEdges[i + 1].second : -1;
+    edge.face0 = halfEdges[i].second / 3;
+    edge.face1 = j - i > 1 ? halfEdges[i + 1].second / 3 : -1;
     edge.nonManifold = j - i > 2;
     this->Edges.push_back(edge);
     i = j;
   }
+
+  // Angle-weighted vertex normals: the weight of a face at a corner is the
+  // corner's angle, which makes the normal independent of the triangulation.
+  this->VertexNormals.assign(static_cast<size_t>(nv), Eigen::Vector3d::Zero());
+  for (int f = 0; f < nf; ++f)
+  {
+    if (this->FaceAreas[f] <= 0.0)
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const Eigen::Vector3d u = (this->corner(f, (k + 1) % 3) - this->corner(f, k)).normalized();
+      const Eigen::Vector3d w = (this->corner(f, (k + 2) % 3) - this->corner(f, k)).normalized();
+      const double angle = std::acos(std::clamp(u.dot(w), -1.0, 1.0));
+      this->VertexNormals[this->Faces[f][k]] += angle * this->FaceNormals[f];
+    }
+  }
+  for (Eigen::Vector3d& n : this->VertexNormals)
+  {
+    const double length = n.norm();
+    n = length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
+  }
+}
+
+Eigen::Vector3d TriangleMesh::pseudoNormal(int face, const Eigen::Vector3d& w) const
+{
+  constexpr double onFeature = 1e-9;
+  for (int k = 0; k < 3; ++k)
+  {
+    if (w[k] >= 1.0 - onFeature)
+    {
+      return this->VertexNormals[this->Faces[face][k]];
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    // The weight of the corner opposite edge (k+1, k+2) vanishes on that edge.
+    if (w[k] <= onFeature)
+    {
+      const MeshEdge& edge = this->Edges[this->FaceEdges[face][(k + 1) % 3]];
+      Eigen::Vector3d n = this->FaceNormals[edge.face0];
+      if (edge.face1 >= 0)
+      {
+        n += this->FaceNormals[edge.face1];
+      }
+      return n.norm() > 0.0 ? Eigen::Vector3d(n.normalized()) : this->FaceNormals[face];
+    }
+  }
+  return this->FaceNormals[face];
 }
 
 Eigen::Vector3d TriangleMesh::faceCentroid(int face) const

@@ -39,6 +39,20 @@ public:
   const std::vector<double>& faceAreas() const { return this->FaceAreas; }
   /// @brief Every edge once, sorted by (vertex0, vertex1).
   const std::vector<MeshEdge>& edges() const { return this->Edges; }
+  /// @brief Edge indices of each face: entry k is the edge from corner k to corner k + 1.
+  const std::vector<Eigen::Vector3i>& faceEdges() const { return this->FaceEdges; }
+  /// @brief Angle-weighted vertex normals (unit; zero at isolated vertices).
+  const std::vector<Eigen::Vector3d>& vertexNormals() const { return this->VertexNormals; }
+
+  /**
+   * @brief Normal of the surface at a point given by face and barycentric
+   * weights: the face normal inside, the edge's (sum of its faces' normals)
+   * on an edge, the vertex's angle-weighted normal at a corner. With these
+   * pseudo-normals the sign of n · (p - q), q the closest surface point to p,
+   * tells inside from outside of a closed surface exactly (Baerentzen and
+   * Aanaes, 2005), which the anatomical constraint (V10) relies on.
+   */
+  Eigen::Vector3d pseudoNormal(int face, const Eigen::Vector3d& barycentric) const;
 
   int numberOfVertices() const { return static_cast<int>(this->Vertices.size()); }
   int numberOfFaces() const { return static_cast<int>(this->Faces.size()); }
@@ -70,6 +84,8 @@ private:
   std::vector<Eigen::Vector3d> FaceNormals;
   std::vector<double> FaceAreas;
   std::vector<MeshEdge> Edges;
+  std::vector<Eigen::Vector3i> FaceEdges;
+  std::vector<Eigen::Vector3d> VertexNormals;
 };
 
 } // namespace vimlop

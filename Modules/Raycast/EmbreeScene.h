@@ -1,6 +1,7 @@
 #ifndef vimlop_EmbreeScene_h
 #define vimlop_EmbreeScene_h
 
+#include "SurfaceLocator.h"
 #include "SurfacePoint.h"
 #include "TriangleMesh.h"
 
@@ -22,7 +23,7 @@ namespace vimlop
  * on the candidate triangles. All queries are const and safe to call from
  * several threads at once. Embree's headers stay out of this header.
  */
-class EmbreeScene
+class EmbreeScene : public SurfaceLocator
 {
 public:
   /**
@@ -30,7 +31,7 @@ public:
    * @throws vimlop::Error if the mesh has no faces or Embree fails.
    */
   explicit EmbreeScene(const TriangleMesh& mesh);
-  ~EmbreeScene();
+  ~EmbreeScene() override;
   EmbreeScene(EmbreeScene&&) noexcept;
   EmbreeScene& operator=(EmbreeScene&&) noexcept;
   EmbreeScene(const EmbreeScene&) = delete;
@@ -43,8 +44,13 @@ public:
    * @brief The point of the surface closest to `query` (mm).
    * @return an invalid SurfacePoint (face -1) when nothing lies within `maxDistanceMm`.
    */
-  SurfacePoint closestPoint(const Eigen::Vector3d& query,
-    double maxDistanceMm = std::numeric_limits<double>::infinity()) const;
+  SurfacePoint closestPoint(const Eigen::Vector3d& query, double maxDistanceMm) const;
+
+  /// @brief The closest surface point, at any distance (SurfaceLocator, V10).
+  SurfacePoint closestPoint(const Eigen::Vector3d& query) const override
+  {
+    return this->closestPoint(query, std::numeric_limits<double>::infinity());
+  }
 
   /**
    * @brief True when the open segment from `from` to `to` crosses the surface.

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <map>
 #include <random>
 #include <utility>
@@ -72,6 +73,50 @@ inline TriangleMesh makeSphere(double radius, int subdivisions,
     }
   }
   return TriangleMesh(std::move(v), std::move(f));
+}
+
+/// A closed cavity with folds: an icosphere of `radius` whose radius varies by
+/// ±`amplitude` (a fraction) with direction, normals into the cavity. Seen from
+/// inside, its bumps make occluding contours.
+inline TriangleMesh makeBumpyCavity(
+  double radius = 20.0, double amplitude = 0.25, int subdivisions = 4)
+{
+  const TriangleMesh sphere = makeSphere(1.0, subdivisions);
+  std::vector<Eigen::Vector3d> v = sphere.vertices();
+  for (Eigen::Vector3d& p : v)
+  {
+    const double bump =
+      std::sin(3.0 * p.x() + 1.0) * std::sin(2.0 * p.y() - 0.5) * std::cos(2.5 * p.z()) +
+      0.5 * std::sin(5.0 * p.z() + 2.0 * p.x());
+    p *= radius * (1.0 + amplitude * bump);
+  }
+  return TriangleMesh(std::move(v), sphere.faces());
+}
+
+/// The union of several surfaces as one mesh (vertices renumbered).
+inline TriangleMesh merge(const std::vector<TriangleMesh>& parts)
+{
+  std::vector<Eigen::Vector3d> v;
+  std::vector<Eigen::Vector3i> f;
+  for (const TriangleMesh& part : parts)
+  {
+    const int offset = static_cast<int>(v.size());
+    v.insert(v.end(), part.vertices().begin(), part.vertices().end());
+    for (const Eigen::Vector3i& tri : part.faces())
+    {
+      f.push_back(tri + Eigen::Vector3i::Constant(offset));
+    }
+  }
+  return TriangleMesh(std::move(v), std::move(f));
+}
+
+/// An airway-like test model: a bumpy cavity of radius about 20 mm holding two
+/// solid blobs (like turbinates), whose silhouettes make occluding contours
+/// seen from inside. All normals point into the air.
+inline TriangleMesh makeCavityWithBlobs()
+{
+  return merge({ makeBumpyCavity(20.0, 0.15, 4), makeSphere(4.0, 3, { 8.0, 0.0, 3.0 }, true),
+    makeSphere(3.0, 3, { -6.0, 5.0, -4.0 }, true) });
 }
 
 /// Axis-aligned box [lo, hi], two triangles per side; normals inward unless `outward`.

@@ -1,0 +1,41 @@
+#ifndef vimlop_OccludingContours_h
+#define vimlop_OccludingContours_h
+
+#include "CameraPose.h"
+#include "ModelContourPoint.h"
+#include "PinholeCamera.h"
+#include "TriangleMesh.h"
+
+#include <vector>
+
+namespace vimlop
+{
+
+/// @brief Options of occluding-contour extraction (V3).
+struct OccludingContourOptions
+{
+  /// Distance between samples along a contour edge in the image, pixels (default 1).
+  double sampleSpacingPx = 1.0;
+  /// Samples nearer the camera than this along its axis are dropped, mm (default 0.1).
+  double nearClipMm = 0.1;
+  /// Samples closer than this to the image border are dropped, pixels (default 0).
+  double imageMarginPx = 0.0;
+};
+
+/**
+ * @brief The occluding contours of `mesh` seen by a camera, before visibility.
+ *
+ * An edge is an occluding contour when one of its faces faces the camera
+ * centre and the other faces away (the sign of n_f · (c - centroid_f)
+ * differs). Such edges are sampled about every `sampleSpacingPx` pixels (at
+ * least once), and samples in front of the camera and inside the image are
+ * kept, in edge order. Hidden samples are still included: visibility is a
+ * separate stage (V4, see ContourVisibility).
+ */
+std::vector<ModelContourPoint> extractOccludingContours(const TriangleMesh& mesh,
+  const PinholeCamera& intrinsics, const CameraPose& cameraToCT,
+  const OccludingContourOptions& options = OccludingContourOptions());
+
+} // namespace vimlop
+
+#endif

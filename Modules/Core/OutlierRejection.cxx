@@ -1,0 +1,111 @@
+#include "OutlierRejection.h"
+
+#include "ChiSquare.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace vimlop
+{
+
+std::vector<char> rejectPointOutliers(const std::vector<Eigen::Vector3d>& residualsCT,
+  const std::vector<Eigen::Matrix3d>& covariances, const Eigen::Matrix3d& rotation,
+  const std::vector<double>& matchCosts, double trimFraction, double chiSquareThreshold)
+{
+  const size_t n = residualsCT.size();
+  std::vector<char> inlier(n, 1);
+  // Trimming: the highest costs go first; ties broken by index for determinism.
+  const size_t trimmed = std::min(n, static_cast<size_t>(std::ceil(trimFraction * n - 1e-9)));
+  if (trimmed > 0)
+  {
+    std::vector<int> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(
+      order.begin(), order.end(), [&](int a, int b) { return matchCosts[a] > matchCosts[b]; });
+    for (size_t k = 0; k < trimmed; ++k)
+    {
+      inlier[order[k]] = 0;
+    }
+  }
+  double sum = 0.0;
+  size_t kept = 0;
+  for (size_t i = 0; i < n; ++i)
+  {
+    if (inlier[i])
+    {
+      sum += residualsCT[i].squaredNorm();
+      ++kept;
+    }
+  }
+  const double sigma2 = kept > 0 ? sum / kept : 0.0;
+  for (size_t i = 0; i < n; ++i)
+  {
+    if (!inlier[i])
+    {
+      continue;
+    }
+    const Eigen::Vector3d d = rotation.transpose() * residualsCT[i];
+    const Eigen::Matrix3d inflated = covariances[i] + sigma2 * Eigen::Matrix3d::Identity();
+    if (d.dot(inflated.ldlt().solve(d)) > chiSquareThreshold)
+    {
+      inlier[i] = 0;
+    }
+  }
+  return inlier;
+}
+
+std::vector<char> rejectContourOutliers(const std::vector<ContourMatch>& matches,
+  const ContourMatchOptions& matchOptions, double meanSquaredDistancePx2,
+  double meanSquaredAngleRad2, double chiSquareProbability, double maxOutlierFraction)
+{
+  const double positionThreshold = chiSquareQuantile(chiSquareProbability, 2);
+  const double angleThreshold = chiSquareQuantile(chiSquareProbability, 1);
+  const Eigen::Matrix2d inflated =
+    matchOptions.positionCovariancePx2 + meanSquaredDistancePx2 * Eigen::Matrix2d::Identity();
+  const Eigen::Matrix2d information = inflated.inverse();
+  const double angleVariance =
+    (matchOptions.kappa > 0.0 ? 1.0 / matchOptions.kappa : 1e300) + meanSquaredAngleRad2;
+
+  std::vector<char> inlier(matches.size(), 0);
+  // Each matched point's worst test statistic relative to its threshold.
+  std::vector<std::pair<double, int>> failing;
+  int matched = 0;
+  for (int i = 0; i < static_cast<int>(matches.size()); ++i)
+  {
+    const ContourMatch& m = matches[i];
+    if (m.model < 0)
+    {
+      continue;
+    }
+    ++matched;
+    const double positionStatistic = m.errorPx.dot(information * m.errorPx);
+    const double angleStatistic = m.angleRad * m.angleRad / angleVariance;
+    const double ratio =
+      std::max(positionStatistic / positionThreshold, angleStatistic / angleThreshold);
+    if (ratio > 1.0)
+    {
+      failing.emplace_back(ratio, i);
+    }
+    else
+    {
+      inlier[i] = 1;
+    }
+  }
+  const size_t cap = static_cast<size_t>(std::floor(maxOutlierFraction * matched + 1e-9));
+  if (failing.size() > cap)
+  {
+    // Too many for the per-frame cap: only the worst `cap` are outliers.
+    std::stable_sort(failing.begin(), failing.end(),
+      [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (size_t k = cap; k < failing.size(); ++k)
+    {
+      inlier[failing[k].second] = 1;
+    }
+  }
+  return inlier;
+}
+
+} // namespace vimlop

@@ -1,0 +1,92 @@
+#ifndef vimlop_RegistrationOptions_h
+#define vimlop_RegistrationOptions_h
+
+#include "ContourMatcher.h"
+#include "PoseUpdate.h"
+
+#include <limits>
+
+namespace vimlop
+{
+
+/// @brief Which algorithm registerVideo() runs; the baselines share its stages.
+enum class RegistrationMethod
+{
+  VIMLOP,    ///< 3-D points and oriented 2-D contours (the paper's V-IMLOP)
+  IMLP,      ///< V-IMLOP without contours: anisotropic 3-D points only
+  TrimmedICP ///< Euclidean closest points, trimming, closed-form similarity
+};
+
+/// @brief Name of a method as used on the command line: "vimlop", "imlp", "trimmed-icp".
+const char* toString(RegistrationMethod method);
+
+/**
+ * @brief Every parameter of a registration, with the paper's values where it
+ * gives them. Units: mm, pixels, radians (degrees only in the names that say so).
+ */
+struct RegistrationOptions
+{
+  RegistrationMethod method = RegistrationMethod::VIMLOP;
+
+  /// V5: Σ2d (default 9 px² I), κ (default 200) and the normal-angle bound (default 45°).
+  ContourMatchOptions contourMatch;
+  /// V3: spacing of model contour samples along their edges, pixels (default 1).
+  double contourSampleSpacingPx = 1.0;
+
+  /// V7: bounds on the scale s (SfM units to mm); default unbounded. The
+  /// initial scale must lie within them.
+  double minScale = 0.0;
+  double maxScale = std::numeric_limits<double>::infinity();
+
+  /// V8: fraction p_t of 3-D pairs with the highest cost trimmed each
+  /// iteration (default 0.1; the paper does not state its value).
+  double trimFraction = 0.1;
+  /// V8: probability p of the chi-square outlier tests (default 0.95).
+  double chiSquareProbability = 0.95;
+  /// V8: at most this fraction of a frame's contour points are outliers (default 0.5).
+  double maxContourOutlierFraction = 0.5;
+
+  /// V9: scale the 3-D covariances by n3d (1 - p_t) / n2d (default on).
+  bool equalInfluence = true;
+
+  /// V10: keep every camera inside the surface (default on; never for trimmed ICP).
+  bool anatomicalConstraint = true;
+  /// V10: halvings of the last change tried before the change is undone (default 10).
+  int maxBackoffSteps = 10;
+
+  /// V11: iteration cap (default 100).
+  int maxIterations = 100;
+  /// V11: converged when the data centroid moves less than this, mm (default 0.001) ...
+  double convergenceTranslationMm = 1e-3;
+  /// ... and the rotation changes less than this, degrees (default 0.001) ...
+  double convergenceRotationDeg = 1e-3;
+  /// ... and the scale changes by less than this fraction (default 1e-5).
+  double convergenceScaleRelative = 1e-5;
+
+  /**
+   * Extrapolate along the path of the estimates when successive updates point
+   * the same way (within 10°), by the remaining sum of their geometric
+   * decrease (at most `maxAcceleration` times the last update), as in Besl
+   * and McKay's accelerated ICP. An extrapolation that raises the mean match
+   * cost is undone at the next iteration. It changes how fast the iterations
+   * approach the solution, not the solution. Default on.
+   */
+  bool accelerate = true;
+  double maxAcceleration = 10.0;
+
+  /// V6: the Levenberg-Marquardt solver of the pose update.
+  PoseUpdateOptions poseUpdate;
+
+  /// Threads, 0 for all cores (default 0). Results do not depend on it.
+  int threads = 0;
+
+  /**
+   * @brief Checks the values.
+   * @throws vimlop::Error naming the first invalid one (e.g. min scale > max scale).
+   */
+  void validate() const;
+};
+
+} // namespace vimlop
+
+#endif

@@ -1,0 +1,327 @@
+#include "SyntheticExperiment.h"
+
+#include "Error.h"
+#include "NoiseModel.h"
+#include "OccludingContours.h"
+#include "Rotation.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace vimlop
+{
+
+PinholeCamera SyntheticOptions::defaultIntrinsics()
+{
+  PinholeCamera k;
+  k.fx = k.fy = 200.0;
+  k.cx = 159.5;
+  k.cy = 119.5;
+  k.widthPx = 320;
+  k.heightPx = 240;
+  return k;
+}
+
+namespace
+{
+
+constexpr double Degree = M_PI / 180.0;
+
+class Sampler
+{
+public:
+  explicit Sampler(std::uint64_t seed)
+    : Engine(seed)
+  {
+  }
+  double uniform(double lo, double hi)
+  {
+    return std::uniform_real_distribution<double>(lo, hi)(this->Engine);
+  }
+  double normal() { return this->Normal(this->Engine); }
+  Eigen::Vector3d direction()
+  {
+    Eigen::Vector3d v;
+    do
+    {
+      v = Eigen::Vector3d(this->normal(), this->normal(), this->normal());
+    } while (v.norm() < 1e-9);
+    return v.normalized();
+  }
+  int index(int n) { return std::uniform_int_distribution<int>(0, n - 1)(this->Engine); }
+
+private:
+  std::mt19937_64 Engine;
+  std::normal_distribution<double> Normal;
+};
+
+/// Points `pointsCT` that `camera` sees: in front, inside the image, unoccluded.
+std::vector<char> seenBy(const RegistrationModel& model, const PinholeCamera& k,
+  const CameraPose& camera, const std::vector<Eigen::Vector3d>& pointsCT)
+{
+  std::vector<char> visible;
+  model.visibility().classify(k, camera, pointsCT, visible);
+  for (size_t i = 0; i < pointsCT.size(); ++i)
+  {
+    const Eigen::Vector3d p = camera.worldToCamera(pointsCT[i]);
+    if (p.z() < 0.5 || !k.isInImage(k.project(p)))
+    {
+      visible[i] = 0;
+    }
+  }
+  return visible;
+}
+
+/// Free length of the ray from `p` along `d` (up to `limit` mm, 1 mm steps).
+double freeLength(
+  const MeshTree& tree, const Eigen::Vector3d& p, const Eigen::Vector3d& d, double limit)
+{
+  for (double length = 1.0; length <= limit; length += 1.0)
+  {
+    if (tree.isSegmentOccluded(p, p + length * d, 1e-6))
+    {
+      return length - 1.0;
+    }
+  }
+  return limit;
+}
+
+std::vector<CameraPose> cameraPath(
+  const RegistrationModel& model, const SyntheticOptions& o, Sampler& rng)
+{
+  const Eigen::Matrix<double, 3, 2> bounds = model.mesh().bounds();
+  const double pathLength = (o.cameras - 1) * o.cameraStepMm;
+  for (int attempt = 0; attempt < 5000; ++attempt)
+  {
+    const Eigen::Vector3d start(rng.uniform(bounds(0, 0), bounds(0, 1)),
+      rng.uniform(bounds(1, 0), bounds(1, 1)), rng.uniform(bounds(2, 0), bounds(2, 1)));
+    if (!model.isInside(start) || model.locator().closestPoint(start).distanceMm < o.minClearanceMm)
+    {
+      continue;
+    }
+    // Look along the longest free direction among a few: along the passage.
+    Eigen::Vector3d best = Eigen::Vector3d::Zero();
+    double bestFree = 0.0;
+    for (int k = 0; k < 32; ++k)
+    {
+      const Eigen::Vector3d d = rng.direction();
+      const double free = freeLength(model.tree(), start, d, 40.0);
+      if (free > bestFree)
+      {
+        bestFree = free;
+        best = d;
+      }
+    }
+    if (bestFree < pathLength + 5.0)
+    {
+      continue;
+    }
+    Eigen::Vector3d up = rng.direction();
+    up -= up.dot(best) * best;
+    if (up.norm() < 1e-3)
+    {
+      continue;
+    }
+    std::vector<CameraPose> path;
+    bool ok = true;
+    for (int c = 0; c < o.cameras && ok; ++c)
+    {
+      const Eigen::Vector3d centre = start + c * o.cameraStepMm * best;
+      ok = model.isInside(centre) &&
+        model.locator().closestPoint(centre).distanceMm >= o.minClearanceMm;
+      // Each view turns by up to 10° from the path, as a hand-held endoscope does.
+      const Eigen::Vector3d look =
+        rotationFromVector(10.0 * Degree * rng.uniform(0.0, 1.0) * rng.direction()) * best;
+      path.push_back(CameraPose::lookAt(centre, centre + look, up));
+    }
+    if (ok)
+    {
+      return path;
+    }
+  }
+  throw Error("synthetic experiment: found no camera path inside the model with " +
+    std::to_string(o.minClearanceMm) + " mm clearance");
+}
+
+Eigen::Vector3d randomPointOnFace(const TriangleMesh& mesh, int face, Sampler& rng)
+{
+  // Uniform on the triangle: reflect the unit square's upper half.
+  double u = rng.uniform(0.0, 1.0);
+  double v = rng.uniform(0.0, 1.0);
+  if (u + v > 1.0)
+  {
+    u = 1.0 - u;
+    v = 1.0 - v;
+  }
+  return mesh.corner(face, 0) + u * (mesh.corner(face, 1) - mesh.corner(face, 0)) +
+    v * (mesh.corner(face, 2) - mesh.corner(face, 0));
+}
+
+} // namespace
+
+SyntheticTrial makeSyntheticTrial(
+  const RegistrationModel& model, const SyntheticOptions& o, std::uint64_t seed)
+{
+  if (o.cameras < 1 || o.points < 3)
+  {
+    throw Error("synthetic experiment: needs at least 1 camera and 3 points");
+  }
+  o.intrinsics.validate();
+  Sampler rng(seed);
+  const TriangleMesh& mesh = model.mesh();
+  std::vector<double> cumulativeArea(static_cast<size_t>(mesh.numberOfFaces()));
+  double area = 0.0;
+  for (int f = 0; f < mesh.numberOfFaces(); ++f)
+  {
+    area += mesh.faceAreas()[f];
+    cumulativeArea[f] = area;
+  }
+
+  for (int attempt = 0; attempt < 50; ++attempt)
+  {
+    SyntheticTrial trial;
+    trial.trueCamerasCT = cameraPath(model, o, rng);
+
+    // Targets: faces visible to the middle camera.
+    const CameraPose& middle = trial.trueCamerasCT[trial.trueCamerasCT.size() / 2];
+    std::vector<Eigen::Vector3d> centroids(static_cast<size_t>(mesh.numberOfFaces()));
+    for (int f = 0; f < mesh.numberOfFaces(); ++f)
+    {
+      centroids[f] = mesh.faceCentroid(f);
+    }
+    const std::vector<char> targetVisible = seenBy(model, o.intrinsics, middle, centroids);
+    for (int f = 0; f < mesh.numberOfFaces(); ++f)
+    {
+      if (targetVisible[f] && mesh.faceNormals()[f].dot(middle.centre - centroids[f]) > 0.0)
+      {
+        trial.targetsCT.push_back(centroids[f]);
+      }
+    }
+    if (trial.targetsCT.size() < 20)
+    {
+      continue; // the middle camera sees too little
+    }
+
+    // Points: uniform over the visible area, by rejection in batches.
+    std::vector<Eigen::Vector3d> truePoints;
+    std::vector<int> observer;
+    for (int batch = 0; batch < 200 && static_cast<int>(truePoints.size()) < o.points; ++batch)
+    {
+      std::vector<Eigen::Vector3d> candidates(2000);
+      for (Eigen::Vector3d& c : candidates)
+      {
+        const double a = rng.uniform(0.0, area);
+        const int face =
+          static_cast<int>(std::lower_bound(cumulativeArea.begin(), cumulativeArea.end(), a) -
+            cumulativeArea.begin());
+        c = randomPointOnFace(mesh, std::min(face, mesh.numberOfFaces() - 1), rng);
+      }
+      std::vector<std::vector<char>> seen;
+      for (const CameraPose& camera : trial.trueCamerasCT)
+      {
+        seen.push_back(seenBy(model, o.intrinsics, camera, candidates));
+      }
+      for (size_t i = 0; i < candidates.size() && static_cast<int>(truePoints.size()) < o.points;
+           ++i)
+      {
+        std::vector<int> cameras;
+        for (int c = 0; c < o.cameras; ++c)
+        {
+          if (seen[c][i])
+          {
+            cameras.push_back(c);
+          }
+        }
+        if (!cameras.empty())
+        {
+          truePoints.push_back(candidates[i]);
+          observer.push_back(cameras[rng.index(static_cast<int>(cameras.size()))]);
+        }
+      }
+    }
+    if (static_cast<int>(truePoints.size()) < o.points)
+    {
+      continue;
+    }
+
+    // Misalignment M about the data centroid; the data lives in M's frame.
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : truePoints)
+    {
+      centroid += p;
+    }
+    centroid /= static_cast<double>(truePoints.size());
+    SimilarityTransform misalign;
+    misalign.rotation = rotationFromVector(
+      rng.uniform(o.misalignMinDeg, o.misalignMaxDeg) * Degree * rng.direction());
+    misalign.translation = centroid - misalign.rotation * centroid +
+      rng.uniform(o.misalignMinMm, o.misalignMaxMm) * rng.direction();
+    trial.truthSfmToCT = misalign.inverse();
+    trial.initialSfmToCT = SimilarityTransform();
+
+    for (size_t i = 0; i < truePoints.size(); ++i)
+    {
+      const Eigen::Vector3d axis = trial.trueCamerasCT[observer[i]].viewDirection();
+      const Eigen::Matrix3d covarianceCT =
+        viewAlignedCovariance(axis, o.sigmaAlongMm, o.sigmaAcrossMm);
+      const Eigen::Matrix3d L = covarianceCT.llt().matrixL();
+      const Eigen::Vector3d noisy =
+        truePoints[i] + L * Eigen::Vector3d(rng.normal(), rng.normal(), rng.normal());
+      trial.data.points.push_back(misalign.apply(noisy));
+      trial.data.pointCovariances.push_back(
+        misalign.rotation * covarianceCT * misalign.rotation.transpose());
+    }
+
+    bool enoughContours = true;
+    for (int c = 0; c < o.cameras; ++c)
+    {
+      const CameraPose& truth = trial.trueCamerasCT[c];
+      VideoFrame frame;
+      frame.frameId = c;
+      frame.intrinsics = o.intrinsics;
+      CameraPose noisy;
+      noisy.rotation =
+        rotationFromVector(rng.uniform(0.0, o.poseNoiseMaxDeg) * Degree * rng.direction()) *
+        truth.rotation;
+      noisy.centre = truth.centre + rng.uniform(0.0, o.poseNoiseMaxMm) * rng.direction();
+      frame.cameraToSfm = misalign.apply(noisy);
+
+      OccludingContourOptions contourOptions;
+      contourOptions.sampleSpacingPx = o.contourSpacingPx;
+      const std::vector<ModelContourPoint> samples =
+        extractOccludingContours(mesh, o.intrinsics, truth, contourOptions);
+      std::vector<Eigen::Vector3d> points;
+      for (const ModelContourPoint& s : samples)
+      {
+        points.push_back(s.point);
+      }
+      std::vector<char> visible;
+      model.visibility().classify(o.intrinsics, truth, points, visible);
+      for (size_t i = 0; i < samples.size(); ++i)
+      {
+        if (visible[i])
+        {
+          ContourPoint p;
+          p.pixel =
+            samples[i].pixel + o.contourNoisePx * Eigen::Vector2d(rng.normal(), rng.normal());
+          p.normal = samples[i].pixelNormal;
+          frame.contour.push_back(p);
+        }
+      }
+      enoughContours = enoughContours && frame.contour.size() >= 10;
+      trial.data.frames.push_back(frame);
+    }
+    if (!enoughContours)
+    {
+      continue;
+    }
+    return trial;
+  }
+  throw Error(
+    "synthetic experiment: found no camera path whose views show enough surface and contours");
+}
+
+} // namespace vimlop

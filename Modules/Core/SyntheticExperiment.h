@@ -1,0 +1,78 @@
+#ifndef vimlop_SyntheticExperiment_h
+#define vimlop_SyntheticExperiment_h
+
+#include "RegistrationData.h"
+#include "RegistrationModel.h"
+#include "SimilarityTransform.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace vimlop
+{
+
+/**
+ * @brief Parameters of the paper's synthetic experiment (P1, DESIGN section 6):
+ * the paper's values by default.
+ */
+struct SyntheticOptions
+{
+  int cameras = 6;
+  int points = 900;
+  /// SfM point noise std along and across the observing camera's optical axis, mm.
+  double sigmaAlongMm = 0.5;
+  double sigmaAcrossMm = 0.3;
+  /// Camera pose noise: translation and rotation magnitudes uniform in [0, max], mm and degrees.
+  double poseNoiseMaxMm = 0.25;
+  double poseNoiseMaxDeg = 0.25;
+  /// Misalignment of the data: rotation and translation magnitudes uniform in these ranges.
+  double misalignMinMm = 2.0;
+  double misalignMaxMm = 3.0;
+  double misalignMinDeg = 2.0;
+  double misalignMaxDeg = 3.0;
+  /// The endoscope: 320 x 240 pixels, fx = fy = 200 (a 77° x 62° field of view).
+  PinholeCamera intrinsics = defaultIntrinsics();
+  /// Spacing of the cameras along their path, mm (default 0.75).
+  double cameraStepMm = 0.75;
+  /// Least distance of every camera to the wall, mm (default 1.5).
+  double minClearanceMm = 1.5;
+  /// Spacing of the simulated video contour points along the true contours, pixels (default 3).
+  double contourSpacingPx = 3.0;
+  /// Extra Gaussian noise on video contour positions, pixels (default 0: the
+  /// contours are the model's at the true poses, as in the paper).
+  double contourNoisePx = 0.0;
+
+  static PinholeCamera defaultIntrinsics();
+};
+
+/// @brief One synthetic trial: data in a misaligned SfM frame and its ground truth.
+struct SyntheticTrial
+{
+  RegistrationData data;
+  /// T_gt: the SfM frame (misaligned data) to CT.
+  SimilarityTransform truthSfmToCT;
+  /// The start of the registration: identity (the misalignment is in the data).
+  SimilarityTransform initialSfmToCT;
+  std::vector<CameraPose> trueCamerasCT;
+  /// Centres of the faces visible to the middle camera at its true pose (TRE targets).
+  std::vector<Eigen::Vector3d> targetsCT;
+};
+
+/**
+ * @brief Builds one P1 trial on `model`, reproducibly from `seed`.
+ *
+ * Cameras lie on a straight path inside the cavity (every one at least
+ * `minClearanceMm` from the wall), looking roughly along it; points are drawn
+ * uniformly over the surface area visible to them and get view-aligned noise
+ * from the camera that sees them; camera poses get uniform noise; video
+ * contours are the visible occluding contours at the true poses. The data is
+ * then misaligned by a random rigid motion about its centroid.
+ *
+ * @throws vimlop::Error if no camera path with enough view can be found.
+ */
+SyntheticTrial makeSyntheticTrial(
+  const RegistrationModel& model, const SyntheticOptions& options, std::uint64_t seed);
+
+} // namespace vimlop
+
+#endif

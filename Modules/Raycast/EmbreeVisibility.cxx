@@ -1,0 +1,28 @@
+#include "EmbreeVisibility.h"
+
+#include <algorithm>
+
+namespace vimlop
+{
+
+EmbreeVisibility::EmbreeVisibility(
+  std::shared_ptr<const EmbreeScene> scene, double toleranceMm, double relativeTolerance)
+  : Scene(std::move(scene))
+  , ToleranceMm(toleranceMm)
+  , RelativeTolerance(relativeTolerance)
+{
+}
+
+void EmbreeVisibility::classify(const PinholeCamera&, const CameraPose& cameraToCT,
+  const std::vector<Eigen::Vector3d>& pointsCT, std::vector<char>& visible) const
+{
+  visible.resize(pointsCT.size());
+  for (size_t i = 0; i < pointsCT.size(); ++i)
+  {
+    const double distance = (pointsCT[i] - cameraToCT.centre).norm();
+    const double tolerance = std::max(this->ToleranceMm, this->RelativeTolerance * distance);
+    visible[i] = this->Scene->isSegmentOccluded(cameraToCT.centre, pointsCT[i], tolerance) ? 0 : 1;
+  }
+}
+
+} // namespace vimlop
