@@ -38,6 +38,10 @@ find_package(ITK 5.2 REQUIRED COMPONENTS
 
 find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio)
 
+# Open3D (Debian's libopen3d-dev) is a peer in the evaluation protocols, not a
+# dependency of the library: without it, the Open3D methods are unavailable.
+find_package(Open3D QUIET)
+
 if(BUILD_TESTING)
   find_package(GTest 1.10 REQUIRED)
 endif()

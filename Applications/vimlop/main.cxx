@@ -3,6 +3,7 @@
 // the program with one line on stderr and exit code 1.
 
 #include "Error.h"
+#include "EvaluateCommand.h"
 #include "InfoCommand.h"
 
 #include <CLI/CLI.hpp>
@@ -16,6 +17,7 @@ int main(int argc, char** argv)
   app.set_version_flag("--version", std::string("vimlop ") + VIMLOP_VERSION);
   app.require_subcommand(1);
   vimlop::addInfoCommand(app);
+  vimlop::addEvaluateCommand(app);
   try
   {
     app.parse(argc, argv);

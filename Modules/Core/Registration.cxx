@@ -25,6 +25,8 @@ const char* toString(TerminationReason reason)
   {
     case TerminationReason::Converged:
       return "converged";
+    case TerminationReason::Stalled:
+      return "stalled";
     case TerminationReason::MaxIterations:
       return "max-iterations";
     case TerminationReason::Cancelled:
@@ -127,8 +129,13 @@ public:
     return true;
   }
 
-  MatchState match(const SimilarityTransform& T)
+  /// Whether the method uses contours at all.
+  bool usesContours() const { return this->UseContours; }
+
+  /// Matches at T; contours only when `withContours` (and the method uses them).
+  MatchState match(const SimilarityTransform& T, bool withContours)
   {
+    withContours = withContours && this->UseContours;
     MatchState state;
     const int n = static_cast<int>(this->Data.points.size());
     state.model.resize(n);
@@ -168,7 +175,7 @@ public:
 
     // V3-V5 per frame.
     state.frames.resize(this->Data.frames.size());
-    if (this->UseContours)
+    if (withContours)
     {
       auto frameTask = [&](int j) { this->matchFrame(T, j, state.frames[j]); };
       if (this->Model.visibility().isThreadSafe())
@@ -530,12 +537,31 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
   bool extrapolated = false;
   SimilarityTransform fallback;
   double previousMeanCost = std::numeric_limits<double>::infinity();
+  // Stall detection: discrete changes of the match and inlier sets can make
+  // the last iterations wander around the solution without settling.
+  double bestMeanCost = std::numeric_limits<double>::infinity();
+  SimilarityTransform bestTransform = T;
+  int iterationsWithoutProgress = 0;
+  bool contoursOn = false;
+  // A new stage starts its own convergence, stall and acceleration tracking.
+  auto startContours = [&] {
+    contoursOn = true;
+    havePreviousStep = false;
+    extrapolated = false;
+    previousMeanCost = std::numeric_limits<double>::infinity();
+    bestMeanCost = std::numeric_limits<double>::infinity();
+    bestTransform = T;
+    iterationsWithoutProgress = 0;
+  };
+  // Points first: contours join once the points alone have settled.
+  contoursOn = registrar.usesContours() && !options.pointsFirst;
   for (int iteration = 1; iteration <= options.maxIterations; ++iteration)
   {
     IterationRecord record;
     record.iteration = iteration;
     record.transform = T;
-    MatchState state = registrar.match(T);
+    record.withContours = contoursOn;
+    MatchState state = registrar.match(T, contoursOn);
     registrar.summarise(state, record);
     if (extrapolated && meanCost(record) > previousMeanCost)
     {
@@ -544,12 +570,32 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
       record = IterationRecord();
       record.iteration = iteration;
       record.transform = T;
+      record.withContours = contoursOn;
       record.extrapolationUndone = true;
-      state = registrar.match(T);
+      state = registrar.match(T, contoursOn);
       registrar.summarise(state, record);
     }
     extrapolated = false;
     previousMeanCost = meanCost(record);
+    if (previousMeanCost < bestMeanCost * (1.0 - options.stallRelativeDecrease))
+    {
+      bestMeanCost = previousMeanCost;
+      bestTransform = T;
+      iterationsWithoutProgress = 0;
+    }
+    else if (++iterationsWithoutProgress >= options.stallIterations)
+    {
+      record.updated = bestTransform;
+      history.push_back(record);
+      T = bestTransform;
+      if (registrar.usesContours() && !contoursOn)
+      {
+        startContours();
+        continue;
+      }
+      termination = TerminationReason::Stalled;
+      break;
+    }
 
     auto stageStart = Clock::now();
     SimilarityTransform next = registrar.update(state, T);
@@ -601,12 +647,17 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
     }
     if (done)
     {
+      if (registrar.usesContours() && !contoursOn)
+      {
+        startContours();
+        continue;
+      }
       termination = TerminationReason::Converged;
       break;
     }
   }
 
-  RegistrationResult result = registrar.finish(T, registrar.match(T));
+  RegistrationResult result = registrar.finish(T, registrar.match(T, true));
   result.history = std::move(history);
   result.termination = termination;
   result.iterations = static_cast<int>(result.history.size());

@@ -52,7 +52,7 @@ void RegistrationOptions::validate() const
   {
     problem << "kappa must be non-negative and the normal angle bound positive";
   }
-  else if (this->maxIterations < 1 || this->maxBackoffSteps < 0)
+  else if (this->maxIterations < 1 || this->maxBackoffSteps < 0 || this->stallIterations < 1)
   {
     problem << "iteration cap must be at least 1 and back-off steps non-negative";
   }

@@ -56,10 +56,10 @@ struct RegistrationOptions
 
   /// V11: iteration cap (default 100).
   int maxIterations = 100;
-  /// V11: converged when the data centroid moves less than this, mm (default 0.001) ...
-  double convergenceTranslationMm = 1e-3;
-  /// ... and the rotation changes less than this, degrees (default 0.001) ...
-  double convergenceRotationDeg = 1e-3;
+  /// V11: converged when the data centroid moves less than this, mm (default 0.005) ...
+  double convergenceTranslationMm = 5e-3;
+  /// ... and the rotation changes less than this, degrees (default 0.005) ...
+  double convergenceRotationDeg = 5e-3;
   /// ... and the scale changes by less than this fraction (default 1e-5).
   double convergenceScaleRelative = 1e-5;
 
@@ -73,6 +73,23 @@ struct RegistrationOptions
    */
   bool accelerate = true;
   double maxAcceleration = 10.0;
+
+  /// V11: stop when the mean match cost per inlier has not fallen by this
+  /// fraction (default 0.001) below its lowest value for `stallIterations`
+  /// iterations (default 5); the lowest-cost estimate is returned.
+  double stallRelativeDecrease = 1e-3;
+  int stallIterations = 5;
+
+  /**
+   * V-IMLOP: iterate on the 3-D points alone until they converge (or stall),
+   * then add the contours and iterate to convergence of the full cost. The
+   * solution is that of the full V-IMLOP cost either way; the paper does not
+   * say how its iterations start. With contours from the first iteration, a
+   * start a few millimetres off matches video contours to the wrong model
+   * edges, and those matches can hold the estimate in a wrong valley (seen on
+   * P1 trials). Default on.
+   */
+  bool pointsFirst = true;
 
   /// V6: the Levenberg-Marquardt solver of the pose update.
   PoseUpdateOptions poseUpdate;

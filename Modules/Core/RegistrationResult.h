@@ -15,6 +15,7 @@ namespace vimlop
 enum class TerminationReason
 {
   Converged,       ///< the change of T fell below every threshold
+  Stalled,         ///< the match cost stopped decreasing; the lowest-cost estimate is kept
   MaxIterations,   ///< the iteration cap was reached
   Cancelled,       ///< the iteration callback asked to stop
   NumericalFailure ///< the update produced a non-finite transform; the last valid one is kept
@@ -40,6 +41,8 @@ struct StageTimes
 struct IterationRecord
 {
   int iteration = 0;
+  /// Whether contours took part (see RegistrationOptions::pointsFirst).
+  bool withContours = false;
   SimilarityTransform transform;
   SimilarityTransform updated;
   double cost = 0.0; ///< Σ C3d + Σ C2d over inliers, before the update

@@ -247,7 +247,20 @@ SyntheticTrial makeSyntheticTrial(
       continue;
     }
 
+    // Noisy SfM cameras (before misalignment).
+    std::vector<CameraPose> noisyCameras;
+    for (const CameraPose& truth : trial.trueCamerasCT)
+    {
+      CameraPose noisy;
+      noisy.rotation = rotationFromVector(rng.uniform(0.0, o.poseNoiseMaxDeg) * Degree * rng.direction()) * truth.rotation;
+      noisy.centre = truth.centre + rng.uniform(0.0, o.poseNoiseMaxMm) * rng.direction();
+      noisyCameras.push_back(noisy);
+    }
+
     // Misalignment M about the data centroid; the data lives in M's frame.
+    // V-IMLOP starts from identity, so M must leave every camera inside the
+    // airway (its anatomical constraint needs a valid start): draw again
+    // until it does.
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3d& p : truePoints)
     {
@@ -255,10 +268,20 @@ SyntheticTrial makeSyntheticTrial(
     }
     centroid /= static_cast<double>(truePoints.size());
     SimilarityTransform misalign;
-    misalign.rotation = rotationFromVector(
-      rng.uniform(o.misalignMinDeg, o.misalignMaxDeg) * Degree * rng.direction());
-    misalign.translation = centroid - misalign.rotation * centroid +
-      rng.uniform(o.misalignMinMm, o.misalignMaxMm) * rng.direction();
+    bool camerasInside = false;
+    for (int draw = 0; draw < 200 && !camerasInside; ++draw)
+    {
+      misalign.rotation =
+        rotationFromVector(rng.uniform(o.misalignMinDeg, o.misalignMaxDeg) * Degree * rng.direction());
+      misalign.translation = centroid - misalign.rotation * centroid +
+        rng.uniform(o.misalignMinMm, o.misalignMaxMm) * rng.direction();
+      camerasInside = std::all_of(noisyCameras.begin(), noisyCameras.end(),
+        [&](const CameraPose& camera) { return model.isInside(misalign.apply(camera.centre)); });
+    }
+    if (!camerasInside)
+    {
+      continue;
+    }
     trial.truthSfmToCT = misalign.inverse();
     trial.initialSfmToCT = SimilarityTransform();
 

@@ -34,8 +34,8 @@ struct SyntheticOptions
   PinholeCamera intrinsics = defaultIntrinsics();
   /// Spacing of the cameras along their path, mm (default 0.75).
   double cameraStepMm = 0.75;
-  /// Least distance of every camera to the wall, mm (default 1.5).
-  double minClearanceMm = 1.5;
+  /// Least distance of every camera to the wall, mm (default 2: the radius of a 4 mm endoscope).
+  double minClearanceMm = 2.0;
   /// Spacing of the simulated video contour points along the true contours, pixels (default 3).
   double contourSpacingPx = 3.0;
   /// Extra Gaussian noise on video contour positions, pixels (default 0: the
@@ -66,7 +66,9 @@ struct SyntheticTrial
  * uniformly over the surface area visible to them and get view-aligned noise
  * from the camera that sees them; camera poses get uniform noise; video
  * contours are the visible occluding contours at the true poses. The data is
- * then misaligned by a random rigid motion about its centroid.
+ * then misaligned by a random rigid motion about its centroid, drawn again
+ * until every camera still starts inside the airway (V-IMLOP's anatomical
+ * constraint needs a start inside).
  *
  * @throws vimlop::Error if no camera path with enough view can be found.
  */

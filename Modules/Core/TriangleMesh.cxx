@@ -170,6 +170,23 @@ double TriangleMesh::totalArea() const
   return area;
 }
 
+double TriangleMesh::signedVolume() const
+{
+  // Divergence theorem over tetrahedra from a reference point (the first
+  // vertex, which keeps round-off small for meshes far from the origin).
+  if (this->Vertices.empty())
+  {
+    return 0.0;
+  }
+  const Eigen::Vector3d& o = this->Vertices.front();
+  double volume = 0.0;
+  for (int f = 0; f < this->numberOfFaces(); ++f)
+  {
+    volume += (this->corner(f, 0) - o).dot((this->corner(f, 1) - o).cross(this->corner(f, 2) - o));
+  }
+  return volume / 6.0;
+}
+
 Eigen::Matrix<double, 3, 2> TriangleMesh::bounds() const
 {
   Eigen::Matrix<double, 3, 2> b;

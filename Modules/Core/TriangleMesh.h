@@ -71,6 +71,13 @@ public:
   int numberOfNonManifoldEdges() const;
   /// @brief Total area in mm^2.
   double totalArea() const;
+  /**
+   * @brief Volume enclosed by a closed surface, mm^3, signed: positive when
+   * the normals point out of the enclosed region, negative when they point
+   * into it. An airway model (normals into the air it encloses) has a
+   * negative signed volume.
+   */
+  double signedVolume() const;
 
   /// @brief Axis-aligned bounds: column 0 the minimum, column 1 the maximum corner.
   Eigen::Matrix<double, 3, 2> bounds() const;

@@ -19,6 +19,9 @@ TEST(TriangleMesh, BoxTopologyAndGeometry)
   EXPECT_EQ(box.numberOfNonManifoldEdges(), 0);
   EXPECT_NEAR(box.totalArea(), 2 * (2 * 3 + 3 * 4 + 2 * 4), 1e-12);
   EXPECT_LT((box.bounds().col(1) - Eigen::Vector3d(2, 3, 4)).norm(), 1e-15);
+  // Normals into the cavity: negative signed volume; flipped: positive.
+  EXPECT_NEAR(box.signedVolume(), -24.0, 1e-12);
+  EXPECT_NEAR(box.flipped().signedVolume(), 24.0, 1e-12);
 }
 
 TEST(TriangleMesh, NormalsPointInwardForCavities)

@@ -1,3 +1,4 @@
+#include "EmbreeRegistrationModel.h"
 #include "EmbreeVisibility.h"
 #include "MeshTreeVisibility.h"
 #include "OccludingContours.h"
@@ -51,11 +52,8 @@ TEST(EmbreeVisibility, AgreesWithTheExactReferenceOnContourSamples)
 TEST(EmbreeVisibility, RegistrationWithEmbreeBackendsMatchesCore)
 {
   const TriangleMesh mesh = fixtures::makeCavityWithBlobs();
-  RegistrationModel core(mesh);
-  RegistrationModel embree(mesh);
-  auto scene = std::make_shared<EmbreeScene>(mesh);
-  embree.setVisibility(std::make_shared<EmbreeVisibility>(scene));
-  embree.setLocator(scene);
+  const RegistrationModel core(mesh);
+  const RegistrationModel embree = makeEmbreeRegistrationModel(mesh);
   SyntheticOptions synthetic;
   synthetic.points = 300;
   const SyntheticTrial trial = makeSyntheticTrial(core, synthetic, 11);

@@ -1,0 +1,79 @@
+#include "CommandLine.h"
+
+#include "Error.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace vimlop
+{
+
+std::pair<double, double> parseRange(const std::string& text, const std::string& what)
+{
+  std::istringstream in(text);
+  double a = 0.0;
+  double b = 0.0;
+  char comma = 0;
+  const bool parsed = static_cast<bool>(in >> a >> comma >> b) && comma == ',';
+  if (!parsed || !(in >> std::ws).eof())
+  {
+    throw Error(what + ": expected two numbers 'min,max', got '" + text + "'");
+  }
+  if (!(a >= 0.0) || !(a <= b) || !std::isfinite(b))
+  {
+    throw Error(what + ": need 0 <= min <= max, got '" + text + "'");
+  }
+  return { a, b };
+}
+
+std::vector<std::string> parseList(const std::string& text, const std::string& what)
+{
+  std::vector<std::string> items;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ','))
+  {
+    if (item.empty())
+    {
+      throw Error(what + ": empty item in '" + text + "'");
+    }
+    items.push_back(item);
+  }
+  if (items.empty())
+  {
+    throw Error(what + ": no items given");
+  }
+  return items;
+}
+
+void writeJsonFile(const nlohmann::json& json, const std::string& path)
+{
+  const std::filesystem::path target(path);
+  if (target.has_parent_path())
+  {
+    std::error_code ec;
+    std::filesystem::create_directories(target.parent_path(), ec);
+  }
+  const std::string temporary = path + ".part";
+  {
+    std::ofstream out(temporary);
+    out << json.dump(2) << "\n";
+    if (!out)
+    {
+      std::remove(temporary.c_str());
+      throw Error("'" + path + "': cannot write the file");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, target, ec);
+  if (ec)
+  {
+    std::remove(temporary.c_str());
+    throw Error("'" + path + "': cannot write the file (" + ec.message() + ")");
+  }
+}
+
+} // namespace vimlop

@@ -1,0 +1,33 @@
+#ifndef vimlop_CommandLine_h
+#define vimlop_CommandLine_h
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+/**
+ * @file CommandLine.h
+ * @brief Small helpers the subcommands share: list parsing and safe output.
+ */
+
+namespace vimlop
+{
+
+/// @brief "a,b" as two numbers with 0 <= a <= b; `what` names the option in errors.
+std::pair<double, double> parseRange(const std::string& text, const std::string& what);
+
+/// @brief "a,b,c" as a list of non-empty items.
+std::vector<std::string> parseList(const std::string& text, const std::string& what);
+
+/**
+ * @brief Writes `json` to `path` through a temporary file and a rename, so an
+ * interrupted run never leaves a half-written file.
+ * @throws vimlop::Error if the file cannot be written.
+ */
+void writeJsonFile(const nlohmann::json& json, const std::string& path);
+
+} // namespace vimlop
+
+#endif

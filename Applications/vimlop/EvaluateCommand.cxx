@@ -1,0 +1,81 @@
+#include "EvaluateCommand.h"
+
+#include "CommandLine.h"
+#include "Error.h"
+#include "ModelLoading.h"
+#include "SyntheticEvaluation.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+namespace vimlop
+{
+
+namespace
+{
+
+struct SyntheticCommandOptions
+{
+  std::string mesh;
+  std::string out;
+  int trials = 100;
+  std::uint64_t seed = 1;
+  std::string misalignMm = "2,3";
+  std::string misalignDeg = "2,3";
+  std::string methods = "vimlop,imlp,trimmed-icp,open3d-icp,open3d-gicp";
+  int threads = 0;
+};
+
+void runSynthetic(const SyntheticCommandOptions& o)
+{
+  SyntheticEvaluationOptions options;
+  options.trials = o.trials;
+  options.seed = o.seed;
+  options.threads = o.threads;
+  options.methods = parseList(o.methods, "--methods");
+  std::tie(options.synthetic.misalignMinMm, options.synthetic.misalignMaxMm) = parseRange(o.misalignMm, "--misalign-mm");
+  std::tie(options.synthetic.misalignMinDeg, options.synthetic.misalignMaxDeg) = parseRange(o.misalignDeg, "--misalign-deg");
+  const TriangleMesh mesh = loadAirwayMesh(o.mesh);
+  const nlohmann::json report = runSyntheticEvaluation(mesh, options, &std::cerr);
+  writeJsonFile(report, o.out);
+  for (const std::string& method : options.methods)
+  {
+    const nlohmann::json& m = report["methods"][method];
+    std::printf("P1 %-12s TRE median %.3f mm (mean %.3f, p95 %.3f), success %.0f %%, camera %.3f mm / %.3f deg, "
+                "runtime median %.3f s\n",
+      method.c_str(), m["tre_mm"]["median"].get<double>(), m["tre_mm"]["mean"].get<double>(),
+      m["tre_mm"]["p95"].get<double>(), 100.0 * m["success_rate"].get<double>(),
+      m["camera_position_mm"]["median"].get<double>(), m["camera_angle_deg"]["median"].get<double>(),
+      m["runtime_s"]["median"].get<double>());
+  }
+}
+
+} // namespace
+
+void addEvaluateCommand(CLI::App& app)
+{
+  CLI::App* evaluate = app.add_subcommand("evaluate", "Run an evaluation protocol of the paper");
+  evaluate->require_subcommand(1);
+
+  auto synthetic = std::make_shared<SyntheticCommandOptions>();
+  CLI::App* p1 = evaluate->add_subcommand("synthetic",
+    "P1, the paper's synthetic experiment: 6 cameras, 900 noisy points, contours, misaligned data; "
+    "TRE of V-IMLOP, its baselines and Open3D peers");
+  p1->add_option("--mesh", synthetic->mesh, "airway surface (CT frame, normals into the air)")->required();
+  p1->add_option("--out", synthetic->out, "result JSON file")->required();
+  p1->add_option("--trials", synthetic->trials, "number of trials")->capture_default_str()->check(CLI::PositiveNumber);
+  p1->add_option("--seed", synthetic->seed, "random seed")->capture_default_str();
+  p1->add_option("--misalign-mm", synthetic->misalignMm, "range of the initial translation error, mm")
+    ->capture_default_str();
+  p1->add_option("--misalign-deg", synthetic->misalignDeg, "range of the initial rotation error, degrees")
+    ->capture_default_str();
+  p1->add_option("--methods", synthetic->methods, std::string("comma-separated methods: ") + syntheticMethodNames())
+    ->capture_default_str();
+  p1->add_option("--threads", synthetic->threads, "threads per registration, 0 for all cores")->capture_default_str();
+  p1->callback([synthetic] { runSynthetic(*synthetic); });
+}
+
+} // namespace vimlop
