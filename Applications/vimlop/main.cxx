@@ -4,6 +4,7 @@
 
 #include "Error.h"
 #include "InfoCommand.h"
+#include "SegmentCommand.h"
 
 #include <CLI/CLI.hpp>
 
@@ -16,6 +17,7 @@ int main(int argc, char** argv)
   app.set_version_flag("--version", std::string("vimlop ") + VIMLOP_VERSION);
   app.require_subcommand(1);
   vimlop::addInfoCommand(app);
+  vimlop::addSegmentCommand(app);
   try
   {
     app.parse(argc, argv);
