@@ -29,12 +29,27 @@ find_package(VTK 9.1 REQUIRED COMPONENTS
   RenderingOpenGL2)
 
 find_package(ITK 5.2 REQUIRED COMPONENTS
+  ITKBinaryMathematicalMorphology
   ITKCommon
+  ITKConnectedComponents
+  ITKDisplacementField
+  ITKDistanceMap
+  ITKImageFunction
+  ITKImageGrid
+  ITKImageIntensity
   ITKIOImageBase
   ITKIOGDCM
   ITKIOMeta
   ITKIONIFTI
-  ITKIONRRD)
+  ITKIONRRD
+  ITKLabelMap
+  ITKMathematicalMorphology
+  ITKMetricsv4
+  ITKOptimizersv4
+  ITKRegistrationMethodsv4
+  ITKSmoothing
+  ITKThresholding
+  ITKTransform)
 
 find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio)
 

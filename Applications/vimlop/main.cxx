@@ -5,6 +5,7 @@
 #include "Error.h"
 #include "EvaluateCommand.h"
 #include "InfoCommand.h"
+#include "SegmentCommand.h"
 
 #include <CLI/CLI.hpp>
 
@@ -18,6 +19,7 @@ int main(int argc, char** argv)
   app.require_subcommand(1);
   vimlop::addInfoCommand(app);
   vimlop::addEvaluateCommand(app);
+  vimlop::addSegmentCommand(app);
   try
   {
     app.parse(argc, argv);

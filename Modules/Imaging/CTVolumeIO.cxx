@@ -302,6 +302,12 @@ bool isCTVolumePath(const std::string& path)
     !formatName(lower).empty();
 }
 
+bool isWritableCTVolumePath(const std::string& path)
+{
+  const std::string format = formatName(lowerCase(path));
+  return !format.empty() && format != "DICOM";
+}
+
 CTVolume readCTVolume(const std::string& path, const std::string& dicomSeriesUID)
 {
   std::error_code ec;
@@ -331,8 +337,7 @@ CTVolume readCTVolume(const std::string& path, const std::string& dicomSeriesUID
 
 void writeCTVolume(const CTVolume& volume, const std::string& path)
 {
-  const std::string format = formatName(lowerCase(path));
-  if (format.empty() || format == "DICOM")
+  if (!isWritableCTVolumePath(path))
   {
     fail(path, "unsupported output type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
   }

@@ -29,6 +29,9 @@ VIMLOPIMAGING_EXPORT CTVolume readCTVolume(
 /// @brief True when `path` has an extension readCTVolume() accepts, or is a folder.
 VIMLOPIMAGING_EXPORT bool isCTVolumePath(const std::string& path);
 
+/// @brief True when `path` has an extension writeCTVolume() accepts.
+VIMLOPIMAGING_EXPORT bool isWritableCTVolumePath(const std::string& path);
+
 /**
  * @brief Writes a volume as NIfTI, NRRD or MetaImage, chosen by extension.
  * @throws vimlop::Error if the extension is not one of those or writing fails.

@@ -60,6 +60,12 @@ bool isMeshPath(const std::string& path)
   return ext == ".vtp" || ext == ".vtk" || ext == ".stl" || ext == ".ply" || ext == ".obj";
 }
 
+bool isWritableMeshPath(const std::string& path)
+{
+  const std::string ext = extensionOf(path);
+  return ext == ".vtp" || ext == ".vtk" || ext == ".stl" || ext == ".ply";
+}
+
 vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
 {
   std::error_code ec;

@@ -28,6 +28,9 @@ VIMLOPIMAGING_EXPORT void writePolyData(vtkPolyData* mesh, const std::string& pa
 /// @brief True when `path` has an extension readPolyData() accepts.
 VIMLOPIMAGING_EXPORT bool isMeshPath(const std::string& path);
 
+/// @brief True when `path` has an extension writePolyData() accepts.
+VIMLOPIMAGING_EXPORT bool isWritableMeshPath(const std::string& path);
+
 } // namespace vimlop
 
 #endif

@@ -1,0 +1,158 @@
+#include "SegmentCommand.h"
+
+#include "AirwaySegmentation.h"
+#include "AirwaySurface.h"
+#include "CTVolumeIO.h"
+#include "Error.h"
+#include "MeshIO.h"
+#include "TerminalProgress.h"
+
+#include <CLI/CLI.hpp>
+
+#include <vtkPolyData.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace vimlop
+{
+
+namespace
+{
+
+struct SegmentOptions
+{
+  std::string ct;
+  std::string seriesUID;
+  std::string out;
+  std::string labelOut;
+  std::string seed;
+  double threshold = -400.0;
+  double bodyThreshold = -500.0;
+  double sinusDistance = 0.0;
+  int triangles = 30000;
+};
+
+/// "x,y,z" (mm) to a point; anything else is the user's error.
+std::array<double, 3> parsePoint(const std::string& text, const std::string& option)
+{
+  std::array<double, 3> p{};
+  std::istringstream in(text);
+  char comma1 = 0;
+  char comma2 = 0;
+  std::string rest;
+  if (!(in >> p[0] >> comma1 >> p[1] >> comma2 >> p[2]) || comma1 != ',' || comma2 != ',' ||
+    (in >> rest))
+  {
+    throw Error(
+      option + ": expected three numbers x,y,z in mm (CT frame, LPS), got '" + text + "'");
+  }
+  return p;
+}
+
+void runSegment(const SegmentOptions& options)
+{
+  const auto start = std::chrono::steady_clock::now();
+  // Check what can be checked before the work.
+  if (!isWritableMeshPath(options.out))
+  {
+    throw Error(
+      "'" + options.out + "': unsupported mesh output type (expected .vtp, .vtk, .stl or .ply)");
+  }
+  if (!options.labelOut.empty() && !isWritableCTVolumePath(options.labelOut))
+  {
+    throw Error("'" + options.labelOut +
+      "': unsupported label output type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
+  }
+  AirwaySegmentation::Options segmentation;
+  segmentation.airThresholdHU = options.threshold;
+  segmentation.bodyThresholdHU = options.bodyThreshold;
+  segmentation.sinusInclusionDistanceMm = options.sinusDistance;
+  if (!options.seed.empty())
+  {
+    segmentation.seedMm = parsePoint(options.seed, "--seed-mm");
+  }
+  AirwaySurface::Options surfaceOptions;
+  surfaceOptions.targetTriangles = options.triangles;
+
+  const CTVolume ct = readCTVolume(options.ct, options.seriesUID);
+  for (const std::string& warning : ct.warnings)
+  {
+    std::cerr << "vimlop segment: warning: " << warning << "\n";
+  }
+  const ProgressCallback progress = terminalProgress("segment");
+  const AirwaySegmentation airway = AirwaySegmentation::compute(ct, segmentation,
+    [&progress](double f, const std::string& step) { reportProgress(progress, 0.5 * f, step); });
+  const AirwaySurface surface = AirwaySurface::compute(airway.label, surfaceOptions,
+    [&progress](double f, const std::string& step)
+    { reportProgress(progress, 0.5 + 0.5 * f, step); });
+  writePolyData(surface.surface, options.out);
+  if (!options.labelOut.empty())
+  {
+    writeCTVolume(airway.label, options.labelOut);
+  }
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (surface.boundaryEdges > 0 || surface.nonManifoldEdges > 0)
+  {
+    std::cerr << "vimlop segment: warning: the surface has " << surface.boundaryEdges
+              << " open boundary edges and " << surface.nonManifoldEdges << " non-manifold edges\n";
+  }
+  if (surface.droppedTriangleFraction > 0.01)
+  {
+    std::fprintf(stderr,
+      "vimlop segment: warning: %d disconnected pieces (%.1f%% of the surface) were dropped\n",
+      surface.droppedPieces, 100.0 * surface.droppedTriangleFraction);
+  }
+  std::printf("vimlop segment: airway %.1f cm^3 (%s of %d interior air components; next largest "
+              "%.1f cm^3; %d sinuses added), centroid (%.1f, %.1f, %.1f) mm LPS\n",
+    airway.volumeMm3 / 1000.0, airway.selection == "seed" ? "seeded, one" : "largest",
+    airway.interiorAirComponents, airway.nextLargestVolumeMm3 / 1000.0, airway.includedSinuses,
+    airway.centroidMm[0], airway.centroidMm[1], airway.centroidMm[2]);
+  std::printf("vimlop segment: surface %d triangles, %d vertices, encloses %.1f cm^3, area %.1f "
+              "cm^2, %d open edges, %d non-manifold edges, %.1f s -> %s\n",
+    surface.triangles, surface.vertices, surface.enclosedVolumeMm3 / 1000.0,
+    surface.areaMm2 / 100.0, surface.boundaryEdges, surface.nonManifoldEdges, seconds,
+    options.out.c_str());
+}
+
+} // namespace
+
+void addSegmentCommand(CLI::App& app)
+{
+  auto options = std::make_shared<SegmentOptions>();
+  CLI::App* segment = app.add_subcommand("segment",
+    "Segment the nasal airway of a head CT and write its surface (CT frame, LPS mm; normals "
+    "into the air)");
+  segment->add_option("--ct", options->ct, "CT volume: file or DICOM folder")->required();
+  segment->add_option("--out", options->out, "Output surface: .vtp, .vtk, .stl or .ply")
+    ->required();
+  segment->add_option(
+    "--series", options->seriesUID, "DICOM series UID when a folder holds several");
+  segment->add_option("--threshold", options->threshold, "Air threshold in HU")
+    ->capture_default_str();
+  segment
+    ->add_option(
+      "--body-threshold", options->bodyThreshold, "Tissue threshold of the head mask in HU")
+    ->capture_default_str();
+  segment
+    ->add_option("--triangles", options->triangles,
+      "Target triangle count after decimation (0: no decimation)")
+    ->capture_default_str();
+  segment->add_option("--seed-mm", options->seed,
+    "x,y,z: a point inside the airway (CT frame, LPS mm); default: the largest air space in the "
+    "head");
+  segment
+    ->add_option("--sinus-distance-mm", options->sinusDistance,
+      "Also include air spaces within this distance of the airway (sinuses); 0: none")
+    ->capture_default_str();
+  segment->add_option(
+    "--label-out", options->labelOut, "Also write the airway label volume (.nii.gz, .nrrd, .mha)");
+  segment->callback([options] { runSegment(*options); });
+}
+
+} // namespace vimlop
