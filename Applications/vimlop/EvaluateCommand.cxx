@@ -20,6 +20,7 @@ namespace
 struct SyntheticCommandOptions
 {
   std::string mesh;
+  std::string ct;
   std::string out;
   int trials = 100;
   std::uint64_t seed = 1;
@@ -36,9 +37,10 @@ void runSynthetic(const SyntheticCommandOptions& o)
   options.seed = o.seed;
   options.threads = o.threads;
   options.methods = parseList(o.methods, "--methods");
+  checkSyntheticMethods(options.methods);
   std::tie(options.synthetic.misalignMinMm, options.synthetic.misalignMaxMm) = parseRange(o.misalignMm, "--misalign-mm");
   std::tie(options.synthetic.misalignMinDeg, options.synthetic.misalignMaxDeg) = parseRange(o.misalignDeg, "--misalign-deg");
-  const TriangleMesh mesh = loadAirwayMesh(o.mesh);
+  const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
   const nlohmann::json report = runSyntheticEvaluation(mesh, options, &std::cerr);
   writeJsonFile(report, o.out);
   for (const std::string& method : options.methods)
@@ -64,7 +66,10 @@ void addEvaluateCommand(CLI::App& app)
   CLI::App* p1 = evaluate->add_subcommand("synthetic",
     "P1, the paper's synthetic experiment: 6 cameras, 900 noisy points, contours, misaligned data; "
     "TRE of V-IMLOP, its baselines and Open3D peers");
-  p1->add_option("--mesh", synthetic->mesh, "airway surface (CT frame, normals into the air)")->required();
+  CLI::Option* mesh =
+    p1->add_option("--mesh", synthetic->mesh, "airway surface (CT frame, normals into the air)");
+  CLI::Option* ct = p1->add_option("--ct", synthetic->ct, "CT volume whose airway is segmented with the defaults");
+  mesh->excludes(ct);
   p1->add_option("--out", synthetic->out, "result JSON file")->required();
   p1->add_option("--trials", synthetic->trials, "number of trials")->capture_default_str()->check(CLI::PositiveNumber);
   p1->add_option("--seed", synthetic->seed, "random seed")->capture_default_str();

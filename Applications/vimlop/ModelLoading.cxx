@@ -1,5 +1,8 @@
 #include "ModelLoading.h"
 
+#include "AirwaySegmentation.h"
+#include "AirwaySurface.h"
+#include "CTVolumeIO.h"
 #include "Error.h"
 #include "MeshIO.h"
 #include "PolyDataConversion.h"
@@ -30,6 +33,25 @@ TriangleMesh loadAirwayMesh(const std::string& path)
     mesh = mesh.flipped();
   }
   return mesh;
+}
+
+TriangleMesh segmentAirwayMesh(const std::string& ctPath)
+{
+  const CTVolume ct = readCTVolume(ctPath);
+  const AirwaySegmentation airway = AirwaySegmentation::compute(ct, AirwaySegmentation::Options());
+  const AirwaySurface surface = AirwaySurface::compute(airway.label, AirwaySurface::Options());
+  std::cerr << "vimlop: segmented the airway of '" << ctPath << "': " << surface.triangles << " triangles, "
+            << surface.enclosedVolumeMm3 / 1000.0 << " cm^3\n";
+  return toTriangleMesh(surface.surface);
+}
+
+TriangleMesh airwayMeshFrom(const std::string& meshPath, const std::string& ctPath)
+{
+  if (meshPath.empty() == ctPath.empty())
+  {
+    throw Error("give exactly one of --mesh and --ct");
+  }
+  return meshPath.empty() ? segmentAirwayMesh(ctPath) : loadAirwayMesh(meshPath);
 }
 
 } // namespace vimlop

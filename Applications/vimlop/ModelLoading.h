@@ -19,6 +19,16 @@ namespace vimlop
  */
 TriangleMesh loadAirwayMesh(const std::string& path);
 
+/**
+ * @brief The airway surface of a CT, segmented and meshed with the defaults of
+ * `vimlop segment` (see AirwaySegmentation and AirwaySurface).
+ * @throws vimlop::Error if the CT cannot be read or holds no airway.
+ */
+TriangleMesh segmentAirwayMesh(const std::string& ctPath);
+
+/// @brief loadAirwayMesh(meshPath) or, when it is empty, segmentAirwayMesh(ctPath).
+TriangleMesh airwayMeshFrom(const std::string& meshPath, const std::string& ctPath);
+
 } // namespace vimlop
 
 #endif

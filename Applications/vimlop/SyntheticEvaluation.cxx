@@ -7,6 +7,7 @@
 #include "RegistrationMetrics.h"
 #include "Statistics.h"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <memory>
@@ -45,15 +46,9 @@ const char* syntheticMethodNames()
   return "vimlop, imlp, trimmed-icp, open3d-icp, open3d-gicp";
 }
 
-nlohmann::json runSyntheticEvaluation(
-  const TriangleMesh& mesh, const SyntheticEvaluationOptions& options, std::ostream* progress)
+void checkSyntheticMethods(const std::vector<std::string>& methods)
 {
-  if (options.trials < 1)
-  {
-    throw Error("the number of trials must be at least 1");
-  }
-  bool wantOpen3D = false;
-  for (const std::string& method : options.methods)
+  for (const std::string& method : methods)
   {
     const bool known = method == "vimlop" || method == "imlp" || method == "trimmed-icp" ||
       method == "open3d-icp" || method == "open3d-gicp";
@@ -61,8 +56,23 @@ nlohmann::json runSyntheticEvaluation(
     {
       throw Error("unknown method '" + method + "' (expected " + syntheticMethodNames() + ")");
     }
-    wantOpen3D = wantOpen3D || method.rfind("open3d", 0) == 0;
+    if (method.rfind("open3d", 0) == 0 && !Open3DPeers::available())
+    {
+      throw Error("method '" + method + "' needs Open3D, which this build of VIMLOP lacks");
+    }
   }
+}
+
+nlohmann::json runSyntheticEvaluation(
+  const TriangleMesh& mesh, const SyntheticEvaluationOptions& options, std::ostream* progress)
+{
+  if (options.trials < 1)
+  {
+    throw Error("the number of trials must be at least 1");
+  }
+  checkSyntheticMethods(options.methods);
+  const bool wantOpen3D = std::any_of(options.methods.begin(), options.methods.end(),
+    [](const std::string& m) { return m.rfind("open3d", 0) == 0; });
   const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
   std::unique_ptr<Open3DPeers> peers;
   if (wantOpen3D)

@@ -33,6 +33,9 @@ struct SyntheticEvaluationOptions
 /// @brief Every method name P1 knows, comma-separated (for messages).
 const char* syntheticMethodNames();
 
+/// @throws vimlop::Error naming the first unknown method, or if Open3D is asked for but unavailable.
+void checkSyntheticMethods(const std::vector<std::string>& methods);
+
 /**
  * @brief Runs P1: `trials` synthetic trials on `mesh`, every method on every
  * trial, and returns the JSON report (layout in the user guide). Writes a

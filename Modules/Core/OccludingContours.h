@@ -11,9 +11,22 @@
 namespace vimlop
 {
 
+/// @brief Where on the mesh the occluding contour is traced (V3).
+enum class ContourGenerator
+{
+  /// Mesh edges between a front-facing and a back-facing face (the paper's).
+  MeshEdges,
+  /// Zero crossings, inside faces, of n(p) · (c - p) with n linearly
+  /// interpolated from angle-weighted vertex normals: the contour of the
+  /// smooth surface the mesh approximates, which moves continuously with the
+  /// camera instead of jumping from edge to edge.
+  InterpolatedNormals
+};
+
 /// @brief Options of occluding-contour extraction (V3).
 struct OccludingContourOptions
 {
+  ContourGenerator generator = ContourGenerator::MeshEdges;
   /// Distance between samples along a contour edge in the image, pixels (default 1).
   double sampleSpacingPx = 1.0;
   /// Samples nearer the camera than this along its axis are dropped, mm (default 0.1).

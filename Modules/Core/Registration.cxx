@@ -132,8 +132,9 @@ public:
   /// Whether the method uses contours at all.
   bool usesContours() const { return this->UseContours; }
 
-  /// Matches at T; contours only when `withContours` (and the method uses them).
-  MatchState match(const SimilarityTransform& T, bool withContours)
+  /// Matches at T; contours only when `withContours` (and the method uses
+  /// them); 3-D trimming only when `trim`.
+  MatchState match(const SimilarityTransform& T, bool withContours, bool trim)
   {
     withContours = withContours && this->UseContours;
     MatchState state;
@@ -200,7 +201,7 @@ public:
     // V8: outliers.
     start = Clock::now();
     state.pointInliers = rejectPointOutliers(state.residuals, this->Covariances, T.rotation,
-      state.costs, this->Options.trimFraction,
+      state.costs, trim ? this->Options.trimFraction : 0.0,
       icp ? std::numeric_limits<double>::infinity() : this->ChiSquare3);
     if (this->UseContours)
     {
@@ -542,10 +543,17 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
   double bestMeanCost = std::numeric_limits<double>::infinity();
   SimilarityTransform bestTransform = T;
   int iterationsWithoutProgress = 0;
-  bool contoursOn = false;
+  // Two stages. The first trims 3-D pairs (p_t is the paper's *initial* trim
+  // ratio) and, with pointsFirst, leaves the contours out; the second refines
+  // with every term and the chi-square tests alone. Trimmed ICP trims always.
+  const bool icp = options.method == RegistrationMethod::TrimmedICP;
+  bool refining = false;
+  bool contoursOn = registrar.usesContours() && !options.pointsFirst;
+  auto trimming = [&] { return icp || !refining; };
   // A new stage starts its own convergence, stall and acceleration tracking.
-  auto startContours = [&] {
-    contoursOn = true;
+  auto startRefinement = [&] {
+    refining = true;
+    contoursOn = registrar.usesContours();
     havePreviousStep = false;
     extrapolated = false;
     previousMeanCost = std::numeric_limits<double>::infinity();
@@ -554,14 +562,13 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
     iterationsWithoutProgress = 0;
   };
   // Points first: contours join once the points alone have settled.
-  contoursOn = registrar.usesContours() && !options.pointsFirst;
   for (int iteration = 1; iteration <= options.maxIterations; ++iteration)
   {
     IterationRecord record;
     record.iteration = iteration;
     record.transform = T;
     record.withContours = contoursOn;
-    MatchState state = registrar.match(T, contoursOn);
+    MatchState state = registrar.match(T, contoursOn, trimming());
     registrar.summarise(state, record);
     if (extrapolated && meanCost(record) > previousMeanCost)
     {
@@ -572,7 +579,7 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
       record.transform = T;
       record.withContours = contoursOn;
       record.extrapolationUndone = true;
-      state = registrar.match(T, contoursOn);
+      state = registrar.match(T, contoursOn, trimming());
       registrar.summarise(state, record);
     }
     extrapolated = false;
@@ -588,9 +595,9 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
       record.updated = bestTransform;
       history.push_back(record);
       T = bestTransform;
-      if (registrar.usesContours() && !contoursOn)
+      if (!icp && !refining)
       {
-        startContours();
+        startRefinement();
         continue;
       }
       termination = TerminationReason::Stalled;
@@ -609,7 +616,9 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
     }
     stageStart = Clock::now();
     next = registrar.constrain(T, next, record.backoffSteps);
-    const bool done = registrar.converged(T, next);
+    // The first stage also ends at half the iteration budget, so that slow
+    // convergence of the points alone never starves the refinement.
+    const bool done = registrar.converged(T, next) || (!refining && !icp && iteration >= options.maxIterations / 2);
 
     const Vector7d step = registrar.stepInMm(T, next);
     const double angle = std::acos(std::clamp(
@@ -647,9 +656,9 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
     }
     if (done)
     {
-      if (registrar.usesContours() && !contoursOn)
+      if (!icp && !refining)
       {
-        startContours();
+        startRefinement();
         continue;
       }
       termination = TerminationReason::Converged;
@@ -657,7 +666,7 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
     }
   }
 
-  RegistrationResult result = registrar.finish(T, registrar.match(T, true));
+  RegistrationResult result = registrar.finish(T, registrar.match(T, true, trimming()));
   result.history = std::move(history);
   result.termination = termination;
   result.iterations = static_cast<int>(result.history.size());

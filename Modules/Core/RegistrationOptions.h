@@ -38,8 +38,12 @@ struct RegistrationOptions
   double minScale = 0.0;
   double maxScale = std::numeric_limits<double>::infinity();
 
-  /// V8: fraction p_t of 3-D pairs with the highest cost trimmed each
-  /// iteration (default 0.1; the paper does not state its value).
+  /// V8: the initial trim ratio p_t: the fraction of 3-D pairs with the
+  /// highest cost trimmed in each iteration of the first stage (until the
+  /// first convergence, or half the iteration cap);
+  /// the refinement after it relies on the chi-square test alone, so that
+  /// trimming does not bias the final estimate on clean data (trimmed ICP
+  /// trims throughout). Default 0.1; the paper does not state its value.
   double trimFraction = 0.1;
   /// V8: probability p of the chi-square outlier tests (default 0.95).
   double chiSquareProbability = 0.95;
@@ -81,13 +85,12 @@ struct RegistrationOptions
   int stallIterations = 5;
 
   /**
-   * V-IMLOP: iterate on the 3-D points alone until they converge (or stall),
-   * then add the contours and iterate to convergence of the full cost. The
-   * solution is that of the full V-IMLOP cost either way; the paper does not
-   * say how its iterations start. With contours from the first iteration, a
-   * start a few millimetres off matches video contours to the wrong model
-   * edges, and those matches can hold the estimate in a wrong valley (seen on
-   * P1 trials). Default on.
+   * V-IMLOP: leave the contours out of the first stage (until the first
+   * convergence) and add them for the refinement. The paper does not say how
+   * its iterations start; with contours from the first iteration, a start a
+   * few millimetres off matches video contours to the wrong model edges, and
+   * those matches can hold the estimate in a wrong valley (P1: 95th
+   * percentile TRE 1.1 mm without, 0.13 mm with). Default on.
    */
   bool pointsFirst = true;
 

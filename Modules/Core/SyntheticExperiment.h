@@ -33,7 +33,7 @@ struct SyntheticOptions
   /// The endoscope: 320 x 240 pixels, fx = fy = 200 (a 77° x 62° field of view).
   PinholeCamera intrinsics = defaultIntrinsics();
   /// Spacing of the cameras along their path, mm (default 0.75).
-  double cameraStepMm = 0.75;
+  double cameraStepMm = 1.5;
   /// Least distance of every camera to the wall, mm (default 2: the radius of a 4 mm endoscope).
   double minClearanceMm = 2.0;
   /// Spacing of the simulated video contour points along the true contours, pixels (default 3).
