@@ -82,3 +82,34 @@ TEST(OccludingContours, SamplesStayInTheImageAndInFront)
   const auto fine = extractOccludingContours(cavity, k, camera, options);
   EXPECT_GT(fine.size(), 2 * coarse.size());
 }
+
+TEST(OccludingContours, InterpolatedNormalsTraceTheSmoothOutline)
+{
+  // The same blob: the smooth generator's samples lie inside faces where the
+  // interpolated normal is (up to its normalisation) perpendicular to the
+  // viewing ray, far more so than the mean face normal on a mesh edge.
+  const double r = 5.0;
+  const Eigen::Vector3d centre(1.0, -2.0, 40.0);
+  const TriangleMesh blob = fixtures::makeSphere(r, 4, centre, /*outward=*/true);
+  const PinholeCamera k = makeCamera();
+  OccludingContourOptions options;
+  options.generator = ContourGenerator::InterpolatedNormals;
+  const auto smooth = extractOccludingContours(blob, k, CameraPose(), options);
+  const auto edges = extractOccludingContours(blob, k, CameraPose());
+  ASSERT_GT(smooth.size(), 100u);
+  const Eigen::Vector2d centrePixel = k.project(centre);
+  auto meanTangency = [](const std::vector<ModelContourPoint>& samples) {
+    double sum = 0.0;
+    for (const ModelContourPoint& p : samples)
+    {
+      sum += std::abs(p.normal.dot(p.point.normalized()));
+    }
+    return sum / samples.size();
+  };
+  for (const ModelContourPoint& p : smooth)
+  {
+    ASSERT_LT(std::abs(p.normal.dot(p.point.normalized())), 1e-3);
+    ASSERT_GT(p.pixelNormal.dot((p.pixel - centrePixel).normalized()), 0.95);
+  }
+  EXPECT_LT(meanTangency(smooth), 0.1 * meanTangency(edges));
+}
