@@ -36,6 +36,10 @@ namespace
 
 using ImageType = itk::Image<float, 3>;
 
+/// The largest volume VIMLOP reads: 2^31 voxels (8 GiB as float), far above
+/// any head CT (a 1024 x 1024 x 2000 scan is 2.1e9).
+constexpr std::uint64_t MaxVoxels = std::uint64_t(1) << 31;
+
 [[noreturn]] void fail(const std::string& path, const std::string& problem)
 {
   throw Error("'" + path + "': " + problem);
@@ -266,6 +270,21 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
   if (dimensions > 3 && io->GetDimensions(3) > 1)
   {
     fail(path, "the image is 4-D (a time series); a 3-D CT volume is needed");
+  }
+  // Refuse before allocating: a header can promise far more than any CT.
+  std::uint64_t voxels = 1;
+  for (unsigned axis = 0; axis < std::min(dimensions, 3u); ++axis)
+  {
+    voxels *= std::max<std::uint64_t>(io->GetDimensions(axis), 1);
+    if (voxels > MaxVoxels)
+    {
+      break;
+    }
+  }
+  if (voxels > MaxVoxels)
+  {
+    fail(path, "the header promises more than " + std::to_string(MaxVoxels) +
+        " voxels; refusing to allocate it");
   }
   if (io->GetNumberOfComponents() != 1)
   {
