@@ -3,8 +3,10 @@
 // the program with one line on stderr and exit code 1.
 
 #include "Error.h"
+#include "EvaluateWarpCommand.h"
 #include "InfoCommand.h"
 #include "SegmentCommand.h"
+#include "WarpCommand.h"
 
 #include <CLI/CLI.hpp>
 
@@ -18,6 +20,11 @@ int main(int argc, char** argv)
   app.require_subcommand(1);
   vimlop::addInfoCommand(app);
   vimlop::addSegmentCommand(app);
+  vimlop::addWarpCommand(app);
+  CLI::App* evaluate = app.add_subcommand(
+    "evaluate", "Run an evaluation protocol (DESIGN section 6); results go to a JSON file");
+  evaluate->require_subcommand(1);
+  vimlop::addEvaluateWarpCommand(*evaluate);
   try
   {
     app.parse(argc, argv);
