@@ -124,6 +124,15 @@ itk::ShrinkImageFilter<Image, Image>::ShrinkFactorsType shrinkFactors(
   return factors;
 }
 
+Point toPoint(const std::array<double, 3>& p)
+{
+  Point x;
+  x[0] = p[0];
+  x[1] = p[1];
+  x[2] = p[2];
+  return x;
+}
+
 std::string firstLine(const itk::ExceptionObject& e)
 {
   std::string text = e.GetDescription();
@@ -141,14 +150,43 @@ std::string firstLine(const itk::ExceptionObject& e)
   throw Error(text);
 }
 
-/// Rethrows an ITK failure as a one-line vimlop::Error; "samples map outside"
-/// means the transform left the moving image.
-[[noreturn]] void registrationFailed(const itk::ExceptionObject& e, const std::string& stage)
+/// Fraction of the fixed crop's voxels (every other one) that `map` sends into `patient`.
+double overlap(
+  const CTVolume& fixed, const CTVolume& patient, const std::function<Point(const Point&)>& map)
+{
+  double inside = 0.0;
+  double count = 0.0;
+  for (int k = 0; k < fixed.dims[2]; k += 2)
+  {
+    for (int j = 0; j < fixed.dims[1]; j += 2)
+    {
+      for (int i = 0; i < fixed.dims[0]; i += 2)
+      {
+        const Point y = map(toPoint(fixed.indexToPhysical({ double(i), double(j), double(k) })));
+        const std::array<double, 3> index = physicalToIndex(patient, { y[0], y[1], y[2] });
+        bool in = true;
+        for (int a = 0; a < 3; ++a)
+        {
+          in = in && index[a] >= -0.5 && index[a] <= patient.dims[a] - 0.5;
+        }
+        inside += in ? 1.0 : 0.0;
+        count += 1.0;
+      }
+    }
+  }
+  return count > 0.0 ? inside / count : 0.0;
+}
+
+/// Rethrows an ITK failure as a one-line vimlop::Error. "Samples map
+/// outside" means the transform has left the moving image: the images do not
+/// overlap, and `overlapNow` says by how much.
+[[noreturn]] void registrationFailed(const itk::ExceptionObject& e, const std::string& stage,
+  const std::function<double()>& overlapNow)
 {
   const std::string what = firstLine(e);
   if (what.find("outside") != std::string::npos)
   {
-    noOverlap(0.0);
+    noOverlap(overlapNow());
   }
   throw Error("the " + stage + " registration failed (" + what + ")");
 }
@@ -266,15 +304,6 @@ void checkVolume(const CTVolume& v, const std::string& name)
     throw Error("the " + name + " CT is not a 3-D volume (" + std::to_string(v.dims[0]) + " x " +
       std::to_string(v.dims[1]) + " x " + std::to_string(v.dims[2]) + " voxels)");
   }
-}
-
-Point toPoint(const std::array<double, 3>& p)
-{
-  Point x;
-  x[0] = p[0];
-  x[1] = p[1];
-  x[2] = p[2];
-  return x;
 }
 
 } // namespace
@@ -410,7 +439,12 @@ TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
     }
     catch (const itk::ExceptionObject& e)
     {
-      registrationFailed(e, "affine");
+      registrationFailed(e, "affine",
+        [&]
+        {
+          return overlap(
+            fixedVolume, patientCT, [&](const Point& x) { return affine->TransformPoint(x); });
+        });
     }
     result.affineMetricValue = optimizer->GetValue();
   }
@@ -427,33 +461,11 @@ TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
     correlation(fixedVolume, moving, [&](const Point& x) { return affine->TransformPoint(x); });
 
   // 3. Overlap.
+  result.overlapFraction =
+    overlap(fixedVolume, patientCT, [&](const Point& x) { return affine->TransformPoint(x); });
+  if (result.overlapFraction < options.minimumOverlap)
   {
-    double inside = 0.0;
-    double count = 0.0;
-    for (int k = 0; k < fixedVolume.dims[2]; k += 2)
-    {
-      for (int j = 0; j < fixedVolume.dims[1]; j += 2)
-      {
-        for (int i = 0; i < fixedVolume.dims[0]; i += 2)
-        {
-          const Point y = affine->TransformPoint(
-            toPoint(fixedVolume.indexToPhysical({ double(i), double(j), double(k) })));
-          const std::array<double, 3> index = physicalToIndex(patientCT, { y[0], y[1], y[2] });
-          bool in = true;
-          for (int a = 0; a < 3; ++a)
-          {
-            in = in && index[a] >= -0.5 && index[a] <= patientCT.dims[a] - 0.5;
-          }
-          inside += in ? 1.0 : 0.0;
-          count += 1.0;
-        }
-      }
-    }
-    result.overlapFraction = inside / count;
-    if (result.overlapFraction < options.minimumOverlap)
-    {
-      noOverlap(result.overlapFraction);
-    }
+    noOverlap(result.overlapFraction);
   }
 
   // 4. SyN on the patient crop that covers the affinely mapped template crop.
@@ -569,7 +581,7 @@ TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
     }
     catch (const itk::ExceptionObject& e)
     {
-      registrationFailed(e, "deformable");
+      registrationFailed(e, "deformable", [&] { return result.overlapFraction; });
     }
     result.synMetricValue = syn->GetCurrentMetricValue();
   }
