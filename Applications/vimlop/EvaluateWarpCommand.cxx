@@ -33,6 +33,22 @@ namespace
 
 using Point = std::array<double, 3>;
 
+/// The elastix parameter files: the source tree's while building, else the
+/// installed copy next to the program (<prefix>/share/vimlop/elastix).
+std::string defaultElastixParameters()
+{
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(VIMLOP_ELASTIX_PARAMETERS_DIR, ec))
+  {
+    return VIMLOP_ELASTIX_PARAMETERS_DIR;
+  }
+  const fs::path installed =
+    fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path() / "share/vimlop/elastix";
+  return !ec && fs::is_directory(installed, ec) ? installed.string()
+                                                : VIMLOP_ELASTIX_PARAMETERS_DIR;
+}
+
 struct EvaluateWarpOptions
 {
   std::string ct;
@@ -42,7 +58,7 @@ struct EvaluateWarpOptions
   double noiseHU = 20.0;
   unsigned seed = 1;
   bool noElastix = false;
-  std::string elastixParameters = VIMLOP_ELASTIX_PARAMETERS_DIR;
+  std::string elastixParameters = defaultElastixParameters();
   double requireMeanMm = -1.0;
   double requireP95Mm = -1.0;
 };
