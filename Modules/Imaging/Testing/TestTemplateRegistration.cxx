@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 
 using namespace vimlop;
 using fixtures::HeadPhantom;
@@ -189,6 +190,34 @@ TEST(TemplateRegistration, RecoversAKnownDeformationOfThePhantom)
   EXPECT_GT(before, 1.0);
   EXPECT_LT(after, 0.5);
   EXPECT_LT(roundTrip, 0.3);
+}
+
+TEST(TemplateRegistration, WarnsWithTheCorrelationWhenNothingMatches)
+{
+  // A "patient" of pure noise on the phantom's grid: the images overlap, the
+  // registration runs, and the result is flagged as poor.
+  const CTVolume ct = HeadPhantom::make();
+  CTVolume noise = ct;
+  std::uint32_t state = 12345u;
+  for (float& v : noise.intensities)
+  {
+    state = state * 1664525u + 1013904223u; // a fixed linear congruential sequence
+    v = static_cast<float>(state >> 20) - 2000.0f;
+  }
+  TemplateRegistration::Options options;
+  const auto& box = HeadPhantom::kAirwayBox;
+  options.regionMm = { double(box[0]), double(box[1]), double(box[2]), double(box[3]),
+    double(box[4]), double(box[5]) };
+  options.synIterations = { 5, 3 };
+  const TemplateRegistration r = TemplateRegistration::compute(ct, noise, options);
+  EXPECT_LT(std::abs(r.finalCorrelation), 0.3);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_EQ(r.warnings[0].rfind("the registration may be poor: the correlation of template and "
+                                "patient intensities is ",
+              0),
+    0u)
+    << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("Mattes mutual information"), std::string::npos);
 }
 
 TEST(TemplateRegistration, RefusesImagesThatDoNotOverlap)
