@@ -57,9 +57,10 @@ void runSynthetic(const SyntheticCommandOptions& o)
 
 } // namespace
 
-void addEvaluateCommand(CLI::App& app)
+CLI::App* addEvaluateCommand(CLI::App& app)
 {
-  CLI::App* evaluate = app.add_subcommand("evaluate", "Run an evaluation protocol of the paper");
+  CLI::App* evaluate =
+    app.add_subcommand("evaluate", "Run an evaluation protocol (DESIGN section 6); results go to a JSON file");
   evaluate->require_subcommand(1);
 
   auto synthetic = std::make_shared<SyntheticCommandOptions>();
@@ -81,6 +82,7 @@ void addEvaluateCommand(CLI::App& app)
     ->capture_default_str();
   p1->add_option("--threads", synthetic->threads, "threads per registration, 0 for all cores")->capture_default_str();
   p1->callback([synthetic] { runSynthetic(*synthetic); });
+  return evaluate;
 }
 
 } // namespace vimlop

@@ -5,6 +5,7 @@
 #include "CTVolumeIO.h"
 
 #include "Error.h"
+#include "ITKImageIOFactories.h"
 #include "InVesaliusProjectReader.h"
 
 #include <itkGDCMImageIO.h>
@@ -69,7 +70,9 @@ std::string itkMessage(const itk::ExceptionObject& e)
   return text;
 }
 
-void registerImageIOs()
+} // namespace
+
+void detail::registerImageIOs()
 {
   // Explicit registration: we do not rely on ITK's generated factory lists.
   static std::once_flag once;
@@ -82,6 +85,9 @@ void registerImageIOs()
       itk::GDCMImageIOFactory::RegisterOneFactory();
     });
 }
+
+namespace
+{
 
 CTVolume toVolume(const ImageType* image)
 {
@@ -334,7 +340,7 @@ CTVolume readCTVolume(const std::string& path, const std::string& dicomSeriesUID
   {
     fail(path, "no such file or folder");
   }
-  registerImageIOs();
+  detail::registerImageIOs();
   if (std::filesystem::is_directory(path, ec))
   {
     return readDicomSeries(path, dicomSeriesUID);
@@ -364,7 +370,7 @@ void writeCTVolume(const CTVolume& volume, const std::string& path)
   {
     fail(path, "the volume to write is empty or inconsistent");
   }
-  registerImageIOs();
+  detail::registerImageIOs();
   auto image = ImageType::New();
   ImageType::SizeType size;
   ImageType::SpacingType spacing;
