@@ -64,8 +64,9 @@ struct RegistrationOptions
   double convergenceTranslationMm = 5e-3;
   /// ... and the rotation changes less than this, degrees (default 0.005) ...
   double convergenceRotationDeg = 5e-3;
-  /// ... and the scale changes by less than this fraction (default 1e-5).
-  double convergenceScaleRelative = 1e-5;
+  /// ... and the scale changes by less than this fraction (default 2e-4: 0.004 mm
+  /// over a 20 mm wide reconstruction, like the translation threshold).
+  double convergenceScaleRelative = 2e-4;
 
   /**
    * Extrapolate along the path of the estimates when successive updates point
@@ -93,6 +94,12 @@ struct RegistrationOptions
    * 95th percentile TRE 1.1 mm without, 0.13 mm with). Default on.
    */
   bool pointsFirst = true;
+
+  /// V11: the first stage (see pointsFirst) ends when the change of T falls
+  /// below this multiple of the convergence thresholds (default 10): it only
+  /// has to bring the contours close, and points alone slide slowly along
+  /// tubular passages, which the contours then resolve quickly.
+  double initialStageLooseness = 10.0;
 
   /// V6: the Levenberg-Marquardt solver of the pose update.
   PoseUpdateOptions poseUpdate;
