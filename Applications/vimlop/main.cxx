@@ -7,6 +7,7 @@
 #include "EvaluateWarpCommand.h"
 #include "InfoCommand.h"
 #include "SegmentCommand.h"
+#include "ServeCommand.h"
 #include "WarpCommand.h"
 
 #include <CLI/CLI.hpp>
@@ -21,6 +22,7 @@ int main(int argc, char** argv)
   app.require_subcommand(1);
   vimlop::addInfoCommand(app);
   vimlop::addSegmentCommand(app);
+  vimlop::addServeCommand(app);
   vimlop::addWarpCommand(app);
   CLI::App* evaluate = vimlop::addEvaluateCommand(app);
   vimlop::addEvaluateWarpCommand(*evaluate);
