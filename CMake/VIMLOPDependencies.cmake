@@ -51,7 +51,7 @@ find_package(ITK 5.2 REQUIRED COMPONENTS
   ITKThresholding
   ITKTransform)
 
-find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio)
+find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio features2d calib3d)
 
 # Open3D (Debian's libopen3d-dev) is a peer in the evaluation protocols, not a
 # dependency of the library: without it, the Open3D methods are unavailable.

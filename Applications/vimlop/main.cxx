@@ -2,10 +2,13 @@
 // registers itself here; errors the user can act on are vimlop::Error and end
 // the program with one line on stderr and exit code 1.
 
+#include "ContoursCommand.h"
 #include "Error.h"
 #include "EvaluateCommand.h"
 #include "InfoCommand.h"
 #include "SegmentCommand.h"
+#include "SfmCommand.h"
+#include "SimulateCommand.h"
 
 #include <CLI/CLI.hpp>
 
@@ -20,6 +23,9 @@ int main(int argc, char** argv)
   vimlop::addInfoCommand(app);
   vimlop::addEvaluateCommand(app);
   vimlop::addSegmentCommand(app);
+  vimlop::addSimulateCommand(app);
+  vimlop::addContoursCommand(app);
+  vimlop::addSfmCommand(app);
   try
   {
     app.parse(argc, argv);

@@ -1,0 +1,136 @@
+#include "SfmCommand.h"
+
+#include "ColmapImport.h"
+#include "Error.h"
+#include "FrameSequence.h"
+#include "IntrinsicsIO.h"
+#include "SfmReconstructionIO.h"
+#include "StructureFromMotion.h"
+#include "TrackerScale.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <memory>
+
+namespace vimlop
+{
+
+namespace
+{
+
+struct SfmOptions
+{
+  std::string frames;
+  std::string intrinsics;
+  std::string colmap;
+  std::string out;
+  std::string tracker;
+  double fps = 30.0;
+  double timeOffset = 0.0;
+};
+
+void runSfm(const SfmOptions& o)
+{
+  SfmReconstruction sfm;
+  if (!o.colmap.empty())
+  {
+    std::vector<std::string> names;
+    if (!o.frames.empty())
+    {
+      const FrameSequence sequence = FrameSequence::load(o.frames);
+      for (int f = 0; f < sequence.size(); ++f)
+      {
+        names.push_back(sequence.name(f));
+      }
+    }
+    std::vector<std::string> warnings;
+    sfm = readColmapModel(o.colmap, ColmapFormat::Automatic, names, 0.5, &warnings);
+    for (const std::string& w : warnings)
+    {
+      std::cerr << "vimlop: warning: " << w << "\n";
+    }
+  }
+  else
+  {
+    if (o.frames.empty() || o.intrinsics.empty())
+    {
+      throw Error("give --frames and --intrinsics (or --colmap to import a COLMAP model)");
+    }
+    const PinholeCamera k = readIntrinsics(o.intrinsics);
+    const FrameSequence sequence = FrameSequence::load(o.frames);
+    if (k.widthPx != sequence.widthPx() || k.heightPx != sequence.heightPx())
+    {
+      throw Error("'" + o.intrinsics + "': the intrinsics are for " + std::to_string(k.widthPx) + "x" +
+        std::to_string(k.heightPx) + " pixels but the frames in '" + o.frames + "' are " +
+        std::to_string(sequence.widthPx()) + "x" + std::to_string(sequence.heightPx()));
+    }
+    std::vector<cv::Mat> frames;
+    std::vector<std::string> names;
+    for (int f = 0; f < sequence.size(); ++f)
+    {
+      frames.push_back(sequence.frame(f));
+      names.push_back(sequence.name(f));
+    }
+    sfm = StructureFromMotion().reconstruct(frames, k, names, &std::cerr);
+  }
+  for (const SfmReconstruction::Frame& f : sfm.frames)
+  {
+    if (!f.registered)
+    {
+      std::cerr << "vimlop: warning: frame '" << f.name << "' was not registered; it is dropped\n";
+    }
+  }
+  if (!o.tracker.empty())
+  {
+    std::vector<std::string> warnings;
+    const TrackerTrajectory tracker = TrackerTrajectory::readCsv(o.tracker, &warnings);
+    std::vector<double> times;
+    std::vector<Eigen::Vector3d> centres;
+    for (size_t f = 0; f < sfm.frames.size(); ++f)
+    {
+      times.push_back(o.timeOffset + static_cast<double>(f) / o.fps);
+      centres.push_back(sfm.frames[f].registered
+          ? sfm.frames[f].cameraToSfm.centre
+          : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+    }
+    const TrackerScaleResult scale = estimateTrackerScale(tracker, times, centres);
+    warnings.insert(warnings.end(), scale.warnings.begin(), scale.warnings.end());
+    for (const std::string& w : warnings)
+    {
+      std::cerr << "vimlop: warning: " << w << "\n";
+    }
+    sfm.trackerScale = scale.scale;
+    std::printf("tracker scale: 1 SfM unit = %.4f mm (tracked %.2f mm over %zu frames)\n", scale.scale,
+      scale.trackerLengthMm, scale.framesUsed.size());
+  }
+  writeSfmReconstruction(sfm, o.out);
+  std::printf("SfM (%s): %d/%zu frames registered, %zu points, RMS reprojection error %.3f px; wrote '%s'\n",
+    sfm.source.c_str(), sfm.numberOfRegisteredFrames(), sfm.frames.size(), sfm.points.size(),
+    sfm.rmsReprojectionErrorPx(), o.out.c_str());
+}
+
+} // namespace
+
+void addSfmCommand(CLI::App& app)
+{
+  auto o = std::make_shared<SfmOptions>();
+  CLI::App* sfm = app.add_subcommand("sfm",
+    "Structure from motion of a frame sequence: points, SfM-frame camera poses and covariances "
+    "(built in, or imported from a COLMAP model)");
+  sfm->add_option("--frames", o->frames, "folder of frames or a video file");
+  sfm->add_option("--intrinsics", o->intrinsics, "camera intrinsics (OpenCV YAML/JSON/XML)");
+  sfm->add_option("--colmap", o->colmap, "import this COLMAP sparse model folder (text or binary) instead");
+  sfm->add_option("--out", o->out, "result file (VIMLOP SfM JSON)")->required();
+  sfm->add_option("--tracker", o->tracker, "electromagnetic tracker CSV (time_s,x_mm,y_mm,z_mm): initial scale");
+  sfm->add_option("--fps", o->fps, "frame rate, for the frame times on the tracker's clock")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  sfm->add_option("--time-offset", o->timeOffset, "time of the first frame on the tracker's clock, s")
+    ->capture_default_str();
+  sfm->callback([o] { runSfm(*o); });
+}
+
+} // namespace vimlop
