@@ -14,6 +14,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 
 namespace vimlop
 {
@@ -34,6 +35,22 @@ struct SfmOptions
 
 void runSfm(const SfmOptions& o)
 {
+  // The tracker file is checked before the work, so that a bad one fails fast.
+  std::vector<std::string> trackerWarnings;
+  std::optional<TrackerTrajectory> tracker;
+  if (!o.tracker.empty())
+  {
+    tracker = TrackerTrajectory::readCsv(o.tracker, &trackerWarnings);
+  }
+  auto frameTimes = [&](size_t count)
+  {
+    std::vector<double> times;
+    for (size_t f = 0; f < count; ++f)
+    {
+      times.push_back(o.timeOffset + static_cast<double>(f) / o.fps);
+    }
+    return times;
+  };
   SfmReconstruction sfm;
   if (!o.colmap.empty())
   {
@@ -61,6 +78,10 @@ void runSfm(const SfmOptions& o)
     }
     const PinholeCamera k = readIntrinsics(o.intrinsics);
     const FrameSequence sequence = FrameSequence::load(o.frames);
+    if (tracker)
+    {
+      checkTrackerOverlap(*tracker, frameTimes(static_cast<size_t>(sequence.size())));
+    }
     if (k.widthPx != sequence.widthPx() || k.heightPx != sequence.heightPx())
     {
       throw Error("'" + o.intrinsics + "': the intrinsics are for " + std::to_string(k.widthPx) + "x" +
@@ -83,20 +104,18 @@ void runSfm(const SfmOptions& o)
       std::cerr << "vimlop: warning: frame '" << f.name << "' was not registered; it is dropped\n";
     }
   }
-  if (!o.tracker.empty())
+  if (tracker)
   {
-    std::vector<std::string> warnings;
-    const TrackerTrajectory tracker = TrackerTrajectory::readCsv(o.tracker, &warnings);
-    std::vector<double> times;
+    std::vector<std::string> warnings = trackerWarnings;
+    const std::vector<double> times = frameTimes(sfm.frames.size());
     std::vector<Eigen::Vector3d> centres;
     for (size_t f = 0; f < sfm.frames.size(); ++f)
     {
-      times.push_back(o.timeOffset + static_cast<double>(f) / o.fps);
       centres.push_back(sfm.frames[f].registered
           ? sfm.frames[f].cameraToSfm.centre
           : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
     }
-    const TrackerScaleResult scale = estimateTrackerScale(tracker, times, centres);
+    const TrackerScaleResult scale = estimateTrackerScale(*tracker, times, centres);
     warnings.insert(warnings.end(), scale.warnings.begin(), scale.warnings.end());
     for (const std::string& w : warnings)
     {

@@ -18,7 +18,6 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -86,7 +85,8 @@ Eigen::Vector3d randomDirection(std::mt19937_64& rng)
   return v.normalized();
 }
 
-nlohmann::json cameraErrors(const RegistrationResult& result, const RegistrationData& data,
+/// Camera errors of the registered frames moved to CT by `sfmToCT`.
+nlohmann::json cameraErrors(const SimilarityTransform& sfmToCT, const RegistrationData& data,
   const std::vector<int>& frameOf, const std::vector<CameraPose>& truth, double trueScale,
   double seconds)
 {
@@ -94,7 +94,7 @@ nlohmann::json cameraErrors(const RegistrationResult& result, const Registration
   std::vector<double> angle;
   for (size_t j = 0; j < data.frames.size(); ++j)
   {
-    const CameraPose estimate = result.sfmToCT.apply(data.frames[j].cameraToSfm);
+    const CameraPose estimate = sfmToCT.apply(data.frames[j].cameraToSfm);
     position.push_back(cameraPositionError(estimate, truth[frameOf[j]]));
     angle.push_back(cameraAngleErrorDeg(estimate, truth[frameOf[j]]));
   }
@@ -102,7 +102,7 @@ nlohmann::json cameraErrors(const RegistrationResult& result, const Registration
   const Summary a = summarize(angle);
   return { { "camera_position_mm", { { "mean", p.mean }, { "max", p.max } } },
     { "camera_angle_deg", { { "mean", a.mean }, { "max", a.max } } },
-    { "scale_error_rel", std::abs(result.sfmToCT.scale / trueScale - 1.0) },
+    { "scale_error_rel", std::abs(sfmToCT.scale / trueScale - 1.0) },
     { "runtime_s", seconds } };
 }
 
@@ -158,13 +158,6 @@ nlohmann::json runVideoEvaluation(
       }
     }
     evaluation.addFrame(dense, truth, depths, video.depth[f]);
-    if (std::getenv("P2_TRUE_CONTOURS"))
-    {
-      std::vector<ContourPoint> t;
-      for (auto& m : truth) { ContourPoint c; c.pixel = m.pixel; c.normal = m.pixelNormal; t.push_back(c); }
-      contours.push_back(OccludingContourDetector::thin(t, o.contours.spacingPx));
-    }
-    else
     contours.push_back(OccludingContourDetector::thin(dense, o.contours.spacingPx));
   }
   say("contours: precision " + std::to_string(evaluation.precision()) + ", recall " +
@@ -223,15 +216,6 @@ nlohmann::json runVideoEvaluation(
     say(w);
   }
   const double s0 = trackerScale.scale;
-  {
-    RegistrationResult oracle;
-    oracle.sfmToCT = truth;
-    RegistrationData tmp;
-    std::vector<int> fo;
-    for (size_t f = 0; f < sfm.frames.size(); ++f)
-      if (sfm.frames[f].registered) { VideoFrame fr; fr.cameraToSfm = sfm.frames[f].cameraToSfm; tmp.frames.push_back(fr); fo.push_back((int)f); }
-    say("floor (true similarity): " + cameraErrors(oracle, tmp, fo, video.camerasCT, truth.scale, 0).dump());
-  }
   say("scale: tracker " + std::to_string(s0) + ", truth " + std::to_string(truth.scale));
 
   // Registration data: the registered frames with their contours.
@@ -263,6 +247,12 @@ nlohmann::json runVideoEvaluation(
   }
   centroid /= static_cast<double>(sfm.points.size());
 
+  // What SfM alone allows: its cameras moved by the true similarity.
+  const nlohmann::json floor = cameraErrors(truth, data, frameOf, video.camerasCT, truth.scale, 0.0);
+  say("SfM cameras through the true similarity: " +
+    std::to_string(floor["camera_position_mm"]["mean"].get<double>()) + " mm, " +
+    std::to_string(floor["camera_angle_deg"]["mean"].get<double>()) + " deg (the floor)");
+
   // The start: the truth with the tracker's scale, rotated about the
   // points' centroid and shifted; drawn again until every camera starts
   // inside the airway, which V-IMLOP's anatomical constraint requires.
@@ -289,7 +279,6 @@ nlohmann::json runVideoEvaluation(
       inside = inside && model.isInside(initial.apply(frame.cameraToSfm.centre));
     }
   }
-  if (std::getenv("P2_NOPERTURB")) { initial = truth; }
   if (!inside)
   {
     throw Error("P2: no perturbed start keeps every camera inside the airway");
@@ -305,13 +294,14 @@ nlohmann::json runVideoEvaluation(
     options.minScale = s0 / o.scaleBoundFactor;
     options.maxScale = s0 * o.scaleBoundFactor;
     options.threads = o.threads;
-    if (std::getenv("P2_S2D")) options.contourMatch.positionCovariancePx2 = std::atof(std::getenv("P2_S2D")) * Eigen::Matrix2d::Identity();
-    if (std::getenv("P2_NOSTALL")) options.stallIterations = 1000;
-    if (std::getenv("P2_NOEQ")) options.equalInfluence = false;
+    options.stallRelativeDecrease = o.stallRelativeDecrease;
+    options.stallIterations = o.stallIterations;
+    options.maxIterations = o.maxIterations;
     const auto start = std::chrono::steady_clock::now();
     const RegistrationResult result = registerVideo(model, data, initial, options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    methods[toString(method)] = cameraErrors(result, data, frameOf, video.camerasCT, truth.scale, seconds);
+    methods[toString(method)] =
+      cameraErrors(result.sfmToCT, data, frameOf, video.camerasCT, truth.scale, seconds);
     say(std::string(toString(method)) + ": " + methods[toString(method)].dump() + " (" +
       toString(result.termination) + " after " + std::to_string(result.iterations) + " iterations)");
   }

@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -100,22 +102,53 @@ std::vector<CameraPose> makeEndoscopeTrajectory(
     {
       continue;
     }
-    // The passage axis: the longest free direction among a few random ones.
+    // The passage axis: among random directions with enough free length, the
+    // one that keeps farthest from the walls (least clearance along it), then
+    // refined by small turns. A straight path that keeps its distance from
+    // the walls runs along the passage, not across it.
+    const double needed = pathLength + o.lookAheadMm;
+    auto clearanceAlong = [&](const Eigen::Vector3d& d)
+    {
+      if (freeLength(model.tree(), start, d, needed) < needed)
+      {
+        return -1.0;
+      }
+      double least = std::numeric_limits<double>::infinity();
+      for (double t = 0.0; t <= pathLength + 0.5 * o.lookAheadMm; t += 1.0)
+      {
+        least = std::min(least, model.locator().closestPoint(start + t * d).distanceMm);
+      }
+      return least;
+    };
     Eigen::Vector3d axis = Eigen::Vector3d::Zero();
-    double best = 0.0;
+    double best = -1.0;
     for (int k = 0; k < 48; ++k)
     {
       const Eigen::Vector3d d = randomDirection(rng);
-      const double free = freeLength(model.tree(), start, d, pathLength + o.lookAheadMm + 1.0);
-      if (free > best)
+      const double clearance = clearanceAlong(d);
+      if (clearance > best)
       {
-        best = free;
+        best = clearance;
         axis = d;
       }
     }
-    if (best < pathLength + o.lookAheadMm)
+    if (best < 0.0)
     {
       continue;
+    }
+    for (double turn : { 8.0, 4.0, 2.0 })
+    {
+      for (int k = 0; k < 12; ++k)
+      {
+        const Eigen::Vector3d d =
+          (rotationFromVector(turn * Degree * randomDirection(rng)) * axis).normalized();
+        const double clearance = clearanceAlong(d);
+        if (clearance > best)
+        {
+          best = clearance;
+          axis = d;
+        }
+      }
     }
     // Two axes across the passage for the sway, and the image "up".
     Eigen::Vector3d across1 = randomDirection(rng);
@@ -170,9 +203,12 @@ std::vector<CameraPose> makeEndoscopeTrajectory(
       return path;
     }
   }
-  throw Error("endoscope trajectory: found no straight passage of " +
-    std::to_string(pathLength + o.lookAheadMm) + " mm with " + std::to_string(o.minClearanceMm) +
-    " mm clearance (and contours in view) in " + std::to_string(o.maxAttempts) + " attempts");
+  char text[256];
+  std::snprintf(text, sizeof(text),
+    "endoscope trajectory: found no straight passage of %.1f mm with %.1f mm clearance (and "
+    "contours in view) in %d attempts",
+    pathLength + o.lookAheadMm, o.minClearanceMm, o.maxAttempts);
+  throw Error(text);
 }
 
 } // namespace vimlop

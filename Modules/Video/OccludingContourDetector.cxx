@@ -236,7 +236,7 @@ std::vector<ContourPoint> OccludingContourDetector::detect(const cv::Mat& frame)
       offset = std::clamp(offset, -0.5, 0.5);
       Candidate c;
       c.point.pixel = Eigen::Vector2d(u + offset * dx, v + offset * dy);
-      c.point.normal = Eigen::Vector2d(-dx, -dy);
+      c.point.normal = Eigen::Vector2d(-dx, -dy).normalized();
       c.strength = m;
       candidates.push_back(c);
     }

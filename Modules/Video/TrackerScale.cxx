@@ -8,6 +8,33 @@
 namespace vimlop
 {
 
+namespace
+{
+
+std::string timeSpans(const TrackerTrajectory& tracker, const std::vector<double>& frameTimesS)
+{
+  char span[160];
+  std::snprintf(span, sizeof(span), "tracker %.3f..%.3f s, frames %.3f..%.3f s", tracker.startS(),
+    tracker.endS(), frameTimesS.empty() ? 0.0 : frameTimesS.front(),
+    frameTimesS.empty() ? 0.0 : frameTimesS.back());
+  return span;
+}
+
+} // namespace
+
+void checkTrackerOverlap(const TrackerTrajectory& tracker, const std::vector<double>& frameTimesS)
+{
+  for (double t : frameTimesS)
+  {
+    if (t >= tracker.startS() && t <= tracker.endS())
+    {
+      return;
+    }
+  }
+  throw Error("tracker scale: the tracker and the frames do not overlap in time (" +
+    timeSpans(tracker, frameTimesS) + ")");
+}
+
 TrackerScaleResult estimateTrackerScale(const TrackerTrajectory& tracker,
   const std::vector<double>& frameTimesS, const std::vector<Eigen::Vector3d>& sfmCentres,
   const TrackerScaleOptions& options)
@@ -42,15 +69,8 @@ TrackerScaleResult estimateTrackerScale(const TrackerTrajectory& tracker,
     tracked.push_back(*p);
     sfm.push_back(sfmCentres[f]);
   }
-  char span[160];
-  std::snprintf(span, sizeof(span), "tracker %.3f..%.3f s, frames %.3f..%.3f s", tracker.startS(),
-    tracker.endS(), frameTimesS.empty() ? 0.0 : frameTimesS.front(),
-    frameTimesS.empty() ? 0.0 : frameTimesS.back());
-  if (tracked.empty() && outsideTime > 0)
-  {
-    throw Error(std::string("tracker scale: the tracker and the frames do not overlap in time (") +
-      span + ")");
-  }
+  const std::string span = timeSpans(tracker, frameTimesS);
+  checkTrackerOverlap(tracker, frameTimesS);
   if (static_cast<int>(tracked.size()) < options.minFrames)
   {
     throw Error("tracker scale: only " + std::to_string(tracked.size()) +

@@ -43,6 +43,14 @@ struct TrackerScaleResult
 };
 
 /**
+ * @brief Checks that the tracker recorded while at least one frame was taken.
+ * @throws vimlop::Error naming both time spans when no frame time lies
+ * within the tracker's.
+ */
+VIMLOPVIDEO_EXPORT void checkTrackerOverlap(
+  const TrackerTrajectory& tracker, const std::vector<double>& frameTimesS);
+
+/**
  * @brief Scales SfM so that the camera trajectory is as long as the tracked
  * one (V14): matches each frame to the tracker by time, sums chord lengths of
  * both trajectories over the same frames, and returns their ratio.
