@@ -24,6 +24,7 @@ zlib1g-dev
 xvfb
 xauth
 libgl1-mesa-dri
+colmap
 invesalius-examples
 "
 

@@ -69,7 +69,8 @@ void runContours(ContoursOptions o)
         cv::circle(picture, a, 1, cv::Scalar(0, 255, 0), -1, cv::LINE_AA);
       }
       std::filesystem::create_directories(o.overlay);
-      const std::string path = (std::filesystem::path(o.overlay) / sequence.name(f)).replace_extension(".png").string();
+      const std::string path =
+        (std::filesystem::path(o.overlay) / sequence.name(f)).replace_extension(".png").string();
       if (!cv::imwrite(path, picture))
       {
         throw Error("'" + path + "': cannot write the image");
@@ -82,8 +83,8 @@ void runContours(ContoursOptions o)
       "pointing from the near, occluding side to the far side" },
     { "frames", frames } };
   writeJsonFile(document, o.out);
-  std::printf("contours: %zu points in %d frames (%.0f per frame); wrote '%s'\n", total, sequence.size(),
-    static_cast<double>(total) / sequence.size(), o.out.c_str());
+  std::printf("contours: %zu points in %d frames (%.0f per frame); wrote '%s'\n", total,
+    sequence.size(), static_cast<double>(total) / sequence.size(), o.out.c_str());
 }
 
 } // namespace
@@ -95,18 +96,25 @@ void addContoursCommand(CLI::App& app)
     "contours", "Detect occluding contours with normals (near to far side) in every frame");
   contours->add_option("--frames", o->frames, "folder of frames or a video file")->required();
   contours->add_option("--out", o->out, "result JSON file")->required();
-  contours->add_option("--overlay", o->overlay, "folder for pictures of the contours over the frames");
-  contours->add_option("--channel", o->channel, "image channel: luminance or red")->capture_default_str();
+  contours->add_option(
+    "--overlay", o->overlay, "folder for pictures of the contours over the frames");
+  contours->add_option("--channel", o->channel, "image channel: luminance or red")
+    ->capture_default_str();
   contours->add_option("--smoothing-px", o->detector.smoothingSigmaPx, "Gaussian smoothing, pixels")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
-  contours->add_option("--high", o->detector.highThreshold, "high hysteresis threshold, log intensity per pixel")
+  contours
+    ->add_option(
+      "--high", o->detector.highThreshold, "high hysteresis threshold, log intensity per pixel")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
-  contours->add_option("--low", o->detector.lowThreshold, "low hysteresis threshold, log intensity per pixel")
+  contours
+    ->add_option(
+      "--low", o->detector.lowThreshold, "low hysteresis threshold, log intensity per pixel")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
-  contours->add_option("--spacing-px", o->detector.spacingPx, "least distance between points, pixels")
+  contours
+    ->add_option("--spacing-px", o->detector.spacingPx, "least distance between points, pixels")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
   contours->callback([o] { runContours(*o); });

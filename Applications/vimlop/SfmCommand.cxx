@@ -84,8 +84,8 @@ void runSfm(const SfmOptions& o)
     }
     if (k.widthPx != sequence.widthPx() || k.heightPx != sequence.heightPx())
     {
-      throw Error("'" + o.intrinsics + "': the intrinsics are for " + std::to_string(k.widthPx) + "x" +
-        std::to_string(k.heightPx) + " pixels but the frames in '" + o.frames + "' are " +
+      throw Error("'" + o.intrinsics + "': the intrinsics are for " + std::to_string(k.widthPx) +
+        "x" + std::to_string(k.heightPx) + " pixels but the frames in '" + o.frames + "' are " +
         std::to_string(sequence.widthPx()) + "x" + std::to_string(sequence.heightPx()));
     }
     std::vector<cv::Mat> frames;
@@ -122,11 +122,12 @@ void runSfm(const SfmOptions& o)
       std::cerr << "vimlop: warning: " << w << "\n";
     }
     sfm.trackerScale = scale.scale;
-    std::printf("tracker scale: 1 SfM unit = %.4f mm (tracked %.2f mm over %zu frames)\n", scale.scale,
-      scale.trackerLengthMm, scale.framesUsed.size());
+    std::printf("tracker scale: 1 SfM unit = %.4f mm (tracked %.2f mm over %zu frames)\n",
+      scale.scale, scale.trackerLengthMm, scale.framesUsed.size());
   }
   writeSfmReconstruction(sfm, o.out);
-  std::printf("SfM (%s): %d/%zu frames registered, %zu points, RMS reprojection error %.3f px; wrote '%s'\n",
+  std::printf(
+    "SfM (%s): %d/%zu frames registered, %zu points, RMS reprojection error %.3f px; wrote '%s'\n",
     sfm.source.c_str(), sfm.numberOfRegisteredFrames(), sfm.frames.size(), sfm.points.size(),
     sfm.rmsReprojectionErrorPx(), o.out.c_str());
 }
@@ -141,13 +142,17 @@ void addSfmCommand(CLI::App& app)
     "(built in, or imported from a COLMAP model)");
   sfm->add_option("--frames", o->frames, "folder of frames or a video file");
   sfm->add_option("--intrinsics", o->intrinsics, "camera intrinsics (OpenCV YAML/JSON/XML)");
-  sfm->add_option("--colmap", o->colmap, "import this COLMAP sparse model folder (text or binary) instead");
+  sfm->add_option(
+    "--colmap", o->colmap, "import this COLMAP sparse model folder (text or binary) instead");
   sfm->add_option("--out", o->out, "result file (VIMLOP SfM JSON)")->required();
-  sfm->add_option("--tracker", o->tracker, "electromagnetic tracker CSV (time_s,x_mm,y_mm,z_mm): initial scale");
+  sfm->add_option(
+    "--tracker", o->tracker, "electromagnetic tracker CSV (time_s,x_mm,y_mm,z_mm): initial scale");
   sfm->add_option("--fps", o->fps, "frame rate, for the frame times on the tracker's clock")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
-  sfm->add_option("--time-offset", o->timeOffset, "time of the first frame on the tracker's clock, s")
+  sfm
+    ->add_option(
+      "--time-offset", o->timeOffset, "time of the first frame on the tracker's clock, s")
     ->capture_default_str();
   sfm->callback([o] { runSfm(*o); });
 }

@@ -51,7 +51,8 @@ void runSimulate(SimulateOptions o)
     {
       length += (video.camerasCT[f].centre - video.camerasCT[f - 1].centre).norm();
     }
-    clearance = std::min(clearance, model.locator().closestPoint(video.camerasCT[f].centre).distanceMm);
+    clearance =
+      std::min(clearance, model.locator().closestPoint(video.camerasCT[f].centre).distanceMm);
   }
   std::printf("simulated %d frames of %dx%d px along a %.1f mm path (least wall distance %.2f mm) "
               "in %.1f s; wrote '%s'\n",
@@ -67,24 +68,32 @@ void addSimulateCommand(CLI::App& app)
   CLI::App* simulate = app.add_subcommand("simulate",
     "Simulate an endoscope sequence in the airway: frames, depth maps, intrinsics, true poses, "
     "tracker CSV");
-  CLI::Option* mesh = simulate->add_option("--mesh", o->mesh, "airway surface (CT frame, normals into the air)");
-  CLI::Option* ct = simulate->add_option("--ct", o->ct, "CT volume whose airway is segmented with the defaults");
+  CLI::Option* mesh =
+    simulate->add_option("--mesh", o->mesh, "airway surface (CT frame, normals into the air)");
+  CLI::Option* ct =
+    simulate->add_option("--ct", o->ct, "CT volume whose airway is segmented with the defaults");
   mesh->excludes(ct);
   simulate->add_option("--out", o->out, "output folder")->required();
   simulate->add_option("--frames", o->simulation.frames, "number of frames")
     ->capture_default_str()
     ->check(CLI::Range(2, 10000));
-  simulate->add_option("--seed", o->simulation.seed, "random seed (path, texture, noise)")->capture_default_str();
-  simulate->add_option("--width", o->width, "image width, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
-  simulate->add_option("--height", o->height, "image height, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
+  simulate->add_option("--seed", o->simulation.seed, "random seed (path, texture, noise)")
+    ->capture_default_str();
+  simulate->add_option("--width", o->width, "image width, pixels")
+    ->capture_default_str()
+    ->check(CLI::Range(16, 8192));
+  simulate->add_option("--height", o->height, "image height, pixels")
+    ->capture_default_str()
+    ->check(CLI::Range(16, 8192));
   simulate->add_option("--focal", o->focal, "focal length, pixels (principal point at the centre)")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
   simulate->add_option("--step-mm", o->simulation.trajectory.stepMm, "advance per frame, mm")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
-  simulate->add_option("--clearance-mm", o->simulation.trajectory.minClearanceMm,
-            "least distance of the optical centre to the wall, mm")
+  simulate
+    ->add_option("--clearance-mm", o->simulation.trajectory.minClearanceMm,
+      "least distance of the optical centre to the wall, mm")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
   simulate->add_option("--noise", o->simulation.noiseSigma, "picture noise std, grey levels")

@@ -102,8 +102,7 @@ nlohmann::json cameraErrors(const SimilarityTransform& sfmToCT, const Registrati
   const Summary a = summarize(angle);
   return { { "camera_position_mm", { { "mean", p.mean }, { "max", p.max } } },
     { "camera_angle_deg", { { "mean", a.mean }, { "max", a.max } } },
-    { "scale_error_rel", std::abs(sfmToCT.scale / trueScale - 1.0) },
-    { "runtime_s", seconds } };
+    { "scale_error_rel", std::abs(sfmToCT.scale / trueScale - 1.0) }, { "runtime_s", seconds } };
 }
 
 } // namespace
@@ -139,7 +138,8 @@ nlohmann::json runVideoEvaluation(
   for (size_t f = 0; f < video.frames.size(); ++f)
   {
     const std::vector<ContourPoint> dense = detector.detect(video.frames[f]);
-    const std::vector<ModelContourPoint> samples = extractOccludingContours(mesh, k, video.camerasCT[f]);
+    const std::vector<ModelContourPoint> samples =
+      extractOccludingContours(mesh, k, video.camerasCT[f]);
     std::vector<Eigen::Vector3d> points;
     for (const ModelContourPoint& s : samples)
     {
@@ -207,10 +207,12 @@ nlohmann::json runVideoEvaluation(
   std::vector<Eigen::Vector3d> centres;
   for (const SfmReconstruction::Frame& f : sfm.frames)
   {
-    centres.push_back(f.registered ? f.cameraToSfm.centre
-                                   : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+    centres.push_back(f.registered
+        ? f.cameraToSfm.centre
+        : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   }
-  const TrackerScaleResult trackerScale = estimateTrackerScale(video.tracker, video.frameTimesS, centres);
+  const TrackerScaleResult trackerScale =
+    estimateTrackerScale(video.tracker, video.frameTimesS, centres);
   for (const std::string& w : trackerScale.warnings)
   {
     say(w);
@@ -248,7 +250,8 @@ nlohmann::json runVideoEvaluation(
   centroid /= static_cast<double>(sfm.points.size());
 
   // What SfM alone allows: its cameras moved by the true similarity.
-  const nlohmann::json floor = cameraErrors(truth, data, frameOf, video.camerasCT, truth.scale, 0.0);
+  const nlohmann::json floor =
+    cameraErrors(truth, data, frameOf, video.camerasCT, truth.scale, 0.0);
   say("SfM cameras through the true similarity: " +
     std::to_string(floor["camera_position_mm"]["mean"].get<double>()) + " mm, " +
     std::to_string(floor["camera_angle_deg"]["mean"].get<double>()) + " deg (the floor)");
@@ -262,8 +265,9 @@ nlohmann::json runVideoEvaluation(
   bool inside = false;
   for (int draw = 0; draw < 500 && !inside; ++draw)
   {
-    const Eigen::Matrix3d rotation = rotationFromVector(
-      (o.perturbMinDeg + unit(rng) * (o.perturbMaxDeg - o.perturbMinDeg)) * Degree * randomDirection(rng));
+    const Eigen::Matrix3d rotation =
+      rotationFromVector((o.perturbMinDeg + unit(rng) * (o.perturbMaxDeg - o.perturbMinDeg)) *
+        Degree * randomDirection(rng));
     const Eigen::Vector3d shift =
       (o.perturbMinMm + unit(rng) * (o.perturbMaxMm - o.perturbMinMm)) * randomDirection(rng);
     SimilarityTransform scaled = truth;
@@ -299,11 +303,13 @@ nlohmann::json runVideoEvaluation(
     options.maxIterations = o.maxIterations;
     const auto start = std::chrono::steady_clock::now();
     const RegistrationResult result = registerVideo(model, data, initial, options);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     methods[toString(method)] =
       cameraErrors(result.sfmToCT, data, frameOf, video.camerasCT, truth.scale, seconds);
     say(std::string(toString(method)) + ": " + methods[toString(method)].dump() + " (" +
-      toString(result.termination) + " after " + std::to_string(result.iterations) + " iterations)");
+      toString(result.termination) + " after " + std::to_string(result.iterations) +
+      " iterations)");
   }
 
   return { { "protocol", "P2" }, { "frames", o.simulation.frames }, { "seed", o.simulation.seed },

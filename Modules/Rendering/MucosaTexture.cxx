@@ -110,7 +110,8 @@ Eigen::Vector3d MucosaTexture::albedo(const Eigen::Vector3d& pointMm) const
 
   // Slow variation: brightness and a shift between pink and a paler yellow.
   const double patch = this->fractal(pointMm / o.patchScaleMm, 2, 1);
-  const double hue = this->fractal(pointMm / o.patchScaleMm + Eigen::Vector3d(17.3, 5.1, 9.7), 2, 2);
+  const double hue =
+    this->fractal(pointMm / o.patchScaleMm + Eigen::Vector3d(17.3, 5.1, 9.7), 2, 2);
   colour *= 1.0 + o.patchAmplitude * patch;
   colour += 0.06 * hue * Eigen::Vector3d(0.2, 0.9, 0.6);
 

@@ -181,7 +181,8 @@ void vtkVIMLOPVirtualEndoscope::SetMesh(
     points->SetPoint(static_cast<vtkIdType>(i), this->Positions[i].data());
   }
   vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(static_cast<vtkIdType>(faces.size()), 3 * static_cast<vtkIdType>(faces.size()));
+  polys->AllocateExact(
+    static_cast<vtkIdType>(faces.size()), 3 * static_cast<vtkIdType>(faces.size()));
   for (const Eigen::Vector3i& f : faces)
   {
     const vtkIdType ids[3] = { f[0], f[1], f[2] };

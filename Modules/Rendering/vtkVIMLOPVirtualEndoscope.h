@@ -108,7 +108,8 @@ public:
   ///@}
 
   ///@{
-  /// Standard deviation of the additive Gaussian noise, grey levels of 255 (default 1.5; 0 for none).
+  /// Standard deviation of the additive Gaussian noise, grey levels of 255 (default 1.5; 0 for
+  /// none).
   vtkSetClampMacro(NoiseSigma, double, 0.0, 255.0);
   vtkGetMacro(NoiseSigma, double);
   ///@}

@@ -72,7 +72,8 @@ BundleAdjustment::Summary BundleAdjustment::adjust(std::vector<CameraPose>& came
   {
     if (o.camera < 0 || o.camera >= m || o.point < 0 || o.point >= n)
     {
-      throw Error("bundle adjustment: an observation refers to a camera or point that does not exist");
+      throw Error(
+        "bundle adjustment: an observation refers to a camera or point that does not exist");
     }
   }
   std::vector<int> block(static_cast<size_t>(m), 0);

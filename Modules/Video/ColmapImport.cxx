@@ -64,9 +64,9 @@ struct ModelInfo
 constexpr ModelInfo supportedModels[] = { { "SIMPLE_PINHOLE", 0, 3 }, { "PINHOLE", 1, 4 },
   { "SIMPLE_RADIAL", 2, 4 }, { "RADIAL", 3, 5 }, { "OPENCV", 4, 8 } };
 /// Every COLMAP model by id, for messages about the ones VIMLOP does not read.
-constexpr const char* colmapModelNames[] = { "SIMPLE_PINHOLE", "PINHOLE", "SIMPLE_RADIAL",
-  "RADIAL", "OPENCV", "OPENCV_FISHEYE", "FULL_OPENCV", "FOV", "SIMPLE_RADIAL_FISHEYE",
-  "RADIAL_FISHEYE", "THIN_PRISM_FISHEYE" };
+constexpr const char* colmapModelNames[] = { "SIMPLE_PINHOLE", "PINHOLE", "SIMPLE_RADIAL", "RADIAL",
+  "OPENCV", "OPENCV_FISHEYE", "FULL_OPENCV", "FOV", "SIMPLE_RADIAL_FISHEYE", "RADIAL_FISHEYE",
+  "THIN_PRISM_FISHEYE" };
 
 std::string supportedList()
 {
@@ -109,11 +109,13 @@ const ModelInfo& modelById(const std::string& path, int id)
       "unsupported camera model '" + std::string(colmapModelNames[id]) +
         "' (supported: " + supportedList() + ")");
   }
-  fail(path, "unknown camera model id " + std::to_string(id) + " (supported: " + supportedList() + ")");
+  fail(path,
+    "unknown camera model id " + std::to_string(id) + " (supported: " + supportedList() + ")");
 }
 
 /// COLMAP parameters to VIMLOP intrinsics: pixel centres move from 0.5 to 0.
-PinholeCamera intrinsicsOf(const ModelInfo& model, const std::vector<double>& p, int width, int height)
+PinholeCamera intrinsicsOf(
+  const ModelInfo& model, const std::vector<double>& p, int width, int height)
 {
   PinholeCamera k;
   k.widthPx = width;
@@ -334,7 +336,8 @@ public:
     this->In.seekg(here);
     if (bytesPerItem > 0 && count > static_cast<std::uint64_t>(remaining) / bytesPerItem)
     {
-      fail(this->Path, "the file is truncated or not a COLMAP model (count " + std::to_string(count) + ")");
+      fail(this->Path,
+        "the file is truncated or not a COLMAP model (count " + std::to_string(count) + ")");
     }
     return count;
   }
@@ -553,8 +556,8 @@ SfmReconstruction readColmapModel(const std::string& folder, ColmapFormat format
     if (camera == model.cameras.end())
     {
       fail(imagesPath,
-        "image '" + image.name + "' uses camera " + std::to_string(image.cameraId) +
-          ", which " + fs::path(camerasPath).filename().string() + " does not define");
+        "image '" + image.name + "' uses camera " + std::to_string(image.cameraId) + ", which " +
+          fs::path(camerasPath).filename().string() + " does not define");
     }
     const auto frame = frameOfName.find(image.name);
     if (frame == frameOfName.end())

@@ -39,7 +39,8 @@ ColmapRunner::ColmapRunner(const Options& options)
 
 bool ColmapRunner::isAvailable() const
 {
-  const std::string command = "QT_QPA_PLATFORM=offscreen " + quote(this->Opts.executable) + " help >/dev/null 2>&1";
+  const std::string command =
+    "QT_QPA_PLATFORM=offscreen " + quote(this->Opts.executable) + " help >/dev/null 2>&1";
   return std::system(command.c_str()) == 0;
 }
 
@@ -53,7 +54,8 @@ std::string ColmapRunner::run(
 {
   if (!this->isAvailable())
   {
-    throw Error("COLMAP: cannot run '" + this->Opts.executable + "' (install Debian's 'colmap' package)");
+    throw Error(
+      "COLMAP: cannot run '" + this->Opts.executable + "' (install Debian's 'colmap' package)");
   }
   std::error_code ec;
   fs::remove_all(workFolder, ec);
@@ -76,11 +78,12 @@ std::string ColmapRunner::run(
       "--database_path " + quote(database) + " --image_path " + quote(imageFolder) +
         " --ImageReader.camera_model PINHOLE --ImageReader.single_camera 1"
         " --ImageReader.camera_params " +
-        quote(colmapPinholeParameters(k)) + " --SiftExtraction.use_gpu 0 --SiftExtraction.peak_threshold " +
+        quote(colmapPinholeParameters(k)) +
+        " --SiftExtraction.use_gpu 0 --SiftExtraction.peak_threshold " +
         std::to_string(this->Opts.siftPeakThreshold) + " --SiftExtraction.num_threads " + threads },
     { "exhaustive_matcher",
-      "--database_path " + quote(database) + " --SiftMatching.use_gpu 0 --SiftMatching.num_threads " +
-        threads },
+      "--database_path " + quote(database) +
+        " --SiftMatching.use_gpu 0 --SiftMatching.num_threads " + threads },
     { "mapper",
       "--database_path " + quote(database) + " --image_path " + quote(imageFolder) +
         " --output_path " + quote((fs::path(workFolder) / "sparse").string()) +
@@ -89,17 +92,19 @@ std::string ColmapRunner::run(
         " --Mapper.init_min_tri_angle " +
         std::to_string(this->Opts.initialMinAngleDeg) + " --Mapper.num_threads " + threads },
     { "model_converter",
-      "--input_path " + quote((fs::path(workFolder) / "sparse" / "0").string()) + " --output_path " +
-        quote(textModelFolder(workFolder)) + " --output_type TXT" },
+      "--input_path " + quote((fs::path(workFolder) / "sparse" / "0").string()) +
+        " --output_path " + quote(textModelFolder(workFolder)) + " --output_type TXT" },
   };
   for (const auto& s : steps)
   {
-    const std::string command = exe + " " + s.step + " " + s.arguments + " >>" + quote(log) + " 2>&1";
+    const std::string command =
+      exe + " " + s.step + " " + s.arguments + " >>" + quote(log) + " 2>&1";
     if (std::system(command.c_str()) != 0)
     {
       throw Error(std::string("COLMAP: '") + s.step + "' failed (see '" + log + "')");
     }
-    if (std::string(s.step) == "mapper" && !fs::exists(fs::path(workFolder) / "sparse" / "0" / "cameras.bin", ec))
+    if (std::string(s.step) == "mapper" &&
+      !fs::exists(fs::path(workFolder) / "sparse" / "0" / "cameras.bin", ec))
     {
       throw Error("COLMAP: the mapper reconstructed no model (see '" + log + "')");
     }

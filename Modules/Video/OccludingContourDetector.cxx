@@ -90,8 +90,8 @@ std::vector<ContourPoint> OccludingContourDetector::detect(const cv::Mat& frame)
   cv::log(intensity + o.logOffset, logI);
 
   cv::Mat smooth;
-  cv::GaussianBlur(logI, smooth, cv::Size(0, 0), o.smoothingSigmaPx, o.smoothingSigmaPx,
-    cv::BORDER_REPLICATE);
+  cv::GaussianBlur(
+    logI, smooth, cv::Size(0, 0), o.smoothingSigmaPx, o.smoothingSigmaPx, cv::BORDER_REPLICATE);
   cv::Mat gx;
   cv::Mat gy;
   cv::Mat magnitude;

@@ -81,7 +81,7 @@ public:
     /// Edge pixels this close to the image border are dropped, pixels (default 4).
     int borderPx = 4;
     /// Least distance between returned points, pixels (default 3; 0 returns
-  /// every edge pixel, strongest first).
+    /// every edge pixel, strongest first).
     double spacingPx = 3.0;
   };
 

@@ -118,8 +118,7 @@ void SfmReconstruction::validate() const
   }
   for (const Frame& f : this->frames)
   {
-    if (f.registered &&
-      (!f.cameraToSfm.centre.allFinite() || !f.cameraToSfm.rotation.allFinite()))
+    if (f.registered && (!f.cameraToSfm.centre.allFinite() || !f.cameraToSfm.rotation.allFinite()))
     {
       throw Error("SfM frame '" + f.name + "' has a non-finite pose");
     }

@@ -84,8 +84,8 @@ struct VIMLOPVIDEO_EXPORT SfmReconstruction
    * elongated along the viewing rays, the more so the smaller their angles.
    * Returns a large isotropic matrix when the rays are (nearly) parallel.
    */
-  Eigen::Matrix3d triangulationCovariance(
-    const Eigen::Vector3d& position, const std::vector<Observation>& observations, double sigmaPx) const;
+  Eigen::Matrix3d triangulationCovariance(const Eigen::Vector3d& position,
+    const std::vector<Observation>& observations, double sigmaPx) const;
 
   /**
    * @brief Checks the indices and values.

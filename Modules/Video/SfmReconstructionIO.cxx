@@ -18,8 +18,8 @@ using nlohmann::json;
 
 json intrinsicsJson(const PinholeCamera& k)
 {
-  json j = { { "fx", k.fx }, { "fy", k.fy }, { "cx", k.cx }, { "cy", k.cy },
-    { "width", k.widthPx }, { "height", k.heightPx } };
+  json j = { { "fx", k.fx }, { "fy", k.fy }, { "cx", k.cx }, { "cy", k.cy }, { "width", k.widthPx },
+    { "height", k.heightPx } };
   std::vector<double> d(k.distortion.data(), k.distortion.data() + k.distortion.size());
   j["distortion"] = d;
   return j;
@@ -71,7 +71,8 @@ void writeSfmReconstruction(const SfmReconstruction& r, const std::string& path)
     }
     frames.push_back({ { "name", f.name }, { "registered", f.registered },
       { "intrinsics", intrinsicsJson(f.intrinsics) }, { "rotation", rotation },
-      { "centre", { f.cameraToSfm.centre.x(), f.cameraToSfm.centre.y(), f.cameraToSfm.centre.z() } } });
+      { "centre",
+        { f.cameraToSfm.centre.x(), f.cameraToSfm.centre.y(), f.cameraToSfm.centre.z() } } });
   }
   json points = json::array();
   for (const SfmReconstruction::Point& p : r.points)
@@ -89,8 +90,7 @@ void writeSfmReconstruction(const SfmReconstruction& r, const std::string& path)
   }
   const json document = { { "format", "vimlop-sfm" }, { "version", 1 }, { "source", r.source },
     { "rms_reprojection_error_px", r.rmsReprojectionErrorPx() },
-    { "tracker_scale_mm_per_unit", r.trackerScale }, { "frames", frames },
-    { "points", points } };
+    { "tracker_scale_mm_per_unit", r.trackerScale }, { "frames", frames }, { "points", points } };
 
   const std::filesystem::path target(path);
   if (target.has_parent_path())

@@ -88,8 +88,7 @@ Eigen::Vector2d pixelOf(const cv::KeyPoint& k)
 }
 
 /// Mutual nearest neighbours that pass the ratio test both ways.
-std::vector<std::pair<int, int>> matchDescriptors(
-  const cv::Mat& a, const cv::Mat& b, double ratio)
+std::vector<std::pair<int, int>> matchDescriptors(const cv::Mat& a, const cv::Mat& b, double ratio)
 {
   std::vector<std::pair<int, int>> result;
   if (a.rows < 2 || b.rows < 2)
@@ -130,8 +129,8 @@ Eigen::Matrix<double, 3, 4> projectionOf(const CameraPose& pose)
 }
 
 /// Linear multi-view triangulation (DLT) from normalised image points.
-Eigen::Vector3d triangulate(
-  const std::vector<Eigen::Matrix<double, 3, 4>>& projections, const std::vector<Eigen::Vector2d>& normalised)
+Eigen::Vector3d triangulate(const std::vector<Eigen::Matrix<double, 3, 4>>& projections,
+  const std::vector<Eigen::Vector2d>& normalised)
 {
   Eigen::MatrixXd a(2 * projections.size(), 4);
   for (size_t k = 0; k < projections.size(); ++k)
@@ -253,7 +252,8 @@ private:
           continue;
         }
         cv::Mat mask;
-        const cv::Mat e = cv::findEssentialMat(a, b, k, cv::RANSAC, 0.999, this->O.essentialThresholdPx, mask);
+        const cv::Mat e =
+          cv::findEssentialMat(a, b, k, cv::RANSAC, 0.999, this->O.essentialThresholdPx, mask);
         if (e.rows != 3 || e.cols != 3)
         {
           continue; // degenerate (several solutions or none)
@@ -410,7 +410,8 @@ private:
           { this->normalised({ a[m].x, a[m].y }), this->normalised({ b[m].x, b[m].y }) });
         const Eigen::Vector3d ray1 = x;
         const Eigen::Vector3d ray2 = x - second.centre;
-        angles.push_back(std::acos(std::clamp(ray1.normalized().dot(ray2.normalized()), -1.0, 1.0)));
+        angles.push_back(
+          std::acos(std::clamp(ray1.normalized().dot(ray2.normalized()), -1.0, 1.0)));
       }
       const double median = summarize(angles).median / Degree;
       largestAngle = std::max(largestAngle, median);
@@ -488,8 +489,7 @@ private:
         for (const auto& [frame, pixel] : seen)
         {
           const Eigen::Vector3d c = this->Poses[frame].worldToCamera(x);
-          if (c.z() > 0.0 &&
-            (this->K.project(c) - pixel).norm() <= this->O.maxReprojectionErrorPx)
+          if (c.z() > 0.0 && (this->K.project(c) - pixel).norm() <= this->O.maxReprojectionErrorPx)
           {
             kept.emplace_back(frame, pixel);
           }
@@ -611,7 +611,8 @@ private:
         int count = 0;
         for (const auto& [keypoint, trackIndex] : this->TrackOf[f])
         {
-          count += this->Tracks[trackIndex].point >= 0 && this->Observations[this->Tracks[trackIndex].point].size() >= 2;
+          count += this->Tracks[trackIndex].point >= 0 &&
+            this->Observations[this->Tracks[trackIndex].point].size() >= 2;
         }
         if (count > most)
         {
@@ -637,8 +638,8 @@ private:
       cv::Mat rvec;
       cv::Mat tvec;
       std::vector<int> inliers;
-      const bool found = cv::solvePnPRansac(object, image, k, cv::noArray(), rvec, tvec, false,
-        500, static_cast<float>(this->O.pnpThresholdPx), 0.999, inliers, cv::SOLVEPNP_EPNP);
+      const bool found = cv::solvePnPRansac(object, image, k, cv::noArray(), rvec, tvec, false, 500,
+        static_cast<float>(this->O.pnpThresholdPx), 0.999, inliers, cv::SOLVEPNP_EPNP);
       if (!found || static_cast<int>(inliers.size()) < this->O.minRegistrationPoints)
       {
         failed[next] = true;
@@ -726,8 +727,10 @@ private:
         point.observations.push_back({ frame, pixel });
       }
       const cv::Mat& image = this->Frames[seen.front().first];
-      const int u = std::clamp(static_cast<int>(std::lround(seen.front().second.x())), 0, image.cols - 1);
-      const int v = std::clamp(static_cast<int>(std::lround(seen.front().second.y())), 0, image.rows - 1);
+      const int u =
+        std::clamp(static_cast<int>(std::lround(seen.front().second.x())), 0, image.cols - 1);
+      const int v =
+        std::clamp(static_cast<int>(std::lround(seen.front().second.y())), 0, image.rows - 1);
       if (image.channels() == 3)
       {
         const cv::Vec3b bgr = image.at<cv::Vec3b>(v, u);

@@ -101,7 +101,8 @@ TrackerScaleResult estimateTrackerScale(const TrackerTrajectory& tracker,
   }
   if (!(result.trackerLengthMm > 0.0) || !(result.sfmLength > 0.0))
   {
-    throw Error("tracker scale: the " + std::string(result.trackerLengthMm > 0.0 ? "SfM" : "tracked") +
+    throw Error("tracker scale: the " +
+      std::string(result.trackerLengthMm > 0.0 ? "SfM" : "tracked") +
       " trajectory has no length (the endoscope did not move)");
   }
   if (result.trackerLengthMm < 2.0 * options.minChordMm)

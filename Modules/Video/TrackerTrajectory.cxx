@@ -58,7 +58,8 @@ bool parseNumber(const std::string& text, double& value)
 
 } // namespace
 
-TrackerTrajectory::TrackerTrajectory(std::vector<Sample> samples, std::vector<std::string>* warnings)
+TrackerTrajectory::TrackerTrajectory(
+  std::vector<Sample> samples, std::vector<std::string>* warnings)
 {
   for (const Sample& s : samples)
   {
@@ -81,8 +82,8 @@ TrackerTrajectory::TrackerTrajectory(std::vector<Sample> samples, std::vector<st
   }
   if (duplicates > 0 && warnings)
   {
-    warnings->push_back("dropped " + std::to_string(duplicates) +
-      " tracker sample(s) with a timestamp already seen");
+    warnings->push_back(
+      "dropped " + std::to_string(duplicates) + " tracker sample(s) with a timestamp already seen");
   }
   if (this->Samples.size() < 2)
   {
@@ -135,7 +136,8 @@ TrackerTrajectory TrackerTrajectory::readCsv(
         return found->second;
       }
     }
-    throw Error("'" + path + "': no column '" + what + "' in the header (expected time_s,x_mm,y_mm,z_mm)");
+    throw Error(
+      "'" + path + "': no column '" + what + "' in the header (expected time_s,x_mm,y_mm,z_mm)");
   };
   const int columns[4] = { find({ "time_s", "t", "time", "timestamp" }, "time_s"),
     find({ "x_mm", "x" }, "x_mm"), find({ "y_mm", "y" }, "y_mm"), find({ "z_mm", "z" }, "z_mm") };
@@ -200,8 +202,8 @@ void TrackerTrajectory::writeCsv(const std::string& path) const
   out << "time_s,x_mm,y_mm,z_mm\n" << std::setprecision(10);
   for (const Sample& s : this->Samples)
   {
-    out << s.timeS << "," << s.positionMm.x() << "," << s.positionMm.y() << ","
-        << s.positionMm.z() << "\n";
+    out << s.timeS << "," << s.positionMm.x() << "," << s.positionMm.y() << "," << s.positionMm.z()
+        << "\n";
   }
   if (!out)
   {

@@ -45,8 +45,8 @@ TriangleMesh facingSquare(const CameraPose& pose, double depth, double half, int
   {
     for (int i = 0; i <= n; ++i)
     {
-      v.push_back(pose.cameraToWorld(
-        { -half + 2.0 * half * i / n, -half + 2.0 * half * j / n, depth }));
+      v.push_back(
+        pose.cameraToWorld({ -half + 2.0 * half * i / n, -half + 2.0 * half * j / n, depth }));
     }
   }
   for (int j = 0; j < n; ++j)
@@ -153,8 +153,8 @@ TEST(vtkVIMLOPVirtualEndoscope, NearerTissueIsBrighterAcrossAnOccludingContour)
   endoscope->SetNoiseSigma(0.0);
   endoscope->SetBlurSigmaPx(0.0);
   // A 4 mm square 10 mm away (u, v from 59.5 to 99.5, 39.5 to 79.5 px) over a wall at 16 mm.
-  endoscope->SetMesh(merge(facingSquare(pose, 10.0, 2.0, 10), facingSquare(pose, 16.0, 60.0)),
-    plainTexture());
+  endoscope->SetMesh(
+    merge(facingSquare(pose, 10.0, 2.0, 10), facingSquare(pose, 16.0, 60.0)), plainTexture());
   const EndoscopeImage image = endoscope->Render(k, pose);
   EXPECT_NEAR(image.depth.at(79, 59), 10.0, 0.01);
   EXPECT_NEAR(image.depth.at(20, 59), 16.0, 0.01);

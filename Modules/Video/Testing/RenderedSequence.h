@@ -59,7 +59,8 @@ inline const Sequence& sequence()
       {
         for (int u = 0; u < image.widthPx; ++u)
         {
-          bgr.at<cv::Vec3b>(v, u) = cv::Vec3b(image.channel(u, v, 2), image.channel(u, v, 1), image.channel(u, v, 0));
+          bgr.at<cv::Vec3b>(v, u) =
+            cv::Vec3b(image.channel(u, v, 2), image.channel(u, v, 1), image.channel(u, v, 0));
         }
       }
       s.frames.push_back(bgr);

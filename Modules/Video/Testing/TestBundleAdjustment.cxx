@@ -73,8 +73,8 @@ TEST(BundleAdjustment, RecoversCamerasAndPointsFromAPerturbedStart)
   std::normal_distribution<double> n(0.0, 1.0);
   for (size_t c = 1; c < start.cameras.size(); ++c)
   {
-    start.cameras[c].rotation =
-      rotationFromVector(0.01 * Eigen::Vector3d(n(rng), n(rng), n(rng))) * start.cameras[c].rotation;
+    start.cameras[c].rotation = rotationFromVector(0.01 * Eigen::Vector3d(n(rng), n(rng), n(rng))) *
+      start.cameras[c].rotation;
     start.cameras[c].centre += 0.05 * Eigen::Vector3d(n(rng), n(rng), n(rng));
   }
   for (Eigen::Vector3d& p : start.points)
@@ -103,16 +103,20 @@ TEST(BundleAdjustment, RecoversCamerasAndPointsFromAPerturbedStart)
   EXPECT_NEAR(t5.cwiseAbs().maxCoeff(), std::abs(fixedComponentBefore), 1e-12);
   // It converged: started from the truth instead, it ends at the same place.
   Scene fromTruth = truth;
-  BundleAdjustment::adjust(
-    fromTruth.cameras, fromTruth.points, fromTruth.intrinsics, fromTruth.observations, { 0 }, options);
+  BundleAdjustment::adjust(fromTruth.cameras, fromTruth.points, fromTruth.intrinsics,
+    fromTruth.observations, { 0 }, options);
   const double scale = fromTruth.cameras[5].centre.norm() / start.cameras[5].centre.norm();
   for (size_t c = 1; c < truth.cameras.size(); ++c)
   {
     EXPECT_LT((scale * start.cameras[c].centre - fromTruth.cameras[c].centre).norm(), 1e-4) << c;
-    EXPECT_LT(rotationAngleBetween(start.cameras[c].rotation, fromTruth.cameras[c].rotation), 1e-5) << c;
+    EXPECT_LT(rotationAngleBetween(start.cameras[c].rotation, fromTruth.cameras[c].rotation), 1e-5)
+      << c;
     // And within the noise of the truth.
     EXPECT_LT((scale * start.cameras[c].centre - truth.cameras[c].centre).norm(), 0.05) << c;
-    EXPECT_LT(rotationAngleBetween(start.cameras[c].rotation, truth.cameras[c].rotation) * 180.0 / M_PI, 0.3) << c;
+    EXPECT_LT(
+      rotationAngleBetween(start.cameras[c].rotation, truth.cameras[c].rotation) * 180.0 / M_PI,
+      0.3)
+      << c;
   }
 }
 
@@ -130,7 +134,8 @@ TEST(BundleAdjustment, HuberWeightsKeepOutliersFromPullingPoints)
     return errors[errors.size() / 2];
   };
   Scene clean = truth;
-  BundleAdjustment::adjust(clean.cameras, clean.points, clean.intrinsics, clean.observations, { 0, 1 });
+  BundleAdjustment::adjust(
+    clean.cameras, clean.points, clean.intrinsics, clean.observations, { 0, 1 });
   // One observation in twenty is a mismatch, up to 40 px off.
   Scene withOutliers = truth;
   std::mt19937 rng(5);
@@ -147,8 +152,10 @@ TEST(BundleAdjustment, HuberWeightsKeepOutliersFromPullingPoints)
   Scene robust = withOutliers;
   BundleAdjustment::Options leastSquares;
   leastSquares.huberPx = 1e9;
-  BundleAdjustment::adjust(plain.cameras, plain.points, plain.intrinsics, plain.observations, { 0, 1 }, leastSquares);
-  BundleAdjustment::adjust(robust.cameras, robust.points, robust.intrinsics, robust.observations, { 0, 1 });
+  BundleAdjustment::adjust(
+    plain.cameras, plain.points, plain.intrinsics, plain.observations, { 0, 1 }, leastSquares);
+  BundleAdjustment::adjust(
+    robust.cameras, robust.points, robust.intrinsics, robust.observations, { 0, 1 });
   EXPECT_LT(medianPointError(robust), 2.0 * medianPointError(clean));
   EXPECT_LT(medianPointError(robust), 0.3 * medianPointError(plain));
 }
@@ -159,7 +166,8 @@ TEST(BundleAdjustment, RejectsBadIndices)
   std::vector<BundleAdjustment::Observation> bad = s.observations;
   bad.push_back({ 9, 0, Eigen::Vector2d::Zero() });
   EXPECT_THROW(BundleAdjustment::adjust(s.cameras, s.points, s.intrinsics, bad, { 0 }), Error);
-  EXPECT_THROW(BundleAdjustment::adjust(s.cameras, s.points, s.intrinsics, s.observations, { 7 }), Error);
+  EXPECT_THROW(
+    BundleAdjustment::adjust(s.cameras, s.points, s.intrinsics, s.observations, { 7 }), Error);
   std::vector<PinholeCamera> tooFew(2, camera());
   EXPECT_THROW(BundleAdjustment::adjust(s.cameras, s.points, tooFew, s.observations, { 0 }), Error);
 }

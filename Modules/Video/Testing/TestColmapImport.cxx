@@ -33,8 +33,8 @@ const Eigen::Vector3d tA(0.5, -1.0, 2.0);
 const Eigen::Quaterniond qB(1.0, 0.0, 0.0, 0.0);
 const Eigen::Vector3d tB(-1.0, 0.0, 0.25);
 
-void writeText(const std::string& folder, const std::string& pinholeModel = "PINHOLE",
-  int pointImage = 11)
+void writeText(
+  const std::string& folder, const std::string& pinholeModel = "PINHOLE", int pointImage = 11)
 {
   std::ofstream(folder + "/cameras.txt") << "# Camera list with one line of data per camera:\n"
                                          << "3 " << pinholeModel << " 320 240 200 210 160 120\n"
@@ -111,7 +111,8 @@ void writeBinary(const std::string& folder, int pinholeModelId = 1)
   {
     std::ofstream f(folder + "/points3D.bin", std::ios::binary);
     put<std::uint64_t>(f, 2);
-    auto point = [&](std::uint64_t id, const Eigen::Vector3d& xyz, const std::vector<std::uint8_t>& rgb,
+    auto point = [&](std::uint64_t id, const Eigen::Vector3d& xyz,
+                   const std::vector<std::uint8_t>& rgb,
                    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& track)
     {
       put(f, id);
@@ -208,8 +209,9 @@ TEST(ColmapImport, OpenCVModelKeepsItsDistortion)
 {
   const std::string folder = freshFolder("colmap-opencv");
   writeText(folder);
-  std::ofstream(folder + "/cameras.txt") << "3 OPENCV 320 240 200 210 160 120 -0.1 0.01 0.001 -0.002\n"
-                                         << "7 PINHOLE 320 240 205 205 161 121\n";
+  std::ofstream(folder + "/cameras.txt")
+    << "3 OPENCV 320 240 200 210 160 120 -0.1 0.01 0.001 -0.002\n"
+    << "7 PINHOLE 320 240 205 205 161 121\n";
   const SfmReconstruction r = readColmapModel(folder, ColmapFormat::Text);
   const PinholeCamera& k = r.frames[1].intrinsics;
   ASSERT_EQ(k.distortion.size(), 4);
@@ -222,8 +224,8 @@ TEST(ColmapImport, FollowsTheGivenFrameNames)
   const std::string folder = freshFolder("colmap-frames");
   writeText(folder);
   std::vector<std::string> warnings;
-  const SfmReconstruction r = readColmapModel(
-    folder, ColmapFormat::Text, { "frameB.png", "frameC.png" }, 0.5, &warnings);
+  const SfmReconstruction r =
+    readColmapModel(folder, ColmapFormat::Text, { "frameB.png", "frameC.png" }, 0.5, &warnings);
   ASSERT_EQ(r.frames.size(), 2u);
   EXPECT_EQ(r.frames[0].name, "frameB.png");
   EXPECT_TRUE(r.frames[0].registered);
@@ -231,7 +233,8 @@ TEST(ColmapImport, FollowsTheGivenFrameNames)
   // Points keep only what frameB sees, and need two observations.
   EXPECT_TRUE(r.points.empty());
   ASSERT_EQ(warnings.size(), 3u);
-  EXPECT_EQ(warnings[0], "COLMAP model: dropped 1 image(s) not among the frames (first: 'frameA.png')");
+  EXPECT_EQ(
+    warnings[0], "COLMAP model: dropped 1 image(s) not among the frames (first: 'frameA.png')");
   EXPECT_EQ(warnings[1], "COLMAP model: frame 'frameC.png' is not registered");
   EXPECT_EQ(warnings[2], "COLMAP model: dropped 2 observation(s) in images not among the frames");
 }
@@ -240,14 +243,17 @@ TEST(ColmapImport, RejectsUnknownAndUnsupportedCameraModels)
 {
   const std::string folder = freshFolder("colmap-unknown-model");
   writeText(folder, "MAGIC_LENS");
-  EXPECT_EQ(messageOf(folder), "'" + folder +
+  EXPECT_EQ(messageOf(folder),
+    "'" + folder +
       "/cameras.txt': unknown camera model 'MAGIC_LENS' (supported: SIMPLE_PINHOLE, PINHOLE, "
       "SIMPLE_RADIAL, RADIAL, OPENCV)");
   writeText(folder, "OPENCV_FISHEYE");
-  EXPECT_NE(messageOf(folder).find("cameras.txt': unsupported camera model 'OPENCV_FISHEYE'"), std::string::npos);
+  EXPECT_NE(messageOf(folder).find("cameras.txt': unsupported camera model 'OPENCV_FISHEYE'"),
+    std::string::npos);
   const std::string binary = freshFolder("colmap-unknown-model-bin");
   writeBinary(binary, 42);
-  EXPECT_EQ(messageOf(binary), "'" + binary +
+  EXPECT_EQ(messageOf(binary),
+    "'" + binary +
       "/cameras.bin': unknown camera model id 42 (supported: SIMPLE_PINHOLE, PINHOLE, "
       "SIMPLE_RADIAL, RADIAL, OPENCV)");
 }
@@ -257,20 +263,25 @@ TEST(ColmapImport, RejectsDanglingIds)
   const std::string folder = freshFolder("colmap-dangling");
   writeText(folder, "PINHOLE", 99);
   EXPECT_EQ(messageOf(folder),
-    "'" + folder + "/points3D.txt': point 100 is observed by image 99, which images.txt does not hold (dangling id)");
+    "'" + folder +
+      "/points3D.txt': point 100 is observed by image 99, which images.txt does not hold (dangling "
+      "id)");
   // An image of a camera that does not exist.
   writeText(folder);
   std::ofstream(folder + "/cameras.txt") << "3 PINHOLE 320 240 200 210 160 120\n";
   EXPECT_EQ(messageOf(folder),
-    "'" + folder + "/images.txt': image 'frameA.png' uses camera 7, which cameras.txt does not define");
+    "'" + folder +
+      "/images.txt': image 'frameA.png' uses camera 7, which cameras.txt does not define");
 }
 
 TEST(ColmapImport, RejectsMissingAndTruncatedFiles)
 {
   EXPECT_EQ(messageOf(out + "/no-such-model"),
-    "'" + out + "/no-such-model': no such folder (expected a COLMAP sparse model folder such as sparse/0)");
+    "'" + out +
+      "/no-such-model': no such folder (expected a COLMAP sparse model folder such as sparse/0)");
   const std::string empty = freshFolder("colmap-empty");
-  EXPECT_EQ(messageOf(empty), "'" + empty + "': not a COLMAP sparse model (no cameras.bin or cameras.txt)");
+  EXPECT_EQ(
+    messageOf(empty), "'" + empty + "': not a COLMAP sparse model (no cameras.bin or cameras.txt)");
   const std::string truncated = freshFolder("colmap-truncated");
   writeBinary(truncated);
   fs::resize_file(truncated + "/images.bin", 60);

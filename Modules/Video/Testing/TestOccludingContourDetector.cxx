@@ -81,7 +81,8 @@ std::string messageOf(const std::function<void()>& f)
 TEST(OccludingContourDetector, FindsTheSilhouetteOfANearBrightDiscWithOutwardNormals)
 {
   // A near fold (bright, the light is at the camera) in front of a far wall.
-  const cv::Mat frame = picture([](double u, double v) { return grey(inDisc(u, v) ? 170.0 : 70.0); });
+  const cv::Mat frame =
+    picture([](double u, double v) { return grey(inDisc(u, v) ? 170.0 : 70.0); });
   const std::vector<ContourPoint> points = OccludingContourDetector(dense()).detect(frame);
   ASSERT_GT(points.size(), 150u); // the circumference is 188 px
   for (const ContourPoint& p : points)
@@ -97,7 +98,8 @@ TEST(OccludingContourDetector, FindsTheSilhouetteOfANearBrightDiscWithOutwardNor
 TEST(OccludingContourDetector, NormalsOfAFarDarkHolePointIntoIt)
 {
   // Looking down a passage: the dark, far opening is surrounded by near wall.
-  const cv::Mat frame = picture([](double u, double v) { return grey(inDisc(u, v) ? 50.0 : 150.0); });
+  const cv::Mat frame =
+    picture([](double u, double v) { return grey(inDisc(u, v) ? 50.0 : 150.0); });
   const std::vector<ContourPoint> points = OccludingContourDetector(dense()).detect(frame);
   ASSERT_GT(points.size(), 150u);
   for (const ContourPoint& p : points)
@@ -112,7 +114,8 @@ TEST(OccludingContourDetector, DarkSideTestSuppressesVessels)
 {
   // A dark vessel 4 px wide across bright mucosa: dark on one side of each
   // edge only across the vessel's width.
-  const cv::Mat frame = picture([](double u, double) { return grey(std::abs(u - 80.2) < 2.0 ? 70.0 : 160.0); });
+  const cv::Mat frame =
+    picture([](double u, double) { return grey(std::abs(u - 80.2) < 2.0 ? 70.0 : 160.0); });
   EXPECT_TRUE(OccludingContourDetector(dense()).detect(frame).empty());
   OccludingContourDetector::Options noDarkSideTest = dense();
   noDarkSideTest.darkSideProbesPx.clear();
@@ -122,7 +125,8 @@ TEST(OccludingContourDetector, DarkSideTestSuppressesVessels)
 TEST(OccludingContourDetector, ScaleTestSuppressesGradualShading)
 {
   // The same fall in brightness as a contour's, but spread over 10 pixels.
-  auto ramp = [](double u, double) { return grey(160.0 - 100.0 * std::clamp((u - 75.0) / 10.0, 0.0, 1.0)); };
+  auto ramp = [](double u, double)
+  { return grey(160.0 - 100.0 * std::clamp((u - 75.0) / 10.0, 0.0, 1.0)); };
   const cv::Mat frame = picture(ramp);
   EXPECT_TRUE(OccludingContourDetector(dense()).detect(frame).empty());
   OccludingContourDetector::Options noScaleTest = dense();
@@ -136,9 +140,11 @@ TEST(OccludingContourDetector, ScaleTestSuppressesGradualShading)
 TEST(OccludingContourDetector, RedChannelIgnoresBloodTexture)
 {
   // An edge in green and blue only (as haemoglobin makes) is texture.
-  const cv::Mat frame = picture([](double u, double) {
-    return u < 80.0 ? cv::Vec3d(60, 60, 180) : cv::Vec3d(140, 140, 180); // BGR
-  });
+  const cv::Mat frame = picture(
+    [](double u, double)
+    {
+      return u < 80.0 ? cv::Vec3d(60, 60, 180) : cv::Vec3d(140, 140, 180); // BGR
+    });
   EXPECT_TRUE(OccludingContourDetector(dense()).detect(frame).empty());
   OccludingContourDetector::Options luminance = dense();
   luminance.channel = ContourChannel::Luminance;
@@ -147,7 +153,8 @@ TEST(OccludingContourDetector, RedChannelIgnoresBloodTexture)
 
 TEST(OccludingContourDetector, ThinsPointsToTheSpacing)
 {
-  const cv::Mat frame = picture([](double u, double v) { return grey(inDisc(u, v) ? 170.0 : 70.0); });
+  const cv::Mat frame =
+    picture([](double u, double v) { return grey(inDisc(u, v) ? 170.0 : 70.0); });
   OccludingContourDetector::Options o;
   o.spacingPx = 3.0;
   const std::vector<ContourPoint> points = OccludingContourDetector(o).detect(frame);
@@ -172,6 +179,7 @@ TEST(OccludingContourDetector, RejectsBadFramesAndOptions)
     "contour detector: expected an 8-bit grey or BGR frame");
   OccludingContourDetector::Options o;
   o.highThreshold = 0.5 * o.lowThreshold;
-  EXPECT_NE(messageOf([&] { OccludingContourDetector bad(o); }).find("high threshold at least the low one"),
+  EXPECT_NE(
+    messageOf([&] { OccludingContourDetector bad(o); }).find("high threshold at least the low one"),
     std::string::npos);
 }

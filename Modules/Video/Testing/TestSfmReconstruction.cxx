@@ -95,7 +95,8 @@ TEST(SfmReconstruction, FileKeepsEverything)
   SfmReconstruction r = twoViews(1.0);
   r.source = "colmap";
   r.trackerScale = 0.52;
-  r.frames[1].cameraToSfm.rotation = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  r.frames[1].cameraToSfm.rotation =
+    Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   SfmReconstruction::Frame unregistered;
   unregistered.name = "frame2.png";
   unregistered.intrinsics = camera();
@@ -109,7 +110,8 @@ TEST(SfmReconstruction, FileKeepsEverything)
   ASSERT_EQ(back.frames.size(), 3u);
   EXPECT_EQ(back.numberOfRegisteredFrames(), 2);
   EXPECT_EQ(back.frames[2].name, "frame2.png");
-  EXPECT_TRUE(back.frames[1].cameraToSfm.rotation.isApprox(r.frames[1].cameraToSfm.rotation, 1e-15));
+  EXPECT_TRUE(
+    back.frames[1].cameraToSfm.rotation.isApprox(r.frames[1].cameraToSfm.rotation, 1e-15));
   EXPECT_EQ(back.frames[1].intrinsics.fy, 210.0);
   ASSERT_EQ(back.points.size(), 1u);
   EXPECT_EQ(back.points[0].position, r.points[0].position);
@@ -122,19 +124,22 @@ TEST(SfmReconstruction, FileKeepsEverything)
 
 TEST(SfmReconstruction, BadFilesAreNamedWithTheProblem)
 {
-  EXPECT_EQ(readMessage(out + "/no-such-sfm.json"), "'" + out + "/no-such-sfm.json': no such file or not readable");
+  EXPECT_EQ(readMessage(out + "/no-such-sfm.json"),
+    "'" + out + "/no-such-sfm.json': no such file or not readable");
   const std::string notJson = out + "/sfm-not-json.json";
   std::ofstream(notJson) << "frames: 3";
   EXPECT_EQ(readMessage(notJson), "'" + notJson + "': not a JSON file");
   const std::string other = out + "/sfm-other.json";
   std::ofstream(other) << R"({"format": "something-else"})";
-  EXPECT_EQ(readMessage(other), "'" + other + "': not a VIMLOP SfM file (no \"format\": \"vimlop-sfm\")");
+  EXPECT_EQ(
+    readMessage(other), "'" + other + "': not a VIMLOP SfM file (no \"format\": \"vimlop-sfm\")");
   // A point observed by a frame that does not exist.
   SfmReconstruction r = twoViews(1.0);
   r.points[0].observations[1].frame = 5;
   const std::string dangling = out + "/sfm-dangling.json";
   writeSfmReconstruction(r, dangling);
-  EXPECT_EQ(readMessage(dangling), "'" + dangling + "': SfM point 0 is observed by frame 5, which does not exist");
+  EXPECT_EQ(readMessage(dangling),
+    "'" + dangling + "': SfM point 0 is observed by frame 5, which does not exist");
   const std::string truncated = out + "/sfm-missing-entry.json";
   std::ofstream(truncated) << R"({"format": "vimlop-sfm", "frames": []})";
   EXPECT_NE(readMessage(truncated).find("malformed SfM file"), std::string::npos);

@@ -41,7 +41,8 @@ TrackerTrajectory tracker(double t0, double t1, double rateHz, double noiseMm, u
 /// tip's path rotated, shifted and scaled by 1 / `mmPerUnit`.
 void frames(double mmPerUnit, std::vector<double>& times, std::vector<Eigen::Vector3d>& centres)
 {
-  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d r =
+    Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
   for (int f = 0; f < 30; ++f)
   {
     times.push_back(f / 30.0);
@@ -78,7 +79,8 @@ TEST(TrackerScale, ScalesSfMToTheTrackedLength)
   std::vector<Eigen::Vector3d> centres;
   frames(0.5, times, centres);
   // A noisy tracker (0.2 mm at 40 Hz) that starts before and ends after the video.
-  const TrackerScaleResult result = estimateTrackerScale(tracker(-0.3, 1.3, 40.0, 0.2, 1), times, centres);
+  const TrackerScaleResult result =
+    estimateTrackerScale(tracker(-0.3, 1.3, 40.0, 0.2, 1), times, centres);
   EXPECT_NEAR(result.scale, 0.5, 0.5 * 0.02);
   EXPECT_EQ(result.framesUsed.size(), 30u);
   EXPECT_TRUE(result.framesDropped.empty());
@@ -87,7 +89,8 @@ TEST(TrackerScale, ScalesSfMToTheTrackedLength)
   TrackerScaleOptions everyFrame;
   everyFrame.minChordMm = 0.0;
   everyFrame.smoothingS = 0.0;
-  EXPECT_GT(estimateTrackerScale(tracker(-0.3, 1.3, 40.0, 0.2, 1), times, centres, everyFrame).scale, 0.55);
+  EXPECT_GT(
+    estimateTrackerScale(tracker(-0.3, 1.3, 40.0, 0.2, 1), times, centres, everyFrame).scale, 0.55);
 }
 
 TEST(TrackerScale, DropsFramesOutsideTheRecordingAndUnregisteredOnes)
@@ -97,12 +100,15 @@ TEST(TrackerScale, DropsFramesOutsideTheRecordingAndUnregisteredOnes)
   frames(2.0, times, centres);
   centres[3] = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   // The tracker stops at 0.475 s: frames 15-29 (from 0.5 s) lie outside it.
-  const TrackerScaleResult result = estimateTrackerScale(tracker(-0.2, 0.49, 40.0, 0.0, 2), times, centres);
+  const TrackerScaleResult result =
+    estimateTrackerScale(tracker(-0.2, 0.49, 40.0, 0.0, 2), times, centres);
   EXPECT_NEAR(result.scale, 2.0, 2.0 * 0.02);
   EXPECT_EQ(result.framesUsed.size(), 14u);
   EXPECT_EQ(result.framesDropped.size(), 16u);
   ASSERT_EQ(result.warnings.size(), 2u);
-  EXPECT_EQ(result.warnings[0].rfind("tracker scale: dropped 15 frame(s) outside the tracker's time span", 0), 0u)
+  EXPECT_EQ(result.warnings[0].rfind(
+              "tracker scale: dropped 15 frame(s) outside the tracker's time span", 0),
+    0u)
     << result.warnings[0];
   EXPECT_EQ(result.warnings[1], "tracker scale: dropped 1 frame(s) that SfM did not register");
 }
@@ -112,11 +118,13 @@ TEST(TrackerScale, FailsWithoutTimeOverlapOrMotion)
   std::vector<double> times;
   std::vector<Eigen::Vector3d> centres;
   frames(1.0, times, centres);
-  EXPECT_EQ(messageOf([&] { estimateTrackerScale(tracker(5.0, 6.0, 40.0, 0.0, 3), times, centres); }),
+  EXPECT_EQ(
+    messageOf([&] { estimateTrackerScale(tracker(5.0, 6.0, 40.0, 0.0, 3), times, centres); }),
     "tracker scale: the tracker and the frames do not overlap in time (tracker 5.000..6.000 s, "
     "frames 0.000..0.967 s)");
   std::vector<Eigen::Vector3d> still(30, Eigen::Vector3d(1, 2, 3));
-  EXPECT_EQ(messageOf([&] { estimateTrackerScale(tracker(-0.2, 1.2, 40.0, 0.0, 3), times, still); }),
+  EXPECT_EQ(
+    messageOf([&] { estimateTrackerScale(tracker(-0.2, 1.2, 40.0, 0.0, 3), times, still); }),
     "tracker scale: the SfM trajectory has no length (the endoscope did not move)");
 }
 
@@ -146,7 +154,7 @@ TEST(TrackerTrajectory, ReadsCsvAndWarnsAboutWhatItDrops)
   std::vector<std::string> warnings;
   const TrackerTrajectory t = TrackerTrajectory::readCsv(path, &warnings);
   ASSERT_EQ(t.samples().size(), 4u);
-  EXPECT_EQ(t.samples()[2].timeS, 0.15); // sorted by time
+  EXPECT_EQ(t.samples()[2].timeS, 0.15);                            // sorted by time
   EXPECT_EQ(t.samples()[1].positionMm, Eigen::Vector3d(1.5, 2, 3)); // the first of two at 0.1 s
   ASSERT_EQ(warnings.size(), 2u);
   EXPECT_EQ(warnings[0], "'" + path + "': dropped 1 malformed row(s) (line 5)");

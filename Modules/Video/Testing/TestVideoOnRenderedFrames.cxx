@@ -22,7 +22,8 @@ TEST(VideoOnRenderedFrames, ContourDetectorFindsTheTrueOccludingContours)
   ContourEvaluation evaluation;
   for (size_t f = 0; f < s.frames.size(); ++f)
   {
-    const std::vector<ModelContourPoint> samples = extractOccludingContours(s.mesh, s.intrinsics, s.poses[f]);
+    const std::vector<ModelContourPoint> samples =
+      extractOccludingContours(s.mesh, s.intrinsics, s.poses[f]);
     std::vector<Eigen::Vector3d> points;
     for (const ModelContourPoint& m : samples)
     {
