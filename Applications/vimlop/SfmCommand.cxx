@@ -10,6 +10,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <opencv2/calib3d.hpp>
+
 #include <cstdio>
 #include <iostream>
 #include <limits>
@@ -88,14 +90,38 @@ void runSfm(const SfmOptions& o)
         "x" + std::to_string(k.heightPx) + " pixels but the frames in '" + o.frames + "' are " +
         std::to_string(sequence.widthPx()) + "x" + std::to_string(sequence.heightPx()));
     }
+    // SfM works on ideal pinhole frames: lens distortion is removed first.
+    const bool distorted = k.distortion.size() > 0 && !k.distortion.isZero();
+    cv::Mat matrix;
+    cv::Mat coefficients;
+    if (distorted)
+    {
+      std::cerr
+        << "vimlop: note: undistorting the frames with the intrinsics' distortion coefficients\n";
+      matrix = (cv::Mat_<double>(3, 3) << k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0);
+      coefficients = cv::Mat(1, static_cast<int>(k.distortion.size()), CV_64F);
+      for (int i = 0; i < coefficients.cols; ++i)
+      {
+        coefficients.at<double>(i) = k.distortion[i];
+      }
+    }
     std::vector<cv::Mat> frames;
     std::vector<std::string> names;
     for (int f = 0; f < sequence.size(); ++f)
     {
-      frames.push_back(sequence.frame(f));
+      cv::Mat frame = sequence.frame(f);
+      if (distorted)
+      {
+        cv::Mat undistorted;
+        cv::undistort(frame, undistorted, matrix, coefficients);
+        frame = undistorted;
+      }
+      frames.push_back(frame);
       names.push_back(sequence.name(f));
     }
-    sfm = StructureFromMotion().reconstruct(frames, k, names, &std::cerr);
+    PinholeCamera ideal = k;
+    ideal.distortion.resize(0);
+    sfm = StructureFromMotion().reconstruct(frames, ideal, names, &std::cerr);
   }
   for (const SfmReconstruction::Frame& f : sfm.frames)
   {

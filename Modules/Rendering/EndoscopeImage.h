@@ -24,6 +24,7 @@ struct EndoscopeImage
   std::vector<std::uint8_t> rgb;
   DepthMap depth;
 
+  /// @brief Channel `c` (0 red, 1 green, 2 blue) of pixel (u, v).
   std::uint8_t channel(int u, int v, int c) const
   {
     return this->rgb[3 * (static_cast<size_t>(v) * this->widthPx + u) + c];

@@ -38,7 +38,10 @@ class vtkUnsignedCharArray;
  * 1 - d that does not depend on the incidence stands for the sub-surface
  * scattering of wet mucosa: with a pure Lambertian term every fold would go
  * black at its own silhouette, whereas in endoscopy the nearer tissue is
- * the brighter side of an occluding contour (DESIGN §4). Radiance is tone
+ * the brighter side of an occluding contour (DESIGN §4). The light is
+ * computed here rather than by a positional vtkLight, whose attenuation acts
+ * on the diffuse and specular terms only and cannot make the
+ * incidence-independent part fall off with distance. Radiance is tone
  * mapped (x E / (1 + x E), E the Exposure) and gamma encoded (1/2.2); the
  * picture is rendered at Supersampling times the size and averaged down, then
  * blurred (BlurSigmaPx) and given Gaussian noise (NoiseSigma).

@@ -568,9 +568,8 @@ private:
     BundleAdjustment::Options options;
     options.maxIterations = iterations;
     options.scaleCamera = cameraOf[this->ScaleCamera];
-    const BundleAdjustment::Summary s = BundleAdjustment::adjust(
+    BundleAdjustment::adjust(
       cameras, this->Points, intrinsics, observations, { cameraOf[this->Origin] }, options);
-    this->LastRmsPx = s.finalRmsPx;
     for (size_t f = 0; f < this->Frames.size(); ++f)
     {
       if (cameraOf[f] >= 0)
@@ -773,7 +772,6 @@ private:
   int ScaleCamera = 0;
   std::vector<Eigen::Vector3d> Points;
   std::vector<std::vector<std::pair<int, Eigen::Vector2d>>> Observations;
-  double LastRmsPx = 0.0;
 };
 
 } // namespace

@@ -34,10 +34,11 @@ CameraPose makePose()
   return pose;
 }
 
-/// A square [-half, half]^2 at camera depth `depth`, n x n quads, facing the
+/// A square [-half, half]^2 + offset (camera x, y) at camera depth `depth`, n x n quads, facing the
 /// camera (normals towards it: into the air the camera is in), in the world
 /// frame of `pose`.
-TriangleMesh facingSquare(const CameraPose& pose, double depth, double half, int n = 40)
+TriangleMesh facingSquare(const CameraPose& pose, double depth, double half, int n = 40,
+  const Eigen::Vector2d& offset = Eigen::Vector2d::Zero())
 {
   std::vector<Eigen::Vector3d> v;
   std::vector<Eigen::Vector3i> f;
@@ -45,8 +46,8 @@ TriangleMesh facingSquare(const CameraPose& pose, double depth, double half, int
   {
     for (int i = 0; i <= n; ++i)
     {
-      v.push_back(
-        pose.cameraToWorld({ -half + 2.0 * half * i / n, -half + 2.0 * half * j / n, depth }));
+      v.push_back(pose.cameraToWorld(
+        { offset.x() - half + 2.0 * half * i / n, offset.y() - half + 2.0 * half * j / n, depth }));
     }
   }
   for (int j = 0; j < n; ++j)
@@ -152,22 +153,27 @@ TEST(vtkVIMLOPVirtualEndoscope, NearerTissueIsBrighterAcrossAnOccludingContour)
   vtkNew<vtkVIMLOPVirtualEndoscope> endoscope;
   endoscope->SetNoiseSigma(0.0);
   endoscope->SetBlurSigmaPx(0.0);
-  // A 4 mm square 10 mm away (u, v from 59.5 to 99.5, 39.5 to 79.5 px) over a wall at 16 mm.
-  endoscope->SetMesh(
-    merge(facingSquare(pose, 10.0, 2.0, 10), facingSquare(pose, 16.0, 60.0)), plainTexture());
+  // A 4 mm square 10 mm away, in the upper half of the view (camera y < 0 is
+  // up): u from 59.5 to 99.5 px, v from 9.5 to 49.5 px; behind it a wall at 16 mm.
+  endoscope->SetMesh(merge(facingSquare(pose, 10.0, 2.0, 10, Eigen::Vector2d(0.0, -3.0)),
+                       facingSquare(pose, 16.0, 60.0)),
+    plainTexture());
   const EndoscopeImage image = endoscope->Render(k, pose);
-  EXPECT_NEAR(image.depth.at(79, 59), 10.0, 0.01);
-  EXPECT_NEAR(image.depth.at(20, 59), 16.0, 0.01);
+  // Picture and depth rows run top-down, as in OpenCV.
+  EXPECT_NEAR(image.depth.at(79, 29), 10.0, 0.01);
+  EXPECT_NEAR(image.depth.at(79, 90), 16.0, 0.01);
+  EXPECT_NEAR(image.depth.at(20, 29), 16.0, 0.01);
   for (int c = 0; c < 3; ++c)
   {
-    EXPECT_GT(mean(image, c, 62, 50, 66, 70), mean(image, c, 52, 50, 56, 70) + 20.0);
+    EXPECT_GT(mean(image, c, 62, 20, 66, 40), mean(image, c, 52, 20, 56, 40) + 20.0);
+    EXPECT_GT(mean(image, c, 70, 20, 90, 40), mean(image, c, 70, 80, 90, 100) + 20.0);
   }
   // The step sits on the square's projected edge (u = 59.5): anti-aliased
   // pixels only at u = 59 and 60.
-  const double nearValue = mean(image, 0, 62, 50, 66, 70);
-  const double farValue = mean(image, 0, 52, 50, 56, 70);
-  EXPECT_NEAR(mean(image, 0, 61, 50, 62, 70), nearValue, 3.0);
-  EXPECT_NEAR(mean(image, 0, 58, 50, 59, 70), farValue, 3.0);
+  const double nearValue = mean(image, 0, 62, 20, 66, 40);
+  const double farValue = mean(image, 0, 52, 20, 56, 40);
+  EXPECT_NEAR(mean(image, 0, 61, 20, 62, 40), nearValue, 3.0);
+  EXPECT_NEAR(mean(image, 0, 58, 20, 59, 40), farValue, 3.0);
 }
 
 TEST(vtkVIMLOPVirtualEndoscope, NoiseIsReproducible)
