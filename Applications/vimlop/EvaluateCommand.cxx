@@ -116,9 +116,10 @@ void runVideo(const VideoCommandOptions& o)
 
 } // namespace
 
-void addEvaluateCommand(CLI::App& app)
+CLI::App* addEvaluateCommand(CLI::App& app)
 {
-  CLI::App* evaluate = app.add_subcommand("evaluate", "Run an evaluation protocol of the paper");
+  CLI::App* evaluate =
+    app.add_subcommand("evaluate", "Run an evaluation protocol (DESIGN section 6); results go to a JSON file");
   evaluate->require_subcommand(1);
 
   auto synthetic = std::make_shared<SyntheticCommandOptions>();
@@ -175,6 +176,7 @@ void addEvaluateCommand(CLI::App& app)
   p2->add_option("--threads", video->threads, "threads per registration, 0 for all cores")
     ->capture_default_str();
   p2->callback([video] { runVideo(*video); });
+  return evaluate;
 }
 
 } // namespace vimlop

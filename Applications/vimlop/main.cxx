@@ -5,10 +5,13 @@
 #include "ContoursCommand.h"
 #include "Error.h"
 #include "EvaluateCommand.h"
+#include "EvaluateWarpCommand.h"
 #include "InfoCommand.h"
 #include "SegmentCommand.h"
+#include "ServeCommand.h"
 #include "SfmCommand.h"
 #include "SimulateCommand.h"
+#include "WarpCommand.h"
 
 #include <CLI/CLI.hpp>
 
@@ -21,8 +24,11 @@ int main(int argc, char** argv)
   app.set_version_flag("--version", std::string("vimlop ") + VIMLOP_VERSION);
   app.require_subcommand(1);
   vimlop::addInfoCommand(app);
-  vimlop::addEvaluateCommand(app);
   vimlop::addSegmentCommand(app);
+  vimlop::addServeCommand(app);
+  vimlop::addWarpCommand(app);
+  CLI::App* evaluate = vimlop::addEvaluateCommand(app);
+  vimlop::addEvaluateWarpCommand(*evaluate);
   vimlop::addSimulateCommand(app);
   vimlop::addContoursCommand(app);
   vimlop::addSfmCommand(app);

@@ -618,7 +618,8 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
     next = registrar.constrain(T, next, record.backoffSteps);
     // The first stage also ends at half the iteration budget, so that slow
     // convergence of the points alone never starves the refinement.
-    const bool done = registrar.converged(T, next) || (!refining && !icp && iteration >= options.maxIterations / 2);
+    const bool done =
+      registrar.converged(T, next) || (!refining && !icp && iteration >= options.maxIterations / 2);
 
     const Vector7d step = registrar.stepInMm(T, next);
     const double angle = std::acos(std::clamp(

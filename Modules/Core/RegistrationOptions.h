@@ -64,8 +64,9 @@ struct RegistrationOptions
   double convergenceTranslationMm = 5e-3;
   /// ... and the rotation changes less than this, degrees (default 0.005) ...
   double convergenceRotationDeg = 5e-3;
-  /// ... and the scale changes by less than this fraction (default 1e-5).
-  double convergenceScaleRelative = 1e-5;
+  /// ... and the scale changes by less than this fraction (default 2e-4: 0.004 mm
+  /// over a 20 mm wide reconstruction, like the translation threshold).
+  double convergenceScaleRelative = 2e-4;
 
   /**
    * Extrapolate along the path of the estimates when successive updates point
