@@ -51,7 +51,7 @@ find_package(ITK 5.2 REQUIRED COMPONENTS
   ITKThresholding
   ITKTransform)
 
-find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio)
+find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio features2d calib3d)
 
 # OpenIGTLink (Debian's libopenigtlink-dev has no imported target: plain variables).
 find_package(OpenIGTLink REQUIRED NO_MODULE PATHS /usr/lib/openigtlink)

@@ -27,6 +27,7 @@ elastix
 xvfb
 xauth
 libgl1-mesa-dri
+colmap
 invesalius-examples
 "
 

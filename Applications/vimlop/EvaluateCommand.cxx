@@ -4,6 +4,7 @@
 #include "Error.h"
 #include "ModelLoading.h"
 #include "SyntheticEvaluation.h"
+#include "VideoEvaluation.h"
 
 #include <CLI/CLI.hpp>
 
@@ -38,20 +39,78 @@ void runSynthetic(const SyntheticCommandOptions& o)
   options.threads = o.threads;
   options.methods = parseList(o.methods, "--methods");
   checkSyntheticMethods(options.methods);
-  std::tie(options.synthetic.misalignMinMm, options.synthetic.misalignMaxMm) = parseRange(o.misalignMm, "--misalign-mm");
-  std::tie(options.synthetic.misalignMinDeg, options.synthetic.misalignMaxDeg) = parseRange(o.misalignDeg, "--misalign-deg");
+  std::tie(options.synthetic.misalignMinMm, options.synthetic.misalignMaxMm) =
+    parseRange(o.misalignMm, "--misalign-mm");
+  std::tie(options.synthetic.misalignMinDeg, options.synthetic.misalignMaxDeg) =
+    parseRange(o.misalignDeg, "--misalign-deg");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
   const nlohmann::json report = runSyntheticEvaluation(mesh, options, &std::cerr);
   writeJsonFile(report, o.out);
   for (const std::string& method : options.methods)
   {
     const nlohmann::json& m = report["methods"][method];
-    std::printf("P1 %-12s TRE median %.3f mm (mean %.3f, p95 %.3f), success %.0f %%, camera %.3f mm / %.3f deg, "
+    std::printf("P1 %-12s TRE median %.3f mm (mean %.3f, p95 %.3f), success %.0f %%, camera %.3f "
+                "mm / %.3f deg, "
                 "runtime median %.3f s\n",
       method.c_str(), m["tre_mm"]["median"].get<double>(), m["tre_mm"]["mean"].get<double>(),
       m["tre_mm"]["p95"].get<double>(), 100.0 * m["success_rate"].get<double>(),
-      m["camera_position_mm"]["median"].get<double>(), m["camera_angle_deg"]["median"].get<double>(),
-      m["runtime_s"]["median"].get<double>());
+      m["camera_position_mm"]["median"].get<double>(),
+      m["camera_angle_deg"]["median"].get<double>(), m["runtime_s"]["median"].get<double>());
+  }
+}
+
+struct VideoCommandOptions
+{
+  std::string mesh;
+  std::string ct;
+  std::string out;
+  int frames = 30;
+  std::uint64_t seed = 1;
+  std::string sfm = "builtin";
+  std::string colmap = "colmap";
+  std::string work;
+  std::string perturbMm = "2,3";
+  std::string perturbDeg = "2,3";
+  int threads = 0;
+};
+
+void runVideo(const VideoCommandOptions& o)
+{
+  VideoEvaluationOptions options;
+  options.simulation.frames = o.frames;
+  options.simulation.seed = o.seed;
+  options.sfm = o.sfm;
+  options.colmapExecutable = o.colmap;
+  options.workFolder = o.work;
+  if (options.workFolder.empty())
+  {
+    options.workFolder = o.out + ".work";
+  }
+  options.threads = o.threads;
+  std::tie(options.perturbMinMm, options.perturbMaxMm) = parseRange(o.perturbMm, "--perturb-mm");
+  std::tie(options.perturbMinDeg, options.perturbMaxDeg) =
+    parseRange(o.perturbDeg, "--perturb-deg");
+  if (o.sfm != "builtin" && o.sfm != "colmap")
+  {
+    throw Error("--sfm: expected 'builtin' or 'colmap', got '" + o.sfm + "'");
+  }
+  const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
+  const nlohmann::json report = runVideoEvaluation(mesh, options, &std::cerr);
+  writeJsonFile(report, o.out);
+  const nlohmann::json& c = report["contours"];
+  std::printf(
+    "P2 contours: precision %.3f, recall %.3f, median normal error %.1f deg; SfM (%s) %d points\n",
+    c["precision"].get<double>(), c["recall"].get<double>(),
+    c["normal_error_deg_median"].get<double>(), o.sfm.c_str(), report["sfm_points"].get<int>());
+  for (const char* method : { "vimlop", "imlp" })
+  {
+    const nlohmann::json& m = report["methods"][method];
+    std::printf("P2 %-6s camera %.3f mm (max %.3f) / %.3f deg (max %.3f), scale error %.2f %%, "
+                "runtime %.1f s\n",
+      method, m["camera_position_mm"]["mean"].get<double>(),
+      m["camera_position_mm"]["max"].get<double>(), m["camera_angle_deg"]["mean"].get<double>(),
+      m["camera_angle_deg"]["max"].get<double>(), 100.0 * m["scale_error_rel"].get<double>(),
+      m["runtime_s"].get<double>());
   }
 }
 
@@ -69,19 +128,54 @@ CLI::App* addEvaluateCommand(CLI::App& app)
     "TRE of V-IMLOP, its baselines and Open3D peers");
   CLI::Option* mesh =
     p1->add_option("--mesh", synthetic->mesh, "airway surface (CT frame, normals into the air)");
-  CLI::Option* ct = p1->add_option("--ct", synthetic->ct, "CT volume whose airway is segmented with the defaults");
+  CLI::Option* ct =
+    p1->add_option("--ct", synthetic->ct, "CT volume whose airway is segmented with the defaults");
   mesh->excludes(ct);
   p1->add_option("--out", synthetic->out, "result JSON file")->required();
-  p1->add_option("--trials", synthetic->trials, "number of trials")->capture_default_str()->check(CLI::PositiveNumber);
+  p1->add_option("--trials", synthetic->trials, "number of trials")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
   p1->add_option("--seed", synthetic->seed, "random seed")->capture_default_str();
-  p1->add_option("--misalign-mm", synthetic->misalignMm, "range of the initial translation error, mm")
+  p1->add_option(
+      "--misalign-mm", synthetic->misalignMm, "range of the initial translation error, mm")
     ->capture_default_str();
-  p1->add_option("--misalign-deg", synthetic->misalignDeg, "range of the initial rotation error, degrees")
+  p1->add_option(
+      "--misalign-deg", synthetic->misalignDeg, "range of the initial rotation error, degrees")
     ->capture_default_str();
-  p1->add_option("--methods", synthetic->methods, std::string("comma-separated methods: ") + syntheticMethodNames())
+  p1->add_option("--methods", synthetic->methods,
+      std::string("comma-separated methods: ") + syntheticMethodNames())
     ->capture_default_str();
-  p1->add_option("--threads", synthetic->threads, "threads per registration, 0 for all cores")->capture_default_str();
+  p1->add_option("--threads", synthetic->threads, "threads per registration, 0 for all cores")
+    ->capture_default_str();
   p1->callback([synthetic] { runSynthetic(*synthetic); });
+
+  auto video = std::make_shared<VideoCommandOptions>();
+  CLI::App* p2 = evaluate->add_subcommand("video",
+    "P2, the paper's simulated-video experiment: a virtual endoscope sequence, contour detection, "
+    "SfM, tracker scale, a perturbed start; camera errors of V-IMLOP and IMLP");
+  CLI::Option* videoMesh =
+    p2->add_option("--mesh", video->mesh, "airway surface (CT frame, normals into the air)");
+  CLI::Option* videoCt =
+    p2->add_option("--ct", video->ct, "CT volume whose airway is segmented with the defaults");
+  videoMesh->excludes(videoCt);
+  p2->add_option("--out", video->out, "result JSON file")->required();
+  p2->add_option("--frames", video->frames, "frames of the sequence")
+    ->capture_default_str()
+    ->check(CLI::Range(3, 1000));
+  p2->add_option("--seed", video->seed, "random seed (path, texture, noise, start)")
+    ->capture_default_str();
+  p2->add_option("--sfm", video->sfm, "structure from motion: builtin or colmap")
+    ->capture_default_str();
+  p2->add_option("--colmap", video->colmap, "the COLMAP executable (with --sfm colmap)")
+    ->capture_default_str();
+  p2->add_option("--work", video->work, "folder for COLMAP's work (default: OUT.work)");
+  p2->add_option("--perturb-mm", video->perturbMm, "range of the initial translation error, mm")
+    ->capture_default_str();
+  p2->add_option("--perturb-deg", video->perturbDeg, "range of the initial rotation error, degrees")
+    ->capture_default_str();
+  p2->add_option("--threads", video->threads, "threads per registration, 0 for all cores")
+    ->capture_default_str();
+  p2->callback([video] { runVideo(*video); });
   return evaluate;
 }
 

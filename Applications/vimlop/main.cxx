@@ -2,12 +2,15 @@
 // registers itself here; errors the user can act on are vimlop::Error and end
 // the program with one line on stderr and exit code 1.
 
+#include "ContoursCommand.h"
 #include "Error.h"
 #include "EvaluateCommand.h"
 #include "EvaluateWarpCommand.h"
 #include "InfoCommand.h"
 #include "SegmentCommand.h"
 #include "ServeCommand.h"
+#include "SfmCommand.h"
+#include "SimulateCommand.h"
 #include "WarpCommand.h"
 
 #include <CLI/CLI.hpp>
@@ -31,6 +34,9 @@ int main(int argc, char** argv)
   vimlop::addWarpCommand(app);
   CLI::App* evaluate = vimlop::addEvaluateCommand(app);
   vimlop::addEvaluateWarpCommand(*evaluate);
+  vimlop::addSimulateCommand(app);
+  vimlop::addContoursCommand(app);
+  vimlop::addSfmCommand(app);
   try
   {
     app.parse(argc, argv);

@@ -119,6 +119,48 @@ inline TriangleMesh makeCavityWithBlobs()
     makeSphere(3.0, 3, { -6.0, 5.0, -4.0 }, true) });
 }
 
+/// A closed tube along +z from z = 0 to `length` (mm) around the z axis, like
+/// a nasal passage: radius `radius` varied by the fraction `folds` with angle
+/// and depth (so that folds make occluding contours seen from inside), capped
+/// at both ends, normals into the air inside.
+inline TriangleMesh makeTube(
+  double radius = 4.0, double length = 60.0, double folds = 0.15, int sides = 48, int rings = 120)
+{
+  std::vector<Eigen::Vector3d> v;
+  std::vector<Eigen::Vector3i> f;
+  for (int k = 0; k <= rings; ++k)
+  {
+    const double z = length * k / rings;
+    for (int i = 0; i < sides; ++i)
+    {
+      const double theta = 2.0 * M_PI * i / sides;
+      const double r = radius *
+        (1.0 + folds * std::sin(3.0 * theta + 0.4 * z) * std::sin(0.5 * z) * std::sin(0.5 * z));
+      v.emplace_back(r * std::cos(theta), r * std::sin(theta), z);
+    }
+  }
+  auto index = [&](int i, int k) { return k * sides + (i % sides); };
+  for (int k = 0; k < rings; ++k)
+  {
+    for (int i = 0; i < sides; ++i)
+    {
+      // (d/dtheta) x (d/dz) points out of the tube: reversed, into it.
+      f.emplace_back(index(i, k), index(i, k + 1), index(i + 1, k));
+      f.emplace_back(index(i + 1, k), index(i, k + 1), index(i + 1, k + 1));
+    }
+  }
+  const int bottom = static_cast<int>(v.size());
+  v.emplace_back(0.0, 0.0, 0.0);
+  const int top = static_cast<int>(v.size());
+  v.emplace_back(0.0, 0.0, length);
+  for (int i = 0; i < sides; ++i)
+  {
+    f.emplace_back(bottom, index(i, 0), index(i + 1, 0));
+    f.emplace_back(top, index(i + 1, rings), index(i, rings));
+  }
+  return TriangleMesh(std::move(v), std::move(f));
+}
+
 /// Axis-aligned box [lo, hi], two triangles per side; normals inward unless `outward`.
 inline TriangleMesh makeBox(
   const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, bool outward = false)

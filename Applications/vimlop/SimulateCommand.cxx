@@ -1,0 +1,108 @@
+#include "SimulateCommand.h"
+
+#include "EmbreeRegistrationModel.h"
+#include "Error.h"
+#include "ModelLoading.h"
+#include "VideoSimulation.h"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+namespace vimlop
+{
+
+namespace
+{
+
+struct SimulateOptions
+{
+  std::string mesh;
+  std::string ct;
+  std::string out;
+  VideoSimulationOptions simulation;
+  int width = 320;
+  int height = 240;
+  double focal = 200.0;
+};
+
+void runSimulate(SimulateOptions o)
+{
+  const auto start = std::chrono::steady_clock::now();
+  PinholeCamera& k = o.simulation.intrinsics;
+  k.widthPx = o.width;
+  k.heightPx = o.height;
+  k.fx = k.fy = o.focal;
+  k.cx = 0.5 * (o.width - 1);
+  k.cy = 0.5 * (o.height - 1);
+  k.validate();
+  const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
+  const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
+  const SimulatedVideo video = simulateVideo(model, o.simulation, &std::cerr);
+  writeSimulatedVideo(video, o.out);
+  double length = 0.0;
+  double clearance = 1e300;
+  for (size_t f = 0; f < video.camerasCT.size(); ++f)
+  {
+    if (f > 0)
+    {
+      length += (video.camerasCT[f].centre - video.camerasCT[f - 1].centre).norm();
+    }
+    clearance =
+      std::min(clearance, model.locator().closestPoint(video.camerasCT[f].centre).distanceMm);
+  }
+  std::printf("simulated %d frames of %dx%d px along a %.1f mm path (least wall distance %.2f mm) "
+              "in %.1f s; wrote '%s'\n",
+    o.simulation.frames, o.width, o.height, length, clearance,
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), o.out.c_str());
+}
+
+} // namespace
+
+void addSimulateCommand(CLI::App& app)
+{
+  auto o = std::make_shared<SimulateOptions>();
+  CLI::App* simulate = app.add_subcommand("simulate",
+    "Simulate an endoscope sequence in the airway: frames, depth maps, intrinsics, true poses, "
+    "tracker CSV");
+  CLI::Option* mesh =
+    simulate->add_option("--mesh", o->mesh, "airway surface (CT frame, normals into the air)");
+  CLI::Option* ct =
+    simulate->add_option("--ct", o->ct, "CT volume whose airway is segmented with the defaults");
+  mesh->excludes(ct);
+  simulate->add_option("--out", o->out, "output folder")->required();
+  simulate->add_option("--frames", o->simulation.frames, "number of frames")
+    ->capture_default_str()
+    ->check(CLI::Range(2, 10000));
+  simulate->add_option("--seed", o->simulation.seed, "random seed (path, texture, noise)")
+    ->capture_default_str();
+  simulate->add_option("--width", o->width, "image width, pixels")
+    ->capture_default_str()
+    ->check(CLI::Range(16, 8192));
+  simulate->add_option("--height", o->height, "image height, pixels")
+    ->capture_default_str()
+    ->check(CLI::Range(16, 8192));
+  simulate->add_option("--focal", o->focal, "focal length, pixels (principal point at the centre)")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  simulate->add_option("--step-mm", o->simulation.trajectory.stepMm, "advance per frame, mm")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  simulate
+    ->add_option("--clearance-mm", o->simulation.trajectory.minClearanceMm,
+      "least distance of the optical centre to the wall, mm")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  simulate->add_option("--noise", o->simulation.noiseSigma, "picture noise std, grey levels")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  simulate->add_option("--blur-px", o->simulation.blurSigmaPx, "picture blur std, pixels")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  simulate->callback([o] { runSimulate(*o); });
+}
+
+} // namespace vimlop

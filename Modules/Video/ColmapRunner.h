@@ -1,0 +1,64 @@
+#ifndef vimlop_ColmapRunner_h
+#define vimlop_ColmapRunner_h
+
+#include "PinholeCamera.h"
+
+#include "VIMLOPVideoModule.h"
+
+#include <string>
+
+namespace vimlop
+{
+
+/**
+ * @brief Runs the `colmap` program (COLMAP 3.x, e.g. Debian's package) on a
+ * folder of frames: CPU SIFT extraction with the given pinhole intrinsics
+ * (one camera, held fixed), exhaustive matching, incremental mapping, and a
+ * text copy of the model. Everything COLMAP prints goes to
+ * `workFolder/colmap.log`; it runs headless (QT_QPA_PLATFORM=offscreen).
+ */
+class VIMLOPVIDEO_EXPORT ColmapRunner
+{
+public:
+  /// @brief The program and how hard it works.
+  struct Options
+  {
+    /// The COLMAP executable (default "colmap", looked up on the PATH).
+    std::string executable = "colmap";
+    /// Threads per step (default 2; -1 for all cores).
+    int threads = 2;
+    /// Least triangulation angle of COLMAP's initial pair, degrees (default
+    /// 4; COLMAP's 16 suits wide-baseline photographs, not a scope that
+    /// moves a few millimetres).
+    double initialMinAngleDeg = 4.0;
+    /// SIFT peak threshold (default 0.0017; COLMAP's 0.0067 finds a few dozen
+    /// features on low-contrast mucosa, this about as many as the built-in SfM).
+    double siftPeakThreshold = 0.0017;
+  };
+
+  ColmapRunner();
+  explicit ColmapRunner(const Options& options);
+
+  /// @brief True when the executable runs (`colmap help` succeeds).
+  bool isAvailable() const;
+
+  /**
+   * @brief Reconstructs the images in `imageFolder` into `workFolder`
+   * (created; database.db, sparse/0 in binary, sparse-text in text) and
+   * returns the binary model folder.
+   * @throws vimlop::Error when COLMAP is missing, a step fails (naming it and
+   * the log) or no model results.
+   */
+  std::string run(const std::string& imageFolder, const PinholeCamera& intrinsics,
+    const std::string& workFolder) const;
+
+  /// @brief The text copy of the model written by run().
+  static std::string textModelFolder(const std::string& workFolder);
+
+private:
+  Options Opts;
+};
+
+} // namespace vimlop
+
+#endif

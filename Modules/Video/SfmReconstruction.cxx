@@ -1,0 +1,128 @@
+#include "SfmReconstruction.h"
+
+#include "Error.h"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+
+namespace vimlop
+{
+
+int SfmReconstruction::numberOfRegisteredFrames() const
+{
+  int n = 0;
+  for (const Frame& f : this->frames)
+  {
+    n += f.registered;
+  }
+  return n;
+}
+
+double SfmReconstruction::rmsReprojectionErrorPx() const
+{
+  double sum = 0.0;
+  long count = 0;
+  for (const Point& p : this->points)
+  {
+    for (const Observation& o : p.observations)
+    {
+      const Frame& f = this->frames[static_cast<size_t>(o.frame)];
+      const Eigen::Vector3d x = f.cameraToSfm.worldToCamera(p.position);
+      if (x.z() <= 0.0)
+      {
+        continue;
+      }
+      sum += (f.intrinsics.project(x) - o.pixel).squaredNorm();
+      ++count;
+    }
+  }
+  return count > 0 ? std::sqrt(sum / count) : 0.0;
+}
+
+Eigen::Matrix3d SfmReconstruction::triangulationCovariance(const Eigen::Vector3d& position,
+  const std::vector<Observation>& observations, double sigmaPx) const
+{
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  double depthSum = 0.0;
+  for (const Observation& o : observations)
+  {
+    const Frame& f = this->frames[static_cast<size_t>(o.frame)];
+    const Eigen::Vector3d x = f.cameraToSfm.worldToCamera(position);
+    if (x.z() <= 0.0)
+    {
+      continue;
+    }
+    depthSum += x.z();
+    // d pixel / d camera point, then d camera point / d world point = R^T.
+    Eigen::Matrix<double, 2, 3> j;
+    j << f.intrinsics.fx / x.z(), 0.0, -f.intrinsics.fx * x.x() / (x.z() * x.z()), 0.0,
+      f.intrinsics.fy / x.z(), -f.intrinsics.fy * x.y() / (x.z() * x.z());
+    const Eigen::Matrix<double, 2, 3> jw = j * f.cameraToSfm.rotation.transpose();
+    information += jw.transpose() * jw;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(information);
+  const double largest = eigen.eigenvalues().maxCoeff();
+  if (!(largest > 0.0) || eigen.eigenvalues().minCoeff() < 1e-10 * largest)
+  {
+    // No depth information: as uncertain as the point is far.
+    const double depth = depthSum > 0.0 ? depthSum / observations.size() : 1.0;
+    return depth * depth * Eigen::Matrix3d::Identity();
+  }
+  return sigmaPx * sigmaPx * information.inverse();
+}
+
+void SfmReconstruction::computeCovariances(double sigmaPx)
+{
+  for (Point& p : this->points)
+  {
+    p.covariance = this->triangulationCovariance(p.position, p.observations, sigmaPx);
+    double sum = 0.0;
+    int count = 0;
+    for (const Observation& o : p.observations)
+    {
+      const Frame& f = this->frames[static_cast<size_t>(o.frame)];
+      const Eigen::Vector3d x = f.cameraToSfm.worldToCamera(p.position);
+      if (x.z() > 0.0)
+      {
+        sum += (f.intrinsics.project(x) - o.pixel).squaredNorm();
+        ++count;
+      }
+    }
+    p.reprojectionErrorPx = count > 0 ? std::sqrt(sum / count) : 0.0;
+  }
+}
+
+void SfmReconstruction::validate() const
+{
+  for (size_t i = 0; i < this->points.size(); ++i)
+  {
+    const Point& p = this->points[i];
+    if (!p.position.allFinite() || !p.covariance.allFinite())
+    {
+      throw Error("SfM point " + std::to_string(i) + " has a non-finite position or covariance");
+    }
+    for (const Observation& o : p.observations)
+    {
+      if (o.frame < 0 || o.frame >= static_cast<int>(this->frames.size()))
+      {
+        throw Error("SfM point " + std::to_string(i) + " is observed by frame " +
+          std::to_string(o.frame) + ", which does not exist");
+      }
+      if (!this->frames[static_cast<size_t>(o.frame)].registered)
+      {
+        throw Error("SfM point " + std::to_string(i) + " is observed by frame '" +
+          this->frames[static_cast<size_t>(o.frame)].name + "', which is not registered");
+      }
+    }
+  }
+  for (const Frame& f : this->frames)
+  {
+    if (f.registered && (!f.cameraToSfm.centre.allFinite() || !f.cameraToSfm.rotation.allFinite()))
+    {
+      throw Error("SfM frame '" + f.name + "' has a non-finite pose");
+    }
+  }
+}
+
+} // namespace vimlop

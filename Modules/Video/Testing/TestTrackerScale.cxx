@@ -1,0 +1,180 @@
+#include "Error.h"
+#include "TrackerScale.h"
+#include "TrackerTrajectory.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <random>
+
+using namespace vimlop;
+
+namespace
+{
+
+const std::string out = VIMLOP_TEST_OUTPUT_DIR;
+
+/// A tip moving 15 mm/s along a gentle curve, in mm, at time t (s).
+Eigen::Vector3d tip(double t)
+{
+  return { 15.0 * t, 2.0 * std::sin(3.0 * t), 0.5 * t * t };
+}
+
+/// Tracker samples at `rateHz` over [t0, t1] with Gaussian noise.
+TrackerTrajectory tracker(double t0, double t1, double rateHz, double noiseMm, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, noiseMm);
+  std::vector<TrackerTrajectory::Sample> samples;
+  for (double t = t0; t <= t1 + 1e-9; t += 1.0 / rateHz)
+  {
+    samples.push_back({ t, tip(t) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)) });
+  }
+  return TrackerTrajectory(samples);
+}
+
+/// 30 frames at 30 fps from t = 0, their centres in an SfM frame that is the
+/// tip's path rotated, shifted and scaled by 1 / `mmPerUnit`.
+void frames(double mmPerUnit, std::vector<double>& times, std::vector<Eigen::Vector3d>& centres)
+{
+  const Eigen::Matrix3d r =
+    Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
+  for (int f = 0; f < 30; ++f)
+  {
+    times.push_back(f / 30.0);
+    centres.push_back(r * tip(times.back()) / mmPerUnit + Eigen::Vector3d(3, -2, 1));
+  }
+}
+
+std::string csv(const std::string& name, const std::string& text)
+{
+  const std::string path = out + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+template <typename F>
+std::string messageOf(F&& f)
+{
+  try
+  {
+    f();
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "no error";
+}
+
+} // namespace
+
+TEST(TrackerScale, ScalesSfMToTheTrackedLength)
+{
+  std::vector<double> times;
+  std::vector<Eigen::Vector3d> centres;
+  frames(0.5, times, centres);
+  // A noisy tracker (0.2 mm at 40 Hz) that starts before and ends after the video.
+  const TrackerScaleResult result =
+    estimateTrackerScale(tracker(-0.3, 1.3, 40.0, 0.2, 1), times, centres);
+  EXPECT_NEAR(result.scale, 0.5, 0.5 * 0.02);
+  EXPECT_EQ(result.framesUsed.size(), 30u);
+  EXPECT_TRUE(result.framesDropped.empty());
+  EXPECT_TRUE(result.warnings.empty());
+  // Summing every frame's noisy step instead would overestimate the length.
+  TrackerScaleOptions everyFrame;
+  everyFrame.minChordMm = 0.0;
+  everyFrame.smoothingS = 0.0;
+  EXPECT_GT(
+    estimateTrackerScale(tracker(-0.3, 1.3, 40.0, 0.2, 1), times, centres, everyFrame).scale, 0.55);
+}
+
+TEST(TrackerScale, DropsFramesOutsideTheRecordingAndUnregisteredOnes)
+{
+  std::vector<double> times;
+  std::vector<Eigen::Vector3d> centres;
+  frames(2.0, times, centres);
+  centres[3] = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  // The tracker stops at 0.475 s: frames 15-29 (from 0.5 s) lie outside it.
+  const TrackerScaleResult result =
+    estimateTrackerScale(tracker(-0.2, 0.49, 40.0, 0.0, 2), times, centres);
+  EXPECT_NEAR(result.scale, 2.0, 2.0 * 0.02);
+  EXPECT_EQ(result.framesUsed.size(), 14u);
+  EXPECT_EQ(result.framesDropped.size(), 16u);
+  ASSERT_EQ(result.warnings.size(), 2u);
+  EXPECT_EQ(result.warnings[0].rfind(
+              "tracker scale: dropped 15 frame(s) outside the tracker's time span", 0),
+    0u)
+    << result.warnings[0];
+  EXPECT_EQ(result.warnings[1], "tracker scale: dropped 1 frame(s) that SfM did not register");
+}
+
+TEST(TrackerScale, FailsWithoutTimeOverlapOrMotion)
+{
+  std::vector<double> times;
+  std::vector<Eigen::Vector3d> centres;
+  frames(1.0, times, centres);
+  EXPECT_EQ(
+    messageOf([&] { estimateTrackerScale(tracker(5.0, 6.0, 40.0, 0.0, 3), times, centres); }),
+    "tracker scale: the tracker and the frames do not overlap in time (tracker 5.000..6.000 s, "
+    "frames 0.000..0.967 s)");
+  std::vector<Eigen::Vector3d> still(30, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(
+    messageOf([&] { estimateTrackerScale(tracker(-0.2, 1.2, 40.0, 0.0, 3), times, still); }),
+    "tracker scale: the SfM trajectory has no length (the endoscope did not move)");
+}
+
+TEST(TrackerTrajectory, SmoothingFollowsTheTipToTheEnds)
+{
+  // A local line fit, unlike a moving average, does not lag at the ends.
+  const TrackerTrajectory t = tracker(0.0, 1.0, 40.0, 0.0, 4);
+  EXPECT_LT((*t.positionAt(1.0, 0.1) - tip(1.0)).norm(), 0.1);
+  EXPECT_LT((*t.positionAt(0.0, 0.1) - tip(0.0)).norm(), 0.1);
+  EXPECT_LT((*t.positionAt(0.4321, 0.0) - tip(0.4321)).norm(), 0.05);
+  EXPECT_FALSE(t.positionAt(1.01).has_value());
+  EXPECT_FALSE(t.positionAt(-0.01).has_value());
+}
+
+TEST(TrackerTrajectory, ReadsCsvAndWarnsAboutWhatItDrops)
+{
+  const std::string path = csv("tracker-good.csv",
+    "# EM tracker export\n"
+    "timestamp,x,y,z,qw,qx,qy,qz\n"
+    "0.0,1,2,3,1,0,0,0\n"
+    "0.1,1.5,2,3,1,0,0,0\n"
+    "0.2,oops,2,3,1,0,0,0\n"
+    "\n"
+    "0.15,1.2,2,3,1,0,0,0\n"
+    "0.1,9,9,9,1,0,0,0\n"
+    "0.3,2.5,2,3\n");
+  std::vector<std::string> warnings;
+  const TrackerTrajectory t = TrackerTrajectory::readCsv(path, &warnings);
+  ASSERT_EQ(t.samples().size(), 4u);
+  EXPECT_EQ(t.samples()[2].timeS, 0.15);                            // sorted by time
+  EXPECT_EQ(t.samples()[1].positionMm, Eigen::Vector3d(1.5, 2, 3)); // the first of two at 0.1 s
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[0], "'" + path + "': dropped 1 malformed row(s) (line 5)");
+  EXPECT_EQ(warnings[1], "dropped 1 tracker sample(s) with a timestamp already seen");
+  // Round trip.
+  t.writeCsv(out + "/tracker-written.csv");
+  EXPECT_EQ(TrackerTrajectory::readCsv(out + "/tracker-written.csv").samples().size(), 4u);
+}
+
+TEST(TrackerTrajectory, BadFilesAreNamedWithTheProblem)
+{
+  EXPECT_EQ(messageOf([] { TrackerTrajectory::readCsv(out + "/no-tracker.csv"); }),
+    "'" + out + "/no-tracker.csv': no such file or not readable");
+  const std::string one = csv("tracker-one-row.csv", "time_s,x_mm,y_mm,z_mm\n0.0,1,2,3\n");
+  EXPECT_EQ(messageOf([&] { TrackerTrajectory::readCsv(one); }),
+    "'" + one + "': too few tracker rows: 1 usable, at least 2 needed");
+  const std::string noColumn = csv("tracker-no-z.csv", "time_s,x_mm,y_mm\n0.0,1,2\n");
+  EXPECT_EQ(messageOf([&] { TrackerTrajectory::readCsv(noColumn); }),
+    "'" + noColumn + "': no column 'z_mm' in the header (expected time_s,x_mm,y_mm,z_mm)");
+  const std::string empty = csv("tracker-empty.csv", "");
+  EXPECT_EQ(messageOf([&] { TrackerTrajectory::readCsv(empty); }),
+    "'" + empty + "': the file is empty (expected a header: time_s,x_mm,y_mm,z_mm)");
+}

@@ -1,0 +1,92 @@
+// Contours and structure from motion on pictures of the virtual endoscope
+// (Rendering module), against the simulation's ground truth.
+
+#include "ContourEvaluation.h"
+#include "OccludingContourDetector.h"
+#include "OccludingContours.h"
+#include "RenderedSequence.h"
+#include "Rotation.h"
+#include "SimilarityEstimation.h"
+#include "StructureFromMotion.h"
+
+#include <gtest/gtest.h>
+
+using namespace vimlop;
+
+TEST(VideoOnRenderedFrames, ContourDetectorFindsTheTrueOccludingContours)
+{
+  const fixtures::Sequence& s = fixtures::sequence();
+  OccludingContourDetector::Options options;
+  options.spacingPx = 0.0;
+  const OccludingContourDetector detector(options);
+  ContourEvaluation evaluation;
+  for (size_t f = 0; f < s.frames.size(); ++f)
+  {
+    const std::vector<ModelContourPoint> samples =
+      extractOccludingContours(s.mesh, s.intrinsics, s.poses[f]);
+    std::vector<Eigen::Vector3d> points;
+    for (const ModelContourPoint& m : samples)
+    {
+      points.push_back(m.point);
+    }
+    std::vector<char> visible;
+    s.model->visibility().classify(s.intrinsics, s.poses[f], points, visible);
+    std::vector<ModelContourPoint> truth;
+    std::vector<double> depths;
+    for (size_t i = 0; i < samples.size(); ++i)
+    {
+      if (visible[i])
+      {
+        truth.push_back(samples[i]);
+        depths.push_back(s.poses[f].worldToCamera(samples[i].point).z());
+      }
+    }
+    evaluation.addFrame(detector.detect(s.frames[f]), truth, depths, s.depth[f]);
+  }
+  ASSERT_GT(evaluation.truthPoints(), 1000);
+  EXPECT_GE(evaluation.precision(), 0.8);
+  EXPECT_GE(evaluation.recall(), 0.8);
+  EXPECT_LE(evaluation.medianNormalErrorDeg(), 15.0);
+  std::printf("contours on the tube: precision %.3f, recall %.3f, median normal error %.1f deg\n",
+    evaluation.precision(), evaluation.recall(), evaluation.medianNormalErrorDeg());
+}
+
+TEST(VideoOnRenderedFrames, StructureFromMotionRecoversTheCamerasAndTheSurface)
+{
+  const fixtures::Sequence& s = fixtures::sequence();
+  const SfmReconstruction sfm = StructureFromMotion().reconstruct(s.frames, s.intrinsics, s.names);
+  ASSERT_EQ(sfm.numberOfRegisteredFrames(), static_cast<int>(s.frames.size()));
+  EXPECT_GT(sfm.points.size(), 200u);
+  EXPECT_LT(sfm.rmsReprojectionErrorPx(), 1.0);
+  EXPECT_EQ(sfm.frames[3].name, "frame03.png");
+  // Up to a similarity, the cameras are the true ones.
+  std::vector<Eigen::Vector3d> estimated;
+  std::vector<Eigen::Vector3d> truth;
+  for (size_t f = 0; f < s.poses.size(); ++f)
+  {
+    estimated.push_back(sfm.frames[f].cameraToSfm.centre);
+    truth.push_back(s.poses[f].centre);
+  }
+  const SimilarityTransform t = estimateSimilarity(estimated, truth);
+  // One SfM unit is the mean step between frames (0.5 mm here, plus sway).
+  EXPECT_NEAR(t.scale, 0.5, 0.1);
+  double pathLength = 0.0;
+  for (size_t f = 1; f < truth.size(); ++f)
+  {
+    pathLength += (truth[f] - truth[f - 1]).norm();
+  }
+  for (size_t f = 0; f < s.poses.size(); ++f)
+  {
+    EXPECT_LT((t.apply(estimated[f]) - truth[f]).norm(), 0.01 * pathLength) << f;
+    const CameraPose moved = t.apply(sfm.frames[f].cameraToSfm);
+    EXPECT_LT(rotationAngleBetween(moved.rotation, s.poses[f].rotation) * 180.0 / M_PI, 0.5) << f;
+  }
+  // The points lie on the tube's surface.
+  std::vector<double> distances;
+  for (const SfmReconstruction::Point& p : sfm.points)
+  {
+    distances.push_back(s.model->locator().closestPoint(t.apply(p.position)).distanceMm);
+  }
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  EXPECT_LT(distances[distances.size() / 2], 0.1);
+}

@@ -1,0 +1,263 @@
+#include "TrackerTrajectory.h"
+
+#include "Error.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace vimlop
+{
+
+namespace
+{
+
+std::string trim(const std::string& s)
+{
+  const size_t a = s.find_first_not_of(" \t\r\n");
+  const size_t b = s.find_last_not_of(" \t\r\n");
+  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+}
+
+std::vector<std::string> splitCsv(const std::string& line)
+{
+  std::vector<std::string> fields;
+  std::stringstream in(line);
+  std::string field;
+  while (std::getline(in, field, ','))
+  {
+    fields.push_back(trim(field));
+  }
+  if (!line.empty() && line.back() == ',')
+  {
+    fields.emplace_back();
+  }
+  return fields;
+}
+
+std::string lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+bool parseNumber(const std::string& text, double& value)
+{
+  if (text.empty())
+  {
+    return false;
+  }
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size() && std::isfinite(value);
+}
+
+} // namespace
+
+TrackerTrajectory::TrackerTrajectory(
+  std::vector<Sample> samples, std::vector<std::string>* warnings)
+{
+  for (const Sample& s : samples)
+  {
+    if (!std::isfinite(s.timeS) || !s.positionMm.allFinite())
+    {
+      throw Error("tracker trajectory: a sample has a non-finite time or position");
+    }
+  }
+  std::stable_sort(samples.begin(), samples.end(),
+    [](const Sample& a, const Sample& b) { return a.timeS < b.timeS; });
+  int duplicates = 0;
+  for (const Sample& s : samples)
+  {
+    if (!this->Samples.empty() && s.timeS <= this->Samples.back().timeS)
+    {
+      ++duplicates;
+      continue;
+    }
+    this->Samples.push_back(s);
+  }
+  if (duplicates > 0 && warnings)
+  {
+    warnings->push_back(
+      "dropped " + std::to_string(duplicates) + " tracker sample(s) with a timestamp already seen");
+  }
+  if (this->Samples.size() < 2)
+  {
+    throw Error("tracker trajectory: needs at least 2 samples with distinct times, got " +
+      std::to_string(this->Samples.size()));
+  }
+}
+
+TrackerTrajectory TrackerTrajectory::readCsv(
+  const std::string& path, std::vector<std::string>* warnings)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    throw Error("'" + path + "': no such file or not readable");
+  }
+  std::string line;
+  int lineNumber = 0;
+  std::vector<std::string> header;
+  while (std::getline(in, line))
+  {
+    ++lineNumber;
+    const std::string t = trim(line);
+    if (!t.empty() && t[0] != '#')
+    {
+      header = splitCsv(t);
+      break;
+    }
+  }
+  if (header.empty())
+  {
+    throw Error("'" + path + "': the file is empty (expected a header: time_s,x_mm,y_mm,z_mm)");
+  }
+  const std::map<std::string, int> columnOf = [&]
+  {
+    std::map<std::string, int> m;
+    for (size_t i = 0; i < header.size(); ++i)
+    {
+      m[lower(header[i])] = static_cast<int>(i);
+    }
+    return m;
+  }();
+  auto find = [&](std::initializer_list<const char*> names, const char* what)
+  {
+    for (const char* name : names)
+    {
+      const auto found = columnOf.find(name);
+      if (found != columnOf.end())
+      {
+        return found->second;
+      }
+    }
+    throw Error(
+      "'" + path + "': no column '" + what + "' in the header (expected time_s,x_mm,y_mm,z_mm)");
+  };
+  const int columns[4] = { find({ "time_s", "t", "time", "timestamp" }, "time_s"),
+    find({ "x_mm", "x" }, "x_mm"), find({ "y_mm", "y" }, "y_mm"), find({ "z_mm", "z" }, "z_mm") };
+
+  std::vector<Sample> samples;
+  std::vector<int> malformed;
+  while (std::getline(in, line))
+  {
+    ++lineNumber;
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#')
+    {
+      continue;
+    }
+    const std::vector<std::string> fields = splitCsv(t);
+    double values[4];
+    bool ok = true;
+    for (int c = 0; c < 4 && ok; ++c)
+    {
+      ok = columns[c] < static_cast<int>(fields.size()) &&
+        parseNumber(fields[static_cast<size_t>(columns[c])], values[c]);
+    }
+    if (!ok)
+    {
+      malformed.push_back(lineNumber);
+      continue;
+    }
+    samples.push_back({ values[0], Eigen::Vector3d(values[1], values[2], values[3]) });
+  }
+  if (!malformed.empty() && warnings)
+  {
+    std::string lines;
+    for (size_t i = 0; i < malformed.size() && i < 5; ++i)
+    {
+      lines += (i ? ", " : "") + std::to_string(malformed[i]);
+    }
+    if (malformed.size() > 5)
+    {
+      lines += ", ...";
+    }
+    warnings->push_back("'" + path + "': dropped " + std::to_string(malformed.size()) +
+      " malformed row(s) (line " + lines + ")");
+  }
+  if (samples.size() < 2)
+  {
+    throw Error("'" + path + "': too few tracker rows: " + std::to_string(samples.size()) +
+      " usable, at least 2 needed");
+  }
+  try
+  {
+    return TrackerTrajectory(std::move(samples), warnings);
+  }
+  catch (const Error& e)
+  {
+    throw Error("'" + path + "': " + e.what());
+  }
+}
+
+void TrackerTrajectory::writeCsv(const std::string& path) const
+{
+  std::ofstream out(path);
+  out << "time_s,x_mm,y_mm,z_mm\n" << std::setprecision(10);
+  for (const Sample& s : this->Samples)
+  {
+    out << s.timeS << "," << s.positionMm.x() << "," << s.positionMm.y() << "," << s.positionMm.z()
+        << "\n";
+  }
+  if (!out)
+  {
+    throw Error("'" + path + "': cannot write the file");
+  }
+}
+
+std::optional<Eigen::Vector3d> TrackerTrajectory::positionAt(double timeS, double smoothingS) const
+{
+  if (this->Samples.empty() || timeS < this->startS() || timeS > this->endS())
+  {
+    return std::nullopt;
+  }
+  if (smoothingS <= 0.0)
+  {
+    const auto after = std::lower_bound(this->Samples.begin(), this->Samples.end(), timeS,
+      [](const Sample& s, double t) { return s.timeS < t; });
+    if (after == this->Samples.begin())
+    {
+      return after->positionMm;
+    }
+    const Sample& b = *after;
+    const Sample& a = *(after - 1);
+    const double w = (timeS - a.timeS) / (b.timeS - a.timeS);
+    return Eigen::Vector3d((1.0 - w) * a.positionMm + w * b.positionMm);
+  }
+  // A local line fitted with Gaussian weights over +-3 sigma (local linear
+  // regression): unlike a weighted mean it does not lag behind a moving tip
+  // where the window is one-sided, at the ends of the recording.
+  Eigen::Vector3d s0 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d s1 = Eigen::Vector3d::Zero();
+  double w0 = 0.0;
+  double w1 = 0.0;
+  double w2 = 0.0;
+  const auto first = std::lower_bound(this->Samples.begin(), this->Samples.end(),
+    timeS - 3.0 * smoothingS, [](const Sample& s, double t) { return s.timeS < t; });
+  for (auto it = first; it != this->Samples.end() && it->timeS <= timeS + 3.0 * smoothingS; ++it)
+  {
+    const double dt = it->timeS - timeS;
+    const double d = dt / smoothingS;
+    const double w = std::exp(-0.5 * d * d);
+    s0 += w * it->positionMm;
+    s1 += w * dt * it->positionMm;
+    w0 += w;
+    w1 += w * dt;
+    w2 += w * dt * dt;
+  }
+  const double determinant = w0 * w2 - w1 * w1;
+  if (w0 <= 0.0 || determinant <= 1e-12 * w0 * w2)
+  {
+    return this->positionAt(timeS, 0.0);
+  }
+  // Intercept of the weighted line p(t) = a + b (t - timeS).
+  return Eigen::Vector3d((w2 * s0 - w1 * s1) / determinant);
+}
+
+} // namespace vimlop

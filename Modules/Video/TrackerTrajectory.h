@@ -1,0 +1,78 @@
+#ifndef vimlop_TrackerTrajectory_h
+#define vimlop_TrackerTrajectory_h
+
+#include "VIMLOPVideoModule.h"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vimlop
+{
+
+/**
+ * @brief Positions of the endoscope tip recorded by an electromagnetic
+ * tracker, with timestamps (V14).
+ *
+ * Positions are in mm in the tracker's own frame (which need not be the CT
+ * frame: only lengths are used); times in seconds on the clock of the video
+ * frames. Samples are kept sorted by time with distinct times.
+ */
+class VIMLOPVIDEO_EXPORT TrackerTrajectory
+{
+public:
+  /// @brief One tracker reading.
+  struct Sample
+  {
+    double timeS = 0.0;
+    Eigen::Vector3d positionMm = Eigen::Vector3d::Zero();
+  };
+
+  TrackerTrajectory() = default;
+
+  /**
+   * @brief A trajectory from samples in any order; samples with the same time
+   * as an earlier one are dropped (with a warning in `warnings`).
+   * @throws vimlop::Error for fewer than 2 samples or a non-finite value.
+   */
+  explicit TrackerTrajectory(
+    std::vector<Sample> samples, std::vector<std::string>* warnings = nullptr);
+
+  /**
+   * @brief Reads a CSV file: a header line naming the columns, then one
+   * sample per line. The columns `time_s`, `x_mm`, `y_mm`, `z_mm` are
+   * required (also accepted: `t`/`time`/`timestamp` and `x`/`y`/`z`); any
+   * other column (e.g. a quaternion) is ignored. Blank lines and lines
+   * starting with `#` are skipped. Malformed rows are dropped with a warning
+   * naming the line.
+   * @throws vimlop::Error naming the file for a missing file, a missing
+   * column, or fewer than 2 usable rows.
+   */
+  static TrackerTrajectory readCsv(
+    const std::string& path, std::vector<std::string>* warnings = nullptr);
+
+  /// @brief Writes the samples in the layout readCsv() reads.
+  void writeCsv(const std::string& path) const;
+
+  const std::vector<Sample>& samples() const { return this->Samples; }
+  double startS() const { return this->Samples.front().timeS; }
+  double endS() const { return this->Samples.back().timeS; }
+
+  /**
+   * @brief Position at `timeS`: a line fitted to the samples around it with
+   * Gaussian weights of standard deviation `smoothingS` in time (seconds),
+   * which averages the tracker's noise without lagging at the ends; with
+   * `smoothingS` 0, linear interpolation between the neighbouring samples.
+   * Empty outside [startS(), endS()].
+   */
+  std::optional<Eigen::Vector3d> positionAt(double timeS, double smoothingS = 0.0) const;
+
+private:
+  std::vector<Sample> Samples;
+};
+
+} // namespace vimlop
+
+#endif
