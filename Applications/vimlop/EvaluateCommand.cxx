@@ -28,6 +28,7 @@ struct SyntheticCommandOptions
   std::string misalignDeg = "2,3";
   std::string methods = "vimlop,imlp,trimmed-icp,open3d-icp,open3d-gicp";
   int threads = 0;
+  std::string saveTrial;
 };
 
 void runSynthetic(const SyntheticCommandOptions& o)
@@ -36,6 +37,11 @@ void runSynthetic(const SyntheticCommandOptions& o)
   options.trials = o.trials;
   options.seed = o.seed;
   options.threads = o.threads;
+  options.saveTrialFolder = o.saveTrial;
+  if (!o.saveTrial.empty())
+  {
+    requireDisplay("--save-trial");
+  }
   options.methods = parseList(o.methods, "--methods");
   checkSyntheticMethods(options.methods);
   std::tie(options.synthetic.misalignMinMm, options.synthetic.misalignMaxMm) = parseRange(o.misalignMm, "--misalign-mm");
@@ -80,6 +86,10 @@ void addEvaluateCommand(CLI::App& app)
   p1->add_option("--methods", synthetic->methods, std::string("comma-separated methods: ") + syntheticMethodNames())
     ->capture_default_str();
   p1->add_option("--threads", synthetic->threads, "threads per registration, 0 for all cores")->capture_default_str();
+  p1->add_option("--save-trial", synthetic->saveTrial,
+    "also write trial 0 and its registration (by the first of vimlop, imlp, trimmed-icp in "
+    "--methods) as a result folder for vimlop report, with the model rendered from the true "
+    "cameras as frame pictures");
   p1->callback([synthetic] { runSynthetic(*synthetic); });
 }
 

@@ -6,6 +6,7 @@
 #include "Registration.h"
 #include "RegistrationMetrics.h"
 #include "Statistics.h"
+#include "TrialSaving.h"
 
 #include <algorithm>
 #include <chrono>
@@ -80,6 +81,20 @@ nlohmann::json runSyntheticEvaluation(
     peers = std::make_unique<Open3DPeers>(mesh);
   }
 
+  // The method whose registration of trial 0 is saved: the first of ours.
+  std::string savedMethod;
+  for (const std::string& method : options.methods)
+  {
+    if (savedMethod.empty() && method.rfind("open3d", 0) != 0)
+    {
+      savedMethod = method;
+    }
+  }
+  if (!options.saveTrialFolder.empty() && savedMethod.empty())
+  {
+    throw Error("--save-trial needs one of the methods vimlop, imlp, trimmed-icp");
+  }
+
   std::map<std::string, MethodRecord> records;
   for (int trialIndex = 0; trialIndex < options.trials; ++trialIndex)
   {
@@ -108,7 +123,15 @@ nlohmann::json runSyntheticEvaluation(
         o.minScale = options.minScale;
         o.maxScale = options.maxScale;
         o.threads = options.threads;
-        estimate = registerVideo(model, trial.data, trial.initialSfmToCT, o).sfmToCT;
+        const RegistrationResult result = registerVideo(model, trial.data, trial.initialSfmToCT, o);
+        estimate = result.sfmToCT;
+        if (trialIndex == 0 && method == savedMethod && !options.saveTrialFolder.empty())
+        {
+          saveSyntheticTrial(options.saveTrialFolder,
+            "vimlop evaluate synthetic (P1), seed " + std::to_string(options.seed) + ", trial 0, " +
+              method,
+            mesh, trial, o, result);
+        }
       }
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       MethodRecord& r = records[method];

@@ -5,6 +5,7 @@
 #include "Error.h"
 #include "EvaluateCommand.h"
 #include "InfoCommand.h"
+#include "ReportCommand.h"
 #include "SegmentCommand.h"
 
 #include <CLI/CLI.hpp>
@@ -20,6 +21,7 @@ int main(int argc, char** argv)
   vimlop::addInfoCommand(app);
   vimlop::addEvaluateCommand(app);
   vimlop::addSegmentCommand(app);
+  vimlop::addReportCommand(app);
   try
   {
     app.parse(argc, argv);
