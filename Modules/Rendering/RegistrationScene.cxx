@@ -19,6 +19,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -152,8 +153,12 @@ vtkSmartPointer<vtkImageData> renderRegistrationScene(const TriangleMesh& model,
   clip->SetInputData(toPolyData(model));
   clip->SetClipFunction(cut);
   clip->InsideOutOn(); // keep the half beyond the data, away from the viewer
+  vtkNew<vtkPolyDataNormals> smooth; // Gouraud shading reads better than facets
+  smooth->SetInputConnection(clip->GetOutputPort());
+  smooth->SplittingOff();
+  smooth->ConsistencyOff();
   vtkNew<vtkPolyDataMapper> modelMapper;
-  modelMapper->SetInputConnection(clip->GetOutputPort());
+  modelMapper->SetInputConnection(smooth->GetOutputPort());
   modelMapper->ScalarVisibilityOff();
   vtkNew<vtkActor> modelActor;
   modelActor->SetMapper(modelMapper);
