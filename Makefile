@@ -8,7 +8,10 @@ CMAKE_ARGS ?=
 CT ?= /usr/share/doc/invesalius-examples/examples/Cranium.inv3
 DEMO_DIR ?= demo-output
 
-.PHONY: all deps configure build test demo format clean
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+
+.PHONY: all deps configure build test demo fuzz test-asan test-tsan format clean
 
 all: build
 
@@ -26,6 +29,24 @@ test: build
 
 demo: build
 	$(BUILD_DIR)/bin/vimlop info $(CT)
+
+# Each fuzzer runs FUZZ_SECONDS from its seed corpus (Testing/Fuzzing/corpus).
+fuzz: deps
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVIMLOP_BUILD_FUZZERS=ON
+	cmake --build $(FUZZ_DIR) --parallel $(JOBS) --target vimlop-fuzzers
+	CMake/run-fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+
+# AddressSanitizer + UndefinedBehaviorSanitizer on the unit tests.
+test-asan: deps
+	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVIMLOP_ENABLE_SANITIZERS=ON
+	cmake --build build-asan --parallel $(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure --parallel $(JOBS) -LE 'cli|slow'
+
+# ThreadSanitizer on the code that runs threads (Core: task pool, registration).
+test-tsan: deps
+	cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVIMLOP_ENABLE_TSAN=ON
+	cmake --build build-tsan --parallel $(JOBS) --target VIMLOPCoreTests
+	cd build-tsan && TSAN_OPTIONS=halt_on_error=1 bin/VIMLOPCoreTests --gtest_filter='TaskPool.*:Registration.*:PoseUpdate.*'
 
 format:
 	git ls-files '*.h' '*.cxx' | xargs clang-format -i

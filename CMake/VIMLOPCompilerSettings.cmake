@@ -15,6 +15,27 @@ target_compile_features(VIMLOPBuildSettings INTERFACE cxx_std_17)
 target_compile_options(VIMLOPBuildSettings INTERFACE
   $<$<COMPILE_LANG_AND_ID:CXX,GNU,Clang>:-Wall -Wextra -Wpedantic>)
 
+if(VIMLOP_ENABLE_SANITIZERS AND VIMLOP_ENABLE_TSAN)
+  message(FATAL_ERROR "VIMLOP_ENABLE_SANITIZERS and VIMLOP_ENABLE_TSAN exclude each other")
+endif()
+
+if(VIMLOP_BUILD_FUZZERS)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "VIMLOP_BUILD_FUZZERS needs clang (libFuzzer): configure with CXX=clang++")
+  endif()
+  # Our code gets coverage instrumentation and sanitizers; the fuzz
+  # executables add the libFuzzer driver (Testing/Fuzzing).
+  set(_vimlop_fuzz -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer)
+  target_compile_options(VIMLOPBuildSettings INTERFACE ${_vimlop_fuzz})
+  target_link_options(VIMLOPBuildSettings INTERFACE -fsanitize=address,undefined)
+endif()
+
+if(VIMLOP_ENABLE_TSAN)
+  set(_vimlop_tsan -fsanitize=thread -fno-omit-frame-pointer)
+  target_compile_options(VIMLOPBuildSettings INTERFACE ${_vimlop_tsan})
+  target_link_options(VIMLOPBuildSettings INTERFACE ${_vimlop_tsan})
+endif()
+
 if(VIMLOP_ENABLE_SANITIZERS)
   set(_vimlop_sanitizers -fsanitize=address,undefined -fno-omit-frame-pointer
                          -fno-sanitize-recover=undefined)

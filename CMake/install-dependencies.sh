@@ -21,6 +21,7 @@ libgmock-dev
 libcli11-dev
 nlohmann-json3-dev
 zlib1g-dev
+elastix
 xvfb
 xauth
 libgl1-mesa-dri

@@ -63,9 +63,10 @@ void runSynthetic(const SyntheticCommandOptions& o)
 
 } // namespace
 
-void addEvaluateCommand(CLI::App& app)
+CLI::App* addEvaluateCommand(CLI::App& app)
 {
-  CLI::App* evaluate = app.add_subcommand("evaluate", "Run an evaluation protocol of the paper");
+  CLI::App* evaluate =
+    app.add_subcommand("evaluate", "Run an evaluation protocol (DESIGN section 6); results go to a JSON file");
   evaluate->require_subcommand(1);
 
   auto synthetic = std::make_shared<SyntheticCommandOptions>();
@@ -91,6 +92,7 @@ void addEvaluateCommand(CLI::App& app)
     "--methods) as a result folder for vimlop report, with the model rendered from the true "
     "cameras as frame pictures");
   p1->callback([synthetic] { runSynthetic(*synthetic); });
+  return evaluate;
 }
 
 } // namespace vimlop

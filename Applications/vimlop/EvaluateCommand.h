@@ -9,8 +9,11 @@ class App;
 namespace vimlop
 {
 
-/// @brief Adds `vimlop evaluate <protocol>`: the evaluation protocols (P1, ...).
-void addEvaluateCommand(CLI::App& app);
+/**
+ * @brief Adds `vimlop evaluate <protocol>` with the synthetic experiment (P1);
+ * returns it so that other protocols can add themselves.
+ */
+CLI::App* addEvaluateCommand(CLI::App& app);
 
 } // namespace vimlop
 

@@ -4,9 +4,11 @@
 
 #include "Error.h"
 #include "EvaluateCommand.h"
+#include "EvaluateWarpCommand.h"
 #include "InfoCommand.h"
 #include "ReportCommand.h"
 #include "SegmentCommand.h"
+#include "WarpCommand.h"
 
 #include <CLI/CLI.hpp>
 
@@ -19,8 +21,10 @@ int main(int argc, char** argv)
   app.set_version_flag("--version", std::string("vimlop ") + VIMLOP_VERSION);
   app.require_subcommand(1);
   vimlop::addInfoCommand(app);
-  vimlop::addEvaluateCommand(app);
   vimlop::addSegmentCommand(app);
+  vimlop::addWarpCommand(app);
+  CLI::App* evaluate = vimlop::addEvaluateCommand(app);
+  vimlop::addEvaluateWarpCommand(*evaluate);
   vimlop::addReportCommand(app);
   try
   {

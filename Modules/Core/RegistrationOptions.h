@@ -64,8 +64,9 @@ struct RegistrationOptions
   double convergenceTranslationMm = 5e-3;
   /// ... and the rotation changes less than this, degrees (default 0.005) ...
   double convergenceRotationDeg = 5e-3;
-  /// ... and the scale changes by less than this fraction (default 1e-5).
-  double convergenceScaleRelative = 1e-5;
+  /// ... and the scale changes by less than this fraction (default 2e-4: 0.004 mm
+  /// over a 20 mm wide reconstruction, like the translation threshold).
+  double convergenceScaleRelative = 2e-4;
 
   /**
    * Extrapolate along the path of the estimates when successive updates point
@@ -89,10 +90,16 @@ struct RegistrationOptions
    * convergence) and add them for the refinement. The paper does not say how
    * its iterations start; with contours from the first iteration, a start a
    * few millimetres off matches video contours to the wrong model edges, and
-   * those matches can hold the estimate in a wrong valley (P1: 95th
-   * percentile TRE 1.1 mm without, 0.13 mm with). Default on.
+   * those matches can hold the estimate in a wrong valley (P1, 20 trials:
+   * 95th percentile TRE 1.1 mm without, 0.13 mm with). Default on.
    */
   bool pointsFirst = true;
+
+  /// V11: the first stage (see pointsFirst) ends when the change of T falls
+  /// below this multiple of the convergence thresholds (default 10): it only
+  /// has to bring the contours close, and points alone slide slowly along
+  /// tubular passages, which the contours then resolve quickly.
+  double initialStageLooseness = 10.0;
 
   /// V6: the Levenberg-Marquardt solver of the pose update.
   PoseUpdateOptions poseUpdate;

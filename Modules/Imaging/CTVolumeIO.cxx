@@ -5,6 +5,7 @@
 #include "CTVolumeIO.h"
 
 #include "Error.h"
+#include "ITKImageIOFactories.h"
 #include "InVesaliusProjectReader.h"
 
 #include <itkGDCMImageIO.h>
@@ -36,6 +37,10 @@ namespace
 
 using ImageType = itk::Image<float, 3>;
 
+/// The largest volume VIMLOP reads: 2^31 voxels (8 GiB as float), far above
+/// any head CT (a 1024 x 1024 x 2000 scan is 2.1e9).
+constexpr std::uint64_t MaxVoxels = std::uint64_t(1) << 31;
+
 [[noreturn]] void fail(const std::string& path, const std::string& problem)
 {
   throw Error("'" + path + "': " + problem);
@@ -65,7 +70,9 @@ std::string itkMessage(const itk::ExceptionObject& e)
   return text;
 }
 
-void registerImageIOs()
+} // namespace
+
+void detail::registerImageIOs()
 {
   // Explicit registration: we do not rely on ITK's generated factory lists.
   static std::once_flag once;
@@ -78,6 +85,9 @@ void registerImageIOs()
       itk::GDCMImageIOFactory::RegisterOneFactory();
     });
 }
+
+namespace
+{
 
 CTVolume toVolume(const ImageType* image)
 {
@@ -267,6 +277,21 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
   {
     fail(path, "the image is 4-D (a time series); a 3-D CT volume is needed");
   }
+  // Refuse before allocating: a header can promise far more than any CT.
+  std::uint64_t voxels = 1;
+  for (unsigned axis = 0; axis < std::min(dimensions, 3u); ++axis)
+  {
+    voxels *= std::max<std::uint64_t>(io->GetDimensions(axis), 1);
+    if (voxels > MaxVoxels)
+    {
+      break;
+    }
+  }
+  if (voxels > MaxVoxels)
+  {
+    fail(path, "the header promises more than " + std::to_string(MaxVoxels) +
+        " voxels; refusing to allocate it");
+  }
   if (io->GetNumberOfComponents() != 1)
   {
     fail(path,
@@ -315,7 +340,7 @@ CTVolume readCTVolume(const std::string& path, const std::string& dicomSeriesUID
   {
     fail(path, "no such file or folder");
   }
-  registerImageIOs();
+  detail::registerImageIOs();
   if (std::filesystem::is_directory(path, ec))
   {
     return readDicomSeries(path, dicomSeriesUID);
@@ -345,7 +370,7 @@ void writeCTVolume(const CTVolume& volume, const std::string& path)
   {
     fail(path, "the volume to write is empty or inconsistent");
   }
-  registerImageIOs();
+  detail::registerImageIOs();
   auto image = ImageType::New();
   ImageType::SizeType size;
   ImageType::SpacingType spacing;

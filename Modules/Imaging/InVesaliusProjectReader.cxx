@@ -119,11 +119,18 @@ std::map<std::string, std::string> readMembers(const std::string& path)
       {
         fail(path, "archive member '" + name + "' is too large");
       }
+      // Grow with the data actually read, never with what the header claims.
       std::string content;
-      content.resize(static_cast<std::size_t>(size));
-      if (!readExactly(file.get(), content.data(), content.size()))
+      char chunk[1 << 16];
+      for (std::uint64_t left = size; left > 0;)
       {
-        fail(path, "archive is truncated inside '" + name + "'");
+        const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(left, sizeof(chunk)));
+        if (!readExactly(file.get(), chunk, n))
+        {
+          fail(path, "archive is truncated inside '" + name + "'");
+        }
+        content.append(chunk, n);
+        left -= n;
       }
       members[base] = std::move(content);
       char skip[512];

@@ -187,6 +187,54 @@ bool EmbreeScene::isSegmentOccluded(
   return ray.tfar == -INFINITY;
 }
 
+void EmbreeScene::areSegmentsOccluded(const Eigen::Vector3d& from, const std::vector<Eigen::Vector3d>& to,
+  const std::vector<double>& toleranceMm, std::vector<char>& occluded) const
+{
+  const size_t n = to.size();
+  occluded.assign(n, 0);
+  std::vector<RTCRay> rays(n);
+  std::vector<char> traced(n, 0);
+  for (size_t i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d d = to[i] - from;
+    const double length = d.norm();
+    RTCRay& ray = rays[i];
+    ray.org_x = static_cast<float>(from.x());
+    ray.org_y = static_cast<float>(from.y());
+    ray.org_z = static_cast<float>(from.z());
+    ray.time = 0.0f;
+    ray.mask = 0xffffffffu;
+    ray.id = static_cast<unsigned>(i);
+    ray.flags = 0;
+    if (!(length > 2.0 * toleranceMm[i]))
+    {
+      // Too short to hold an occluder: an empty interval makes Embree skip it.
+      ray.dir_x = 1.0f;
+      ray.dir_y = ray.dir_z = 0.0f;
+      ray.tnear = 1.0f;
+      ray.tfar = 0.0f;
+      continue;
+    }
+    traced[i] = 1;
+    ray.dir_x = static_cast<float>(d.x() / length);
+    ray.dir_y = static_cast<float>(d.y() / length);
+    ray.dir_z = static_cast<float>(d.z() / length);
+    ray.tnear = static_cast<float>(toleranceMm[i]);
+    ray.tfar = static_cast<float>(length - toleranceMm[i]);
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  if (n > 0)
+  {
+    rtcOccluded1M(this->Impl->Scene, &context, rays.data(), static_cast<unsigned>(n), sizeof(RTCRay));
+  }
+  for (size_t i = 0; i < n; ++i)
+  {
+    occluded[i] = traced[i] && rays[i].tfar == -INFINITY ? 1 : 0;
+  }
+}
+
 std::optional<SurfacePoint> EmbreeScene::castRay(
   const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double maxDistanceMm) const
 {

@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace vimlop
 {
@@ -61,6 +62,14 @@ public:
    */
   bool isSegmentOccluded(
     const Eigen::Vector3d& from, const Eigen::Vector3d& to, double toleranceMm = 1e-3) const;
+
+  /**
+   * @brief isSegmentOccluded() for many segments from one point, as a coherent
+   * ray stream (faster than one query at a time): sets `occluded[i]` for the
+   * segment from `from` to `to[i]`, ignoring `toleranceMm[i]` at both ends.
+   */
+  void areSegmentsOccluded(const Eigen::Vector3d& from, const std::vector<Eigen::Vector3d>& to,
+    const std::vector<double>& toleranceMm, std::vector<char>& occluded) const;
 
   /**
    * @brief First surface point hit by the ray `origin + t * direction`,

@@ -16,12 +16,18 @@ EmbreeVisibility::EmbreeVisibility(
 void EmbreeVisibility::classify(const PinholeCamera&, const CameraPose& cameraToCT,
   const std::vector<Eigen::Vector3d>& pointsCT, std::vector<char>& visible) const
 {
-  visible.resize(pointsCT.size());
+  std::vector<double> tolerances(pointsCT.size());
   for (size_t i = 0; i < pointsCT.size(); ++i)
   {
     const double distance = (pointsCT[i] - cameraToCT.centre).norm();
-    const double tolerance = std::max(this->ToleranceMm, this->RelativeTolerance * distance);
-    visible[i] = this->Scene->isSegmentOccluded(cameraToCT.centre, pointsCT[i], tolerance) ? 0 : 1;
+    tolerances[i] = std::max(this->ToleranceMm, this->RelativeTolerance * distance);
+  }
+  std::vector<char> occluded;
+  this->Scene->areSegmentsOccluded(cameraToCT.centre, pointsCT, tolerances, occluded);
+  visible.resize(pointsCT.size());
+  for (size_t i = 0; i < pointsCT.size(); ++i)
+  {
+    visible[i] = occluded[i] ? 0 : 1;
   }
 }
 

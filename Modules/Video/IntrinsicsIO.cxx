@@ -37,6 +37,24 @@ double readNumber(const cv::FileNode& root, const char* key, const std::string& 
   return static_cast<double>(node);
 }
 
+/// Checks an OpenCV matrix node's declared size before OpenCV allocates it
+/// (a file can declare billions of rows).
+void checkMatrixNode(const cv::FileNode& node, const char* key, int maxRows, int maxCols, const std::string& path)
+{
+  if (!node.isMap() || node["rows"].empty() || node["cols"].empty() || !node["rows"].isInt() ||
+    !node["cols"].isInt())
+  {
+    fail(path, std::string("'") + key + "' is not an OpenCV matrix (rows, cols, dt, data)");
+  }
+  const int rows = static_cast<int>(node["rows"]);
+  const int cols = static_cast<int>(node["cols"]);
+  if (rows < 1 || cols < 1 || rows > maxRows || cols > maxCols)
+  {
+    fail(path, std::string("'") + key + "' has an invalid size " + std::to_string(rows) + "x" +
+        std::to_string(cols));
+  }
+}
+
 } // namespace
 
 bool isIntrinsicsPath(const std::string& path)
@@ -67,6 +85,7 @@ PinholeCamera readIntrinsics(const std::string& path)
     const cv::FileNode root = storage.root();
     if (!root["camera_matrix"].empty())
     {
+      checkMatrixNode(root["camera_matrix"], "camera_matrix", 3, 3, path);
       cv::Mat k;
       root["camera_matrix"] >> k;
       if (k.rows != 3 || k.cols != 3)
@@ -87,6 +106,8 @@ PinholeCamera readIntrinsics(const std::string& path)
       camera.heightPx = static_cast<int>(readNumber(root, "image_height", path));
       if (!root["distortion_coefficients"].empty())
       {
+        // OpenCV models use at most 14 coefficients, as a row or a column.
+        checkMatrixNode(root["distortion_coefficients"], "distortion_coefficients", 14, 14, path);
         cv::Mat d;
         root["distortion_coefficients"] >> d;
         d.convertTo(d, CV_64F);
@@ -121,9 +142,18 @@ PinholeCamera readIntrinsics(const std::string& path)
       }
     }
   }
+  catch (const Error&)
+  {
+    throw;
+  }
   catch (const cv::Exception& e)
   {
     fail(path, "not a valid intrinsics file (" + e.err + ")");
+  }
+  catch (const std::exception& e)
+  {
+    // OpenCV's parsers also throw standard exceptions (found by fuzzing).
+    fail(path, std::string("not a valid intrinsics file (") + e.what() + ")");
   }
   try
   {

@@ -158,3 +158,19 @@ TEST(InVesaliusProjectReader, TruncatedArchivesAreReported)
   const std::string message = messageOf(out + "/cut.inv3");
   EXPECT_NE(message.find("truncated"), std::string::npos) << message;
 }
+
+TEST(InVesaliusProjectReader, HeadersPromisingHugeMembersAllocateNothing)
+{
+  // A tar header claiming a 3 GiB matrix followed by 1 KiB: the reader must
+  // report the truncation, not reserve the 3 GiB first.
+  std::string header = fixtures::tarMember("matrix.dat", std::string(1024, 'x')).substr(0, 512);
+  std::snprintf(&header[124], 12, "%011llo", 3ull << 30);
+  header[135] = ' ';
+  const std::string path = fixtures::writeProject(out + "/promises.inv3", { { "main.plist", fixtures::plist(2, 2, 2) } });
+  // Rewrite with the forged member appended after main.plist.
+  std::string tar = fixtures::tarMember("main.plist", fixtures::plist(2, 2, 2)) + header + std::string(1024, 'x');
+  gzFile file = gzopen(path.c_str(), "wb");
+  gzwrite(file, tar.data(), static_cast<unsigned>(tar.size()));
+  gzclose(file);
+  EXPECT_EQ(messageOf(path), "'" + path + "': archive is truncated inside 'matrix.dat'");
+}

@@ -172,3 +172,29 @@ TEST(EmbreeScene, RejectsAnEmptyMesh)
     EXPECT_STREQ(e.what(), "cannot build a ray-casting scene: the mesh has no faces");
   }
 }
+
+TEST(EmbreeScene, RayStreamAgreesWithSingleQueries)
+{
+  const TriangleMesh mesh = fixtures::makeRandomSoup(300, 12);
+  const EmbreeScene scene(mesh);
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-25.0, 25.0);
+  const Eigen::Vector3d from(u(rng), u(rng), u(rng));
+  std::vector<Eigen::Vector3d> to;
+  std::vector<double> tolerances;
+  for (int i = 0; i < 1000; ++i)
+  {
+    to.emplace_back(u(rng), u(rng), u(rng));
+    tolerances.push_back(i % 10 == 0 ? 1e3 : 1e-3); // every tenth too short to test
+  }
+  std::vector<char> occluded;
+  scene.areSegmentsOccluded(from, to, tolerances, occluded);
+  ASSERT_EQ(occluded.size(), to.size());
+  int hidden = 0;
+  for (size_t i = 0; i < to.size(); ++i)
+  {
+    EXPECT_EQ(occluded[i] != 0, scene.isSegmentOccluded(from, to[i], tolerances[i])) << i;
+    hidden += occluded[i];
+  }
+  EXPECT_GT(hidden, 50);
+}

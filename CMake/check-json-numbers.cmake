@@ -1,0 +1,18 @@
+# Usage: cmake -DFILE=<result.json> "-DKEYS=a;b.c;..." -P check-json-numbers.cmake
+# Fails unless every key (a dotted path into nested objects) holds a number.
+if(NOT EXISTS "${FILE}")
+  message(FATAL_ERROR "${FILE}: no such file")
+endif()
+file(READ "${FILE}" json)
+foreach(key IN LISTS KEYS)
+  string(REPLACE "." ";" path "${key}")
+  string(JSON type ERROR_VARIABLE error TYPE "${json}" ${path})
+  if(error)
+    message(FATAL_ERROR "${FILE}: no key '${key}'")
+  endif()
+  if(NOT type STREQUAL "NUMBER")
+    message(FATAL_ERROR "${FILE}: '${key}' is ${type}, not a number")
+  endif()
+  string(JSON value GET "${json}" ${path})
+  message(STATUS "${key} = ${value}")
+endforeach()

@@ -1,0 +1,110 @@
+#include "FramePoseIO.h"
+
+#include "Error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+namespace vimlop
+{
+
+namespace
+{
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem)
+{
+  throw Error("'" + path + "': " + problem);
+}
+
+} // namespace
+
+std::vector<FramePose> readFramePoses(const std::string& path)
+{
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+  {
+    fail(path, "no such file");
+  }
+  std::ifstream in(path);
+  nlohmann::json document;
+  try
+  {
+    in >> document;
+  }
+  catch (const nlohmann::json::exception&)
+  {
+    fail(path, "not a JSON file");
+  }
+  if (!document.is_object() || !document.contains("poses") || !document["poses"].is_array())
+  {
+    fail(path,
+      "no \"poses\" array (expected {\"poses\": [{\"frame_id\": 0, \"camera_to_ct\": [16 "
+      "numbers]}, ...]})");
+  }
+  std::vector<FramePose> poses;
+  int index = 0;
+  for (const nlohmann::json& entry : document["poses"])
+  {
+    const std::string where = "pose " + std::to_string(index);
+    if (!entry.is_object() || !entry.contains("frame_id") || !entry["frame_id"].is_number_integer())
+    {
+      fail(path, where + " has no integer \"frame_id\"");
+    }
+    const nlohmann::json& matrix =
+      entry.contains("camera_to_ct") ? entry["camera_to_ct"] : nlohmann::json();
+    if (!matrix.is_array() || matrix.size() != 16 ||
+      !std::all_of(
+        matrix.begin(), matrix.end(), [](const nlohmann::json& v) { return v.is_number(); }))
+    {
+      fail(path, where + ": \"camera_to_ct\" must be 16 numbers (a 4x4 matrix, row-major)");
+    }
+    Eigen::Matrix4d m;
+    for (int i = 0; i < 16; ++i)
+    {
+      m(i / 4, i % 4) = matrix[static_cast<std::size_t>(i)].get<double>();
+    }
+    FramePose pose;
+    pose.frameId = entry["frame_id"].get<int>();
+    try
+    {
+      pose.cameraToWorld = CameraPose::fromMatrix(m, 1e-5);
+    }
+    catch (const Error& e)
+    {
+      fail(path, where + ": " + e.what());
+    }
+    poses.push_back(pose);
+    ++index;
+  }
+  return poses;
+}
+
+void writeFramePoses(const std::vector<FramePose>& poses, const std::string& path)
+{
+  nlohmann::json document;
+  document["frame"] = "CT (LPS, mm); camera x right, y down, z forward";
+  document["poses"] = nlohmann::json::array();
+  for (const FramePose& pose : poses)
+  {
+    const Eigen::Matrix4d m = pose.cameraToWorld.matrix();
+    std::vector<double> values(16);
+    for (int i = 0; i < 16; ++i)
+    {
+      values[static_cast<std::size_t>(i)] = m(i / 4, i % 4);
+    }
+    document["poses"].push_back({ { "frame_id", pose.frameId }, { "camera_to_ct", values } });
+  }
+  std::ofstream out(path);
+  out << document.dump(2) << "\n";
+  if (!out)
+  {
+    fail(path, "could not write the pose file");
+  }
+}
+
+} // namespace vimlop

@@ -1,0 +1,20 @@
+// Fuzzes the .inv3 reader: tar framing, member sizes, the plist and the
+// matrix checks. Raw (non-gzip) bytes reach the tar parser directly, because
+// zlib reads uncompressed files transparently.
+#include "Error.h"
+#include "FuzzTemporaryFile.h"
+#include "InVesaliusProjectReader.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  const std::string path = vimlop::fuzzing::writeInput(data, size, ".inv3");
+  try
+  {
+    vimlop::readInVesaliusProject(path);
+  }
+  catch (const vimlop::Error&)
+  {
+    // Rejecting bad input with a message is the expected outcome.
+  }
+  return 0;
+}
