@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -74,17 +73,6 @@ void writeJsonFile(const nlohmann::json& json, const std::string& path)
   {
     std::remove(temporary.c_str());
     throw Error("'" + path + "': cannot write the file (" + ec.message() + ")");
-  }
-}
-
-void requireDisplay(const std::string& what)
-{
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display)
-  {
-    throw Error(what +
-      " renders offscreen with VTK, which needs an X display; none is set "
-      "(on a server, run the command under xvfb-run -a)");
   }
 }
 

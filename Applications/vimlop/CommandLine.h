@@ -28,13 +28,6 @@ std::vector<std::string> parseList(const std::string& text, const std::string& w
  */
 void writeJsonFile(const nlohmann::json& json, const std::string& path);
 
-/**
- * @brief Checks that offscreen rendering can start: VTK here renders through
- * X11, so a display is needed (`xvfb-run -a` provides one on servers).
- * @throws vimlop::Error saying what needs it and how to get one, when DISPLAY is not set.
- */
-void requireDisplay(const std::string& what);
-
 } // namespace vimlop
 
 #endif

@@ -3,6 +3,7 @@
 #include "CommandLine.h"
 #include "Error.h"
 #include "ModelLoading.h"
+#include "OffscreenRendering.h"
 #include "SyntheticEvaluation.h"
 
 #include <CLI/CLI.hpp>
@@ -40,7 +41,7 @@ void runSynthetic(const SyntheticCommandOptions& o)
   options.saveTrialFolder = o.saveTrial;
   if (!o.saveTrial.empty())
   {
-    requireDisplay("--save-trial");
+    requireOffscreenRendering("--save-trial");
   }
   options.methods = parseList(o.methods, "--methods");
   checkSyntheticMethods(options.methods);

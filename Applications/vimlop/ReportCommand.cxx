@@ -2,6 +2,7 @@
 
 #include "CommandLine.h"
 #include "Error.h"
+#include "OffscreenRendering.h"
 #include "PerturbationRuns.h"
 #include "RegistrationRecordIO.h"
 #include "RegistrationReport.h"
@@ -47,7 +48,7 @@ void runReport(const ReportCommandOptions& o)
       throw Error("'" + o.perturbation + "': the perturbation study has no runs");
     }
   }
-  requireDisplay("vimlop report");
+  requireOffscreenRendering("vimlop report");
   RegistrationReport::Options options;
   options.maxOverlayFrames = o.maxOverlays;
   const RegistrationReport report =

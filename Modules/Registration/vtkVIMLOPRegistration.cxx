@@ -2,6 +2,7 @@
 
 #include "EmbreeRegistrationModel.h"
 #include "Error.h"
+#include "OffscreenRendering.h"
 #include "Registration.h"
 #include "RegistrationInputConversion.h"
 #include "RegistrationModel.h"
@@ -295,6 +296,11 @@ void vtkVIMLOPRegistration::SetPointsFirst(bool on)
   this->SetOption(this->Options.pointsFirst, on);
 }
 
+void vtkVIMLOPRegistration::SetInitialStageLooseness(double factor)
+{
+  this->SetOption(this->Options.initialStageLooseness, factor);
+}
+
 void vtkVIMLOPRegistration::SetPoseUpdateMaxIterations(int iterations)
 {
   this->SetOption(this->Options.poseUpdate.maxIterations, iterations);
@@ -328,6 +334,7 @@ const vimlop::RegistrationModel& vtkVIMLOPRegistration::ModelFor(vtkPolyData* su
     std::make_unique<vimlop::RegistrationModel>(vimlop::makeEmbreeRegistrationModel(mesh));
   if (this->Backend == VisibilityBackend::ZBuffer)
   {
+    vimlop::requireOffscreenRendering("the z-buffer visibility backend");
     this->DepthVisibility = vtkSmartPointer<vtkVIMLOPDepthVisibility>::New();
     this->DepthVisibility->SetMesh(mesh);
     model->setVisibility(this->DepthVisibility->AsContourVisibility());
@@ -440,6 +447,7 @@ void vtkVIMLOPRegistration::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StallRelativeDecrease: " << o.stallRelativeDecrease << "\n";
   os << indent << "StallIterations: " << o.stallIterations << "\n";
   os << indent << "PointsFirst: " << (o.pointsFirst ? "On" : "Off") << "\n";
+  os << indent << "InitialStageLooseness: " << o.initialStageLooseness << "\n";
   os << indent << "PoseUpdateMaxIterations: " << o.poseUpdate.maxIterations << "\n";
   os << indent << "PoseUpdateRelativeTolerance: " << o.poseUpdate.relativeTolerance << "\n";
   os << indent << "NumberOfThreads: " << o.threads << "\n";

@@ -69,11 +69,13 @@ class RegistrationModel;
  * itself (that would make the filter always out of date); copy its matrix
  * into a vtkTransform of your own to restart from a result.
  *
- * Events: one vtkCommand::ProgressEvent per iteration (progress = iteration /
- * MaxIterations; the executive adds 0 before and 1 after), and an
- * IterationEvent per iteration whose call data is a `const
- * vimlop::IterationRecord*` (valid during the callback: the iteration's
- * estimates, costs, inlier counts, errors and stage times). Setting
+ * Events: after every iteration that updates the estimate (vimlop's
+ * iteration callback; the iterations that stop on a stall return to an
+ * earlier estimate instead and are only in the result's history), one
+ * vtkCommand::ProgressEvent (progress = iteration / MaxIterations; the
+ * executive adds 0 before and 1 after) and one IterationEvent whose call data
+ * is a `const vimlop::IterationRecord*` (valid during the callback: the
+ * iteration's estimates, costs, inlier counts, errors and stage times). Setting
  * AbortExecute (e.g. from an observer) stops the registration after the
  * current iteration; the outputs then hold its last estimate and
  * GetTerminationReason() says Cancelled. Errors (missing inputs, bad data, a
@@ -248,7 +250,7 @@ public:
   ///@{
   /// V11: convergence thresholds: motion of the data's centroid, mm (default
   /// 0.005); rotation change, degrees (default 0.005); relative scale change
-  /// (default 1e-5). Converged when all three changes are below them.
+  /// (default 2e-4). Converged when all three changes are below them.
   void SetConvergenceTranslationMm(double mm);
   double GetConvergenceTranslationMm() const { return this->Options.convergenceTranslationMm; }
   void SetConvergenceRotationDeg(double degrees);
@@ -279,6 +281,13 @@ public:
   /// V-IMLOP: leave the contours out until the points alone converge (default on).
   void SetPointsFirst(bool on);
   bool GetPointsFirst() const { return this->Options.pointsFirst; }
+  ///@}
+
+  ///@{
+  /// V11: the first stage (see PointsFirst) ends when the change of T falls
+  /// below this multiple of the convergence thresholds, dimensionless (default 10).
+  void SetInitialStageLooseness(double factor);
+  double GetInitialStageLooseness() const { return this->Options.initialStageLooseness; }
   ///@}
 
   ///@{
