@@ -396,15 +396,14 @@ public:
     return step;
   }
 
-  /// The change from a to b is below the thresholds times `looseness`.
-  bool converged(const SimilarityTransform& a, const SimilarityTransform& b, double looseness = 1.0) const
+  bool converged(const SimilarityTransform& a, const SimilarityTransform& b) const
   {
     const double moved = (b.apply(this->Centroid) - a.apply(this->Centroid)).norm();
     const double rotated = rotationAngleBetween(a.rotation, b.rotation) * 180.0 / M_PI;
     const double scaled = std::abs(b.scale / a.scale - 1.0);
-    return moved < looseness * this->Options.convergenceTranslationMm &&
-      rotated < looseness * this->Options.convergenceRotationDeg &&
-      scaled < looseness * this->Options.convergenceScaleRelative;
+    return moved < this->Options.convergenceTranslationMm &&
+      rotated < this->Options.convergenceRotationDeg &&
+      scaled < this->Options.convergenceScaleRelative;
   }
 
   RegistrationResult finish(const SimilarityTransform& T, MatchState state) const
@@ -619,9 +618,8 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
     next = registrar.constrain(T, next, record.backoffSteps);
     // The first stage also ends at half the iteration budget, so that slow
     // convergence of the points alone never starves the refinement.
-    const bool done = refining || icp
-      ? registrar.converged(T, next)
-      : registrar.converged(T, next, options.initialStageLooseness) || iteration >= options.maxIterations / 2;
+    const bool done =
+      registrar.converged(T, next) || (!refining && !icp && iteration >= options.maxIterations / 2);
 
     const Vector7d step = registrar.stepInMm(T, next);
     const double angle = std::acos(std::clamp(

@@ -57,7 +57,7 @@ void RegistrationOptions::validate() const
     problem << "iteration cap must be at least 1 and back-off steps non-negative";
   }
   else if (!(this->convergenceTranslationMm >= 0.0 && this->convergenceRotationDeg >= 0.0 &&
-             this->convergenceScaleRelative >= 0.0 && this->initialStageLooseness >= 1.0))
+             this->convergenceScaleRelative >= 0.0))
   {
     problem << "convergence thresholds must be non-negative";
   }

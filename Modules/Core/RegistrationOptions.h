@@ -95,12 +95,6 @@ struct RegistrationOptions
    */
   bool pointsFirst = true;
 
-  /// V11: the first stage (see pointsFirst) ends when the change of T falls
-  /// below this multiple of the convergence thresholds (default 10): it only
-  /// has to bring the contours close, and points alone slide slowly along
-  /// tubular passages, which the contours then resolve quickly.
-  double initialStageLooseness = 10.0;
-
   /// V6: the Levenberg-Marquardt solver of the pose update.
   PoseUpdateOptions poseUpdate;
 
