@@ -100,7 +100,6 @@ json optionsJson(const RegistrationOptions& o)
     { "max_acceleration", o.maxAcceleration },
     { "stall_relative_decrease", o.stallRelativeDecrease },
     { "stall_iterations", o.stallIterations }, { "points_first", o.pointsFirst },
-    { "initial_stage_looseness", o.initialStageLooseness },
     { "pose_update_max_iterations", o.poseUpdate.maxIterations },
     { "pose_update_relative_tolerance", o.poseUpdate.relativeTolerance },
     { "threads", o.threads } };
@@ -138,7 +137,6 @@ RegistrationOptions optionsFrom(const json& j)
   o.stallRelativeDecrease = j.value("stall_relative_decrease", o.stallRelativeDecrease);
   o.stallIterations = j.value("stall_iterations", o.stallIterations);
   o.pointsFirst = j.value("points_first", o.pointsFirst);
-  o.initialStageLooseness = j.value("initial_stage_looseness", o.initialStageLooseness);
   o.poseUpdate.maxIterations = j.value("pose_update_max_iterations", o.poseUpdate.maxIterations);
   o.poseUpdate.relativeTolerance =
     j.value("pose_update_relative_tolerance", o.poseUpdate.relativeTolerance);

@@ -296,11 +296,6 @@ void vtkVIMLOPRegistration::SetPointsFirst(bool on)
   this->SetOption(this->Options.pointsFirst, on);
 }
 
-void vtkVIMLOPRegistration::SetInitialStageLooseness(double factor)
-{
-  this->SetOption(this->Options.initialStageLooseness, factor);
-}
-
 void vtkVIMLOPRegistration::SetPoseUpdateMaxIterations(int iterations)
 {
   this->SetOption(this->Options.poseUpdate.maxIterations, iterations);
@@ -447,7 +442,6 @@ void vtkVIMLOPRegistration::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StallRelativeDecrease: " << o.stallRelativeDecrease << "\n";
   os << indent << "StallIterations: " << o.stallIterations << "\n";
   os << indent << "PointsFirst: " << (o.pointsFirst ? "On" : "Off") << "\n";
-  os << indent << "InitialStageLooseness: " << o.initialStageLooseness << "\n";
   os << indent << "PoseUpdateMaxIterations: " << o.poseUpdate.maxIterations << "\n";
   os << indent << "PoseUpdateRelativeTolerance: " << o.poseUpdate.relativeTolerance << "\n";
   os << indent << "NumberOfThreads: " << o.threads << "\n";

@@ -284,13 +284,6 @@ public:
   ///@}
 
   ///@{
-  /// V11: the first stage (see PointsFirst) ends when the change of T falls
-  /// below this multiple of the convergence thresholds, dimensionless (default 10).
-  void SetInitialStageLooseness(double factor);
-  double GetInitialStageLooseness() const { return this->Options.initialStageLooseness; }
-  ///@}
-
-  ///@{
   /// V6: Levenberg-Marquardt iterations per pose update (default 20) and its
   /// relative cost tolerance (default 1e-9).
   void SetPoseUpdateMaxIterations(int iterations);
