@@ -152,7 +152,7 @@ vtkSmartPointer<vtkImageData> renderRegistrationScene(const TriangleMesh& model,
   vtkNew<vtkClipPolyData> clip;
   clip->SetInputData(toPolyData(model));
   clip->SetClipFunction(cut);
-  clip->InsideOutOn(); // keep the half beyond the data, away from the viewer
+  clip->InsideOutOn();               // keep the half beyond the data, away from the viewer
   vtkNew<vtkPolyDataNormals> smooth; // Gouraud shading reads better than facets
   smooth->SetInputConnection(clip->GetOutputPort());
   smooth->SplittingOff();
