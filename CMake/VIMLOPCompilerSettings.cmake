@@ -11,6 +11,7 @@ endif()
 # and (optionally) sanitizers, without imposing them on code that consumes us.
 add_library(VIMLOPBuildSettings INTERFACE)
 add_library(VIMLOP::BuildSettings ALIAS VIMLOPBuildSettings)
+set_target_properties(VIMLOPBuildSettings PROPERTIES EXPORT_NAME BuildSettings)
 target_compile_features(VIMLOPBuildSettings INTERFACE cxx_std_17)
 target_compile_options(VIMLOPBuildSettings INTERFACE
   $<$<COMPILE_LANG_AND_ID:CXX,GNU,Clang>:-Wall -Wextra -Wpedantic>)
@@ -44,3 +45,6 @@ if(VIMLOP_ENABLE_SANITIZERS)
 endif()
 
 set(CMAKE_CXX_EXTENSIONS OFF)
+
+# Only linked privately by our shared libraries, but exported with them.
+install(TARGETS VIMLOPBuildSettings EXPORT VIMLOPTargets)
