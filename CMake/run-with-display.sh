@@ -35,5 +35,11 @@ until grep -q '^[0-9][0-9]*$' "$dir/display" 2>/dev/null; do
 done
 DISPLAY=":$(cat "$dir/display")" "$@"
 status=$?
+if [ "$status" -ge 128 ]; then
+  # A crash may be the display's: say what the server said.
+  echo "run-with-display.sh: the command ended with status $status on display :$(cat "$dir/display"); Xvfb said:" >&2
+  cat "$dir/xvfb.log" >&2
+  kill -0 "$server" 2>/dev/null || echo "run-with-display.sh: Xvfb is gone" >&2
+fi
 cleanup
 exit $status
