@@ -61,6 +61,9 @@ find_package(ITK 5.2 REQUIRED COMPONENTS
 
 find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio)
 
+# OpenIGTLink (Debian's libopenigtlink-dev has no imported target: plain variables).
+find_package(OpenIGTLink REQUIRED NO_MODULE PATHS /usr/lib/openigtlink)
+
 # Open3D (Debian's libopen3d-dev) is a peer in the evaluation protocols, not a
 # dependency of the library: without it, the Open3D methods are unavailable.
 find_package(Open3D QUIET)

@@ -20,6 +20,8 @@ libgtest-dev
 libgmock-dev
 libcli11-dev
 nlohmann-json3-dev
+libopenigtlink-dev
+libopen3d-dev
 zlib1g-dev
 elastix
 xvfb

@@ -8,20 +8,27 @@
 #include "InfoCommand.h"
 #include "ReportCommand.h"
 #include "SegmentCommand.h"
+#include "ServeCommand.h"
 #include "WarpCommand.h"
 
 #include <CLI/CLI.hpp>
+
+#include <vtkObject.h>
 
 #include <exception>
 #include <iostream>
 
 int main(int argc, char** argv)
 {
+  // VTK's and ITK's own diagnostics would add lines of their own to ours:
+  // every problem reaches the user as one vimlop::Error line instead.
+  vtkObject::GlobalWarningDisplayOff();
   CLI::App app{ "vimlop: video-CT registration for endoscopic sinus surgery (V-IMLOP)" };
   app.set_version_flag("--version", std::string("vimlop ") + VIMLOP_VERSION);
   app.require_subcommand(1);
   vimlop::addInfoCommand(app);
   vimlop::addSegmentCommand(app);
+  vimlop::addServeCommand(app);
   vimlop::addWarpCommand(app);
   CLI::App* evaluate = vimlop::addEvaluateCommand(app);
   vimlop::addEvaluateWarpCommand(*evaluate);

@@ -67,6 +67,18 @@ std::string itkMessage(const itk::ExceptionObject& e)
   {
     text.resize(newline);
   }
+  // Drop ITK's "ITK ERROR: NrrdImageIO(0x55d...): " prefix: object addresses
+  // mean nothing to the user.
+  const auto object = text.find("(0x");
+  const auto colon = object == std::string::npos ? std::string::npos : text.find("): ", object);
+  if (colon != std::string::npos)
+  {
+    text.erase(0, colon + 3);
+  }
+  while (!text.empty() && (text.back() == ':' || text.back() == ' ' || text.back() == '.'))
+  {
+    text.pop_back();
+  }
   return text;
 }
 
@@ -251,8 +263,42 @@ void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
   }
 }
 
+/// A MetaImage header names its data file; MetaIO prints to stderr when it
+/// is missing, so look first and say it in one line.
+void checkMetaImageDataFile(const std::string& path)
+{
+  std::ifstream in(path);
+  std::string line;
+  for (int lines = 0; lines < 200 && std::getline(in, line); ++lines)
+  {
+    const auto equals = line.find('=');
+    if (equals == std::string::npos || line.compare(0, 15, "ElementDataFile") != 0)
+    {
+      continue;
+    }
+    std::string file = line.substr(equals + 1);
+    file.erase(0, file.find_first_not_of(" \t"));
+    file.erase(file.find_last_not_of(" \t\r") + 1);
+    if (file == "LOCAL" || file == "LIST" || file.find('%') != std::string::npos)
+    {
+      return;
+    }
+    const std::filesystem::path data = std::filesystem::path(path).parent_path() / file;
+    std::error_code ec;
+    if (!std::filesystem::exists(data, ec))
+    {
+      fail(path, "the data file '" + file + "' named by the header does not exist");
+    }
+    return;
+  }
+}
+
 CTVolume readImageFile(const std::string& path, const std::string& format)
 {
+  if (endsWith(lowerCase(path), ".mhd"))
+  {
+    checkMetaImageDataFile(path);
+  }
   itk::ImageIOBase::Pointer io =
     itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
   if (!io)

@@ -16,7 +16,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace vimlop
 {
@@ -50,6 +54,65 @@ vtkSmartPointer<vtkPolyData> runReader(Reader* reader, const std::string& path)
   }
   vtkSmartPointer<vtkPolyData> mesh = output;
   return mesh;
+}
+
+/// VTK's STL reader accepts a binary file shorter than its triangle count
+/// says; check the count against the size first (binary STL: an 80-byte
+/// header, a 4-byte count, 50 bytes per triangle).
+void checkStl(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  char start[84] = {};
+  in.read(start, sizeof(start));
+  const std::streamsize got = in.gcount();
+  const std::uint64_t size = std::filesystem::file_size(path);
+  if (got < 84)
+  {
+    if (got >= 5 && std::strncmp(start, "solid", 5) == 0)
+    {
+      return; // a short ASCII file: VTK's reader judges it
+    }
+    fail(path, "not an STL file (too short)");
+  }
+  std::uint32_t count = 0;
+  for (int i = 3; i >= 0; --i)
+  {
+    count = count << 8 | static_cast<unsigned char>(start[80 + i]);
+  }
+  const std::uint64_t binarySize = 84 + 50 * static_cast<std::uint64_t>(count);
+  if (binarySize == size || std::strncmp(start, "solid", 5) == 0)
+  {
+    return; // a consistent binary file, or ASCII
+  }
+  fail(path, "truncated or corrupt binary STL (" + std::to_string(count) + " triangles need " +
+      std::to_string(binarySize) + " bytes, the file has " + std::to_string(size) + ")");
+}
+
+/// VTK's PLY reader allocates what the header's element counts promise and
+/// can crash on a huge count; each element needs at least one byte, so a
+/// count above the file size is a lie.
+void checkPly(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  const std::uint64_t size = std::filesystem::file_size(path);
+  std::string line;
+  for (int lines = 0; lines < 1000 && std::getline(in, line); ++lines)
+  {
+    if (line.rfind("end_header", 0) == 0)
+    {
+      return;
+    }
+    std::istringstream words(line);
+    std::string keyword;
+    std::string name;
+    std::uint64_t count = 0;
+    if ((words >> keyword >> name >> count) && keyword == "element" && count > size)
+    {
+      fail(path, "the PLY header promises " + std::to_string(count) + " " + name + " elements in a " +
+          std::to_string(size) + "-byte file");
+    }
+  }
+  fail(path, "not a PLY file (no end_header)");
 }
 
 } // namespace
@@ -97,6 +160,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
   }
   if (ext == ".stl")
   {
+    checkStl(path);
     vtkNew<vtkSTLReader> reader;
     return runReader(reader.Get(), path);
   }
@@ -107,6 +171,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
     {
       fail(path, "not a PLY file");
     }
+    checkPly(path);
     return runReader(reader.Get(), path);
   }
   if (ext == ".obj")

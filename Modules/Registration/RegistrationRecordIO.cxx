@@ -330,6 +330,10 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
 RegistrationRecord readRegistrationRecord(const std::string& folder)
 {
   const fs::path dir(folder);
+  if (fs::exists(dir) && !fs::is_directory(dir))
+  {
+    throw Error("'" + folder + "': not a folder (a result folder is expected)");
+  }
   if (!fs::is_directory(dir))
   {
     throw Error("'" + folder + "': no such folder");

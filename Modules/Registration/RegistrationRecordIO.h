@@ -71,7 +71,7 @@ VIMLOPREGISTRATION_EXPORT void writeRegistrationRecord(
 
 /**
  * @brief Reads a result folder written by writeRegistrationRecord().
- * @throws vimlop::Error "'folder': ..." for a missing folder, a folder
+ * @throws vimlop::Error "'folder': ..." for a missing folder or a file, a folder
  * without result.json ("not a VIMLOP result folder"), a result.json of
  * another format or a newer version, or a missing or malformed file.
  */

@@ -1,0 +1,233 @@
+#include "PoseStreamServer.h"
+
+#include "CoordinateFrames.h"
+#include "Error.h"
+
+#include <igtlTransformMessage.h>
+
+#include <arpa/inet.h>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+namespace vimlop
+{
+
+namespace
+{
+
+void setNonBlocking(int fd)
+{
+  fcntl(fd, F_SETFL, fcntl(fd, F_GETFL, 0) | O_NONBLOCK);
+}
+
+std::string packTransform(const std::string& name, const Eigen::Matrix4d& m)
+{
+  igtl::Matrix4x4 matrix;
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = 0; j < 4; ++j)
+    {
+      matrix[i][j] = static_cast<float>(m(i, j));
+    }
+  }
+  igtl::TransformMessage::Pointer message = igtl::TransformMessage::New();
+  message->SetDeviceName(name.c_str());
+  message->SetMatrix(matrix);
+  message->Pack();
+  return std::string(static_cast<const char*>(message->GetPackPointer()),
+    static_cast<size_t>(message->GetPackSize()));
+}
+
+} // namespace
+
+PoseStreamServer::PoseStreamServer(const PoseStreamServerOptions& options)
+  : Options(options)
+{
+  in_addr address{};
+  if (inet_pton(AF_INET, options.host.c_str(), &address) != 1)
+  {
+    throw Error("'" + options.host + "' is not an IPv4 address to listen on");
+  }
+  const bool loopback = (ntohl(address.s_addr) >> 24) == 127;
+  if (!loopback && !options.allowRemote)
+  {
+    throw Error("refusing to listen on " + options.host +
+      ": not a loopback address (pass --allow-remote to serve other machines)");
+  }
+  if (options.port < 0 || options.port > 65535 || options.maxClients < 1)
+  {
+    throw Error("the port must lie in [0, 65535] and at least one client must be allowed");
+  }
+  this->Listener = socket(AF_INET, SOCK_STREAM, 0);
+  if (this->Listener < 0)
+  {
+    throw Error(std::string("cannot create a socket: ") + std::strerror(errno));
+  }
+  const int yes = 1;
+  setsockopt(this->Listener, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  sockaddr_in bound{};
+  bound.sin_family = AF_INET;
+  bound.sin_addr = address;
+  bound.sin_port = htons(static_cast<uint16_t>(options.port));
+  if (bind(this->Listener, reinterpret_cast<sockaddr*>(&bound), sizeof(bound)) != 0 ||
+    listen(this->Listener, 64) != 0)
+  {
+    const std::string reason = std::strerror(errno);
+    close(this->Listener);
+    throw Error("cannot listen on " + options.host + ":" + std::to_string(options.port) + ": " + reason);
+  }
+  socklen_t length = sizeof(bound);
+  getsockname(this->Listener, reinterpret_cast<sockaddr*>(&bound), &length);
+  this->Port = ntohs(bound.sin_port);
+  setNonBlocking(this->Listener);
+}
+
+PoseStreamServer::~PoseStreamServer()
+{
+  for (const Client& client : this->Clients)
+  {
+    close(client.fd);
+  }
+  if (this->Listener >= 0)
+  {
+    close(this->Listener);
+  }
+}
+
+void PoseStreamServer::publish(const SimilarityTransform* ctFromSfm, const std::vector<FramePose>& cameraToCT)
+{
+  std::string messages = ctFromSfm ? packTransform("CTFromSfM", intoRas(ctFromSfm->matrix())) : std::string();
+  for (const FramePose& pose : cameraToCT)
+  {
+    char name[32];
+    std::snprintf(name, sizeof(name), "VideoCamera_%d", pose.frameId);
+    messages += packTransform(name, intoRas(pose.cameraToWorld.matrix()));
+  }
+  this->Messages = messages;
+  for (size_t i = this->Clients.size(); i-- > 0;)
+  {
+    this->Clients[i].pending += messages;
+    if (!this->flush(this->Clients[i]))
+    {
+      this->closeClient(i);
+    }
+  }
+}
+
+void PoseStreamServer::accept()
+{
+  for (;;)
+  {
+    const int fd = ::accept(this->Listener, nullptr, nullptr);
+    if (fd < 0)
+    {
+      return; // no more pending connections (or a transient error)
+    }
+    if (static_cast<int>(this->Clients.size()) >= this->Options.maxClients)
+    {
+      close(fd);
+      continue;
+    }
+    setNonBlocking(fd);
+    Client client;
+    client.fd = fd;
+    client.pending = this->Messages;
+    if (this->flush(client))
+    {
+      this->Clients.push_back(std::move(client));
+    }
+    else
+    {
+      close(fd);
+    }
+  }
+}
+
+bool PoseStreamServer::flush(Client& client)
+{
+  while (!client.pending.empty())
+  {
+    const ssize_t sent = send(client.fd, client.pending.data(), client.pending.size(), MSG_NOSIGNAL);
+    if (sent < 0)
+    {
+      if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)
+      {
+        break;
+      }
+      return false;
+    }
+    client.pending.erase(0, static_cast<size_t>(sent));
+  }
+  return static_cast<int>(client.pending.size()) <= this->Options.maxPendingBytes;
+}
+
+void PoseStreamServer::drain(Client& client, bool& alive)
+{
+  char buffer[4096];
+  for (;;)
+  {
+    const ssize_t got = recv(client.fd, buffer, sizeof(buffer), 0);
+    if (got > 0)
+    {
+      continue; // requests and garbage alike are ignored
+    }
+    if (got == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR))
+    {
+      alive = false;
+    }
+    return;
+  }
+}
+
+void PoseStreamServer::closeClient(size_t index)
+{
+  close(this->Clients[index].fd);
+  this->Clients.erase(this->Clients.begin() + static_cast<std::ptrdiff_t>(index));
+}
+
+void PoseStreamServer::serve(const std::function<bool()>& keepRunning)
+{
+  while (keepRunning())
+  {
+    std::vector<pollfd> fds;
+    fds.push_back({ this->Listener, POLLIN, 0 });
+    for (const Client& client : this->Clients)
+    {
+      fds.push_back({ client.fd, static_cast<short>(POLLIN | (client.pending.empty() ? 0 : POLLOUT)), 0 });
+    }
+    if (poll(fds.data(), fds.size(), 100) < 0 && errno != EINTR)
+    {
+      throw Error(std::string("the server's poll failed: ") + std::strerror(errno));
+    }
+    // Clients first (their indices match fds[1...]), newest last.
+    for (size_t i = this->Clients.size(); i-- > 0;)
+    {
+      const short events = fds[i + 1].revents;
+      bool alive = (events & (POLLERR | POLLNVAL)) == 0;
+      if (alive && (events & (POLLIN | POLLHUP)))
+      {
+        this->drain(this->Clients[i], alive);
+      }
+      if (alive && (events & POLLOUT))
+      {
+        alive = this->flush(this->Clients[i]);
+      }
+      if (!alive)
+      {
+        this->closeClient(i);
+      }
+    }
+    if (fds[0].revents & POLLIN)
+    {
+      this->accept();
+    }
+  }
+}
+
+} // namespace vimlop

@@ -1,0 +1,92 @@
+#ifndef vimlop_PoseStreamServer_h
+#define vimlop_PoseStreamServer_h
+
+#include "FramePose.h"
+#include "SimilarityTransform.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vimlop
+{
+
+/// @brief Where and how PoseStreamServer listens.
+struct PoseStreamServerOptions
+{
+  /// Address to listen on (default 127.0.0.1, loopback only).
+  std::string host = "127.0.0.1";
+  /// TCP port (default 18944, OpenIGTLink's); 0 picks a free one.
+  int port = 18944;
+  /// Listen on a non-loopback address (default off: refused).
+  bool allowRemote = false;
+  /// Clients served at once (default 16); further connections are closed.
+  int maxClients = 16;
+  /// A client whose unsent data exceeds this is dropped (default 1 MiB).
+  int maxPendingBytes = 1 << 20;
+};
+
+/**
+ * @brief Streams registration results to navigation software over OpenIGTLink.
+ *
+ * Every client that connects receives one TRANSFORM message per pose,
+ * then again whenever publish() is called: `CTFromSfM` (the similarity T,
+ * mapping the SfM frame into the CT) and `VideoCamera_<frame id>` (each
+ * frame's camera-to-CT pose; camera axes x right, y down, z forward). By the
+ * OpenIGTLink protocol the matrices are in RAS (mm): VIMLOP's LPS CT frame is
+ * converted (see CoordinateFrames.h), as 3D Slicer's OpenIGTLinkIF expects.
+ *
+ * One thread, non-blocking sockets and poll(): a client that sends garbage,
+ * disconnects early, never reads, or comes with many others cannot crash or
+ * stall the server. What clients send is read and discarded.
+ */
+class PoseStreamServer
+{
+public:
+  /**
+   * @brief Binds and listens.
+   * @throws vimlop::Error for a non-loopback host without allowRemote, an
+   * invalid address, or a port that cannot be bound.
+   */
+  explicit PoseStreamServer(const PoseStreamServerOptions& options);
+  ~PoseStreamServer();
+  PoseStreamServer(const PoseStreamServer&) = delete;
+  PoseStreamServer& operator=(const PoseStreamServer&) = delete;
+
+  /// @brief The port listened on (the chosen one when the options said 0).
+  int port() const { return this->Port; }
+
+  /**
+   * @brief Sets the poses sent to new clients and sends them to connected
+   * ones; `ctFromSfm` may be null when only camera poses are known.
+   */
+  void publish(const SimilarityTransform* ctFromSfm, const std::vector<FramePose>& cameraToCT);
+
+  /// @brief Serves until `keepRunning()` returns false (checked about every 100 ms).
+  void serve(const std::function<bool()>& keepRunning);
+
+  /// @brief Clients connected now.
+  int clientCount() const { return static_cast<int>(this->Clients.size()); }
+
+private:
+  struct Client
+  {
+    int fd = -1;
+    std::string pending;
+  };
+
+  void accept();
+  bool flush(Client& client);
+  void drain(Client& client, bool& alive);
+  void closeClient(size_t index);
+
+  PoseStreamServerOptions Options;
+  int Listener = -1;
+  int Port = 0;
+  std::string Messages; ///< the packed messages of the last publish()
+  std::vector<Client> Clients;
+};
+
+} // namespace vimlop
+
+#endif

@@ -1,0 +1,227 @@
+// A navigation-software stand-in for `vimlop serve`: an OpenIGTLink receiver
+// written against the OpenIGTLink library's client side (not VIMLOP's code).
+// It starts the server, harasses it with hostile clients (garbage bytes, early
+// disconnects, more connections than it serves), then receives every pose as
+// a well-behaved client and checks the matrices against the pose file (in RAS,
+// as the protocol wants), and finally stops the server with SIGINT.
+//
+// Usage: TestPoseReceiver <vimlop> <poses.json>
+
+#include <igtlClientSocket.h>
+#include <igtlMessageHeader.h>
+#include <igtlTransformMessage.h>
+
+#include <nlohmann/json.hpp>
+
+#include <arpa/inet.h>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <netinet/in.h>
+#include <random>
+#include <string>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+namespace
+{
+
+int failures = 0;
+
+void check(bool ok, const std::string& what)
+{
+  std::printf("%s: %s\n", ok ? "ok" : "FAILED", what.c_str());
+  failures += ok ? 0 : 1;
+}
+
+int rawConnect(int port)
+{
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
+  if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0)
+  {
+    close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+/// Receives TRANSFORM messages until `expected` distinct devices arrived or 10 s passed.
+void receivePoses(int port, size_t expected, std::map<std::string, std::vector<float>>& got)
+{
+  igtl::ClientSocket::Pointer socket = igtl::ClientSocket::New();
+  if (socket->ConnectToServer("127.0.0.1", port) != 0)
+  {
+    return;
+  }
+  socket->SetReceiveTimeout(10000);
+  const auto start = std::chrono::steady_clock::now();
+  while (got.size() < expected && std::chrono::steady_clock::now() - start < std::chrono::seconds(10))
+  {
+    igtl::MessageHeader::Pointer header = igtl::MessageHeader::New();
+    header->InitPack();
+    if (socket->Receive(header->GetPackPointer(), header->GetPackSize()) != header->GetPackSize())
+    {
+      break;
+    }
+    header->Unpack();
+    if (std::strcmp(header->GetDeviceType(), "TRANSFORM") != 0)
+    {
+      socket->Skip(header->GetBodySizeToRead(), 0);
+      continue;
+    }
+    igtl::TransformMessage::Pointer message = igtl::TransformMessage::New();
+    message->SetMessageHeader(header);
+    message->AllocatePack();
+    socket->Receive(message->GetPackBodyPointer(), message->GetPackBodySize());
+    if (!(message->Unpack(1) & igtl::MessageHeader::UNPACK_BODY))
+    {
+      break; // CRC mismatch
+    }
+    igtl::Matrix4x4 m;
+    message->GetMatrix(m);
+    std::vector<float> values;
+    for (int i = 0; i < 4; ++i)
+    {
+      for (int j = 0; j < 4; ++j)
+      {
+        values.push_back(m[i][j]);
+      }
+    }
+    got[message->GetDeviceName()] = values;
+  }
+  socket->CloseSocket();
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc != 3)
+  {
+    std::fprintf(stderr, "usage: %s <vimlop> <poses.json>\n", argv[0]);
+    return 2;
+  }
+  std::signal(SIGPIPE, SIG_IGN);
+  const nlohmann::json poses = nlohmann::json::parse(std::ifstream(argv[2]));
+
+  int out[2];
+  if (pipe(out) != 0)
+  {
+    return 2;
+  }
+  const pid_t server = fork();
+  if (server == 0)
+  {
+    dup2(out[1], STDOUT_FILENO);
+    close(out[0]);
+    execl(argv[1], argv[1], "serve", "--poses", argv[2], "--port", "0", "--max-clients", "4", "--duration-s", "120",
+      static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(out[1]);
+  char line[512] = {};
+  FILE* stream = fdopen(out[0], "r");
+  int port = 0;
+  if (!std::fgets(line, sizeof(line), stream) || !std::strstr(line, "127.0.0.1:") ||
+    std::sscanf(std::strstr(line, "127.0.0.1:") + 10, "%d", &port) != 1)
+  {
+    std::fprintf(stderr, "the server did not announce its port: %s\n", line);
+    kill(server, SIGKILL);
+    return 1;
+  }
+  std::printf("server on port %d\n", port);
+
+  // Garbage: a client that sends 64 KiB of random bytes and stays connected.
+  const int garbage = rawConnect(port);
+  std::mt19937 rng(1);
+  std::vector<char> noise(1 << 16);
+  for (char& c : noise)
+  {
+    c = static_cast<char>(rng());
+  }
+  check(garbage >= 0 && send(garbage, noise.data(), noise.size(), MSG_NOSIGNAL) > 0, "garbage client connected and sent");
+
+  // Early disconnects.
+  for (int i = 0; i < 20; ++i)
+  {
+    const int fd = rawConnect(port);
+    if (fd >= 0)
+    {
+      close(fd);
+    }
+  }
+  // More connections than the server serves at once, never read from.
+  std::vector<int> crowd;
+  for (int i = 0; i < 40; ++i)
+  {
+    crowd.push_back(rawConnect(port));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  for (int fd : crowd)
+  {
+    if (fd >= 0)
+    {
+      close(fd);
+    }
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+
+  // A well-behaved client receives every pose, in RAS.
+  std::map<std::string, std::vector<float>> got;
+  receivePoses(port, poses["poses"].size(), got);
+  check(got.size() == poses["poses"].size(), "received " + std::to_string(got.size()) + " of " +
+      std::to_string(poses["poses"].size()) + " poses");
+  for (const auto& pose : poses["poses"])
+  {
+    const std::string name = "VideoCamera_" + std::to_string(pose["frame_id"].get<int>());
+    const auto it = got.find(name);
+    if (it == got.end())
+    {
+      check(false, name + " received");
+      continue;
+    }
+    double worst = 0.0;
+    for (int i = 0; i < 16; ++i)
+    {
+      // LPS to RAS flips the first two rows of a transform into the CT.
+      const double expected = (i < 8 ? -1.0 : 1.0) * pose["camera_to_ct"][i].get<double>();
+      worst = std::max(worst, std::abs(expected - it->second[static_cast<size_t>(i)]));
+    }
+    check(worst < 1e-4, name + " matches the pose file in RAS (worst element error " + std::to_string(worst) + ")");
+  }
+  // The garbage client is still connected and the server still alive.
+  check(kill(server, 0) == 0, "server alive after the hostile clients");
+  if (garbage >= 0)
+  {
+    close(garbage);
+  }
+  // A second well-behaved client is served too.
+  std::map<std::string, std::vector<float>> again;
+  receivePoses(port, poses["poses"].size(), again);
+  check(again == got, "a second client receives the same poses");
+
+  kill(server, SIGINT);
+  int status = 0;
+  const auto start = std::chrono::steady_clock::now();
+  pid_t done = 0;
+  while ((done = waitpid(server, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() - start < std::chrono::seconds(5))
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  check(done == server && WIFEXITED(status) && WEXITSTATUS(status) == 0, "server stops cleanly on SIGINT");
+  if (done != server)
+  {
+    kill(server, SIGKILL);
+  }
+  return failures == 0 ? 0 : 1;
+}
