@@ -10,6 +10,8 @@ find_package(ZLIB REQUIRED)
 find_package(Threads REQUIRED)
 
 find_package(VTK 9.1 REQUIRED COMPONENTS
+  ChartsCore
+  CommonColor
   CommonCore
   CommonDataModel
   CommonExecutionModel
@@ -17,7 +19,9 @@ find_package(VTK 9.1 REQUIRED COMPONENTS
   CommonTransforms
   FiltersCore
   FiltersGeneral
+  FiltersHybrid
   FiltersSources
+  ImagingCore
   IOCore
   IOGeometry
   IOImage
@@ -25,8 +29,12 @@ find_package(VTK 9.1 REQUIRED COMPONENTS
   IOPLY
   IOXML
   IOXMLParser
+  RenderingContext2D
+  RenderingContextOpenGL2
   RenderingCore
-  RenderingOpenGL2)
+  RenderingFreeType
+  RenderingOpenGL2
+  ViewsContext2D)
 
 find_package(ITK 5.2 REQUIRED COMPONENTS
   ITKBinaryMathematicalMorphology

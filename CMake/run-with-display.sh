@@ -1,11 +1,45 @@
 #!/bin/sh
 # Runs a command with an X display: the current one if set, otherwise a
-# private virtual one from `xvfb-run -a` (Mesa llvmpipe renders offscreen).
+# private virtual one (Xvfb, Mesa llvmpipe renders offscreen).
+#
+# Xvfb picks its own free display number (-displayfd), which is atomic;
+# `xvfb-run -a` guesses a free number first, and tests started in parallel
+# by ctest could pick the same one and lose their display.
 if [ -n "${DISPLAY:-}" ]; then
   exec "$@"
 fi
-if ! command -v xvfb-run >/dev/null 2>&1; then
-  echo "run-with-display.sh: no DISPLAY and no xvfb-run; install the 'xvfb' package" >&2
+if ! command -v Xvfb >/dev/null 2>&1; then
+  echo "run-with-display.sh: no DISPLAY and no Xvfb; install the 'xvfb' package" >&2
   exit 1
 fi
-exec xvfb-run -a -s "-screen 0 1280x1024x24" "$@"
+dir=$(mktemp -d "${TMPDIR:-/tmp}/vimlop-display.XXXXXX") || exit 1
+Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$dir/display" 2>"$dir/xvfb.log" &
+server=$!
+cleanup() {
+  kill "$server" 2>/dev/null
+  wait "$server" 2>/dev/null
+  rm -rf "$dir"
+}
+trap 'cleanup; exit 130' INT TERM
+# Xvfb writes the display number and a newline once it accepts connections.
+tries=0
+until grep -q '^[0-9][0-9]*$' "$dir/display" 2>/dev/null; do
+  tries=$((tries + 1))
+  if [ "$tries" -gt 200 ] || ! kill -0 "$server" 2>/dev/null; then
+    echo "run-with-display.sh: Xvfb did not start:" >&2
+    cat "$dir/xvfb.log" >&2
+    cleanup
+    exit 1
+  fi
+  sleep 0.05
+done
+DISPLAY=":$(cat "$dir/display")" "$@"
+status=$?
+if [ "$status" -ge 128 ]; then
+  # A crash may be the display's: say what the server said.
+  echo "run-with-display.sh: the command ended with status $status on display :$(cat "$dir/display"); Xvfb said:" >&2
+  cat "$dir/xvfb.log" >&2
+  kill -0 "$server" 2>/dev/null || echo "run-with-display.sh: Xvfb is gone" >&2
+fi
+cleanup
+exit $status

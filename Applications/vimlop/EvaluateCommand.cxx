@@ -3,6 +3,7 @@
 #include "CommandLine.h"
 #include "Error.h"
 #include "ModelLoading.h"
+#include "OffscreenRendering.h"
 #include "SyntheticEvaluation.h"
 #include "VideoEvaluation.h"
 
@@ -29,6 +30,7 @@ struct SyntheticCommandOptions
   std::string misalignDeg = "2,3";
   std::string methods = "vimlop,imlp,trimmed-icp,open3d-icp,open3d-gicp";
   int threads = 0;
+  std::string saveTrial;
 };
 
 void runSynthetic(const SyntheticCommandOptions& o)
@@ -37,6 +39,11 @@ void runSynthetic(const SyntheticCommandOptions& o)
   options.trials = o.trials;
   options.seed = o.seed;
   options.threads = o.threads;
+  options.saveTrialFolder = o.saveTrial;
+  if (!o.saveTrial.empty())
+  {
+    requireOffscreenRendering("--save-trial");
+  }
   options.methods = parseList(o.methods, "--methods");
   checkSyntheticMethods(options.methods);
   std::tie(options.synthetic.misalignMinMm, options.synthetic.misalignMaxMm) =
@@ -147,6 +154,10 @@ CLI::App* addEvaluateCommand(CLI::App& app)
     ->capture_default_str();
   p1->add_option("--threads", synthetic->threads, "threads per registration, 0 for all cores")
     ->capture_default_str();
+  p1->add_option("--save-trial", synthetic->saveTrial,
+    "also write trial 0 and its registration (by the first of vimlop, imlp, trimmed-icp in "
+    "--methods) as a result folder for vimlop report, with the model rendered from the true "
+    "cameras as frame pictures");
   p1->callback([synthetic] { runSynthetic(*synthetic); });
 
   auto video = std::make_shared<VideoCommandOptions>();

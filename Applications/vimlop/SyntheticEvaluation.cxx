@@ -6,9 +6,11 @@
 #include "Registration.h"
 #include "RegistrationMetrics.h"
 #include "Statistics.h"
+#include "TrialSaving.h"
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <ostream>
@@ -80,6 +82,20 @@ nlohmann::json runSyntheticEvaluation(
     peers = std::make_unique<Open3DPeers>(mesh);
   }
 
+  // The method whose registration of trial 0 is saved: the first of ours.
+  std::string savedMethod;
+  for (const std::string& method : options.methods)
+  {
+    if (savedMethod.empty() && method.rfind("open3d", 0) != 0)
+    {
+      savedMethod = method;
+    }
+  }
+  if (!options.saveTrialFolder.empty() && savedMethod.empty())
+  {
+    throw Error("--save-trial needs one of the methods vimlop, imlp, trimmed-icp");
+  }
+
   std::map<std::string, MethodRecord> records;
   for (int trialIndex = 0; trialIndex < options.trials; ++trialIndex)
   {
@@ -89,6 +105,7 @@ nlohmann::json runSyntheticEvaluation(
     {
       const auto start = std::chrono::steady_clock::now();
       SimilarityTransform estimate;
+      std::function<void()> saved;
       if (method == "open3d-icp")
       {
         estimate = peers->icpWithScale(trial.data.points, trial.initialSfmToCT);
@@ -108,9 +125,25 @@ nlohmann::json runSyntheticEvaluation(
         o.minScale = options.minScale;
         o.maxScale = options.maxScale;
         o.threads = options.threads;
-        estimate = registerVideo(model, trial.data, trial.initialSfmToCT, o).sfmToCT;
+        const RegistrationResult result = registerVideo(model, trial.data, trial.initialSfmToCT, o);
+        estimate = result.sfmToCT;
+        if (trialIndex == 0 && method == savedMethod && !options.saveTrialFolder.empty())
+        {
+          saved = [&, o, result]
+          {
+            saveSyntheticTrial(options.saveTrialFolder,
+              "vimlop evaluate synthetic (P1), seed " + std::to_string(options.seed) +
+                ", trial 0, " + method,
+              mesh, trial, o, result);
+          };
+        }
       }
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (saved)
+      {
+        saved(); // outside the timed part: it renders the frames' pictures
+        saved = nullptr;
+      }
       MethodRecord& r = records[method];
       const double tre = targetRegistrationError(estimate, trial.truthSfmToCT, trial.targetsCT);
       r.tre.push_back(tre);

@@ -28,6 +28,10 @@ struct SyntheticEvaluationOptions
   double minScale = 0.8;
   double maxScale = 1.25;
   int threads = 0;
+  /// When not empty: trial 0 and its registration by the first of V-IMLOP,
+  /// IMLP, trimmed ICP among `methods` are written to this result folder
+  /// (see TrialSaving.h; needs an X display).
+  std::string saveTrialFolder;
 };
 
 /// @brief Every method name P1 knows, comma-separated (for messages).

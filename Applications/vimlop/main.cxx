@@ -7,6 +7,7 @@
 #include "EvaluateCommand.h"
 #include "EvaluateWarpCommand.h"
 #include "InfoCommand.h"
+#include "ReportCommand.h"
 #include "SegmentCommand.h"
 #include "ServeCommand.h"
 #include "SfmCommand.h"
@@ -37,6 +38,7 @@ int main(int argc, char** argv)
   vimlop::addSimulateCommand(app);
   vimlop::addContoursCommand(app);
   vimlop::addSfmCommand(app);
+  vimlop::addReportCommand(app);
   try
   {
     app.parse(argc, argv);

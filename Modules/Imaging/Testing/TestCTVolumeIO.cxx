@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 
@@ -56,7 +58,11 @@ class CTVolumeRoundTrip : public ::testing::TestWithParam<std::string>
 TEST_P(CTVolumeRoundTrip, KeepsGeometryAndIntensities)
 {
   const CTVolume v = makeVolume();
-  const std::string path = out + "/roundtrip" + GetParam();
+  // One base name per format: ctest runs the formats in parallel, and the
+  // NIfTI reader given "roundtrip.nii.gz" also looks for "roundtrip.nii".
+  std::string stem = GetParam();
+  std::replace(stem.begin(), stem.end(), '.', '-');
+  const std::string path = out + "/roundtrip" + stem + GetParam();
   writeCTVolume(v, path);
   const CTVolume back = readCTVolume(path);
   EXPECT_EQ(back.dims, v.dims);

@@ -1,0 +1,97 @@
+#include "ReportCommand.h"
+
+#include "CommandLine.h"
+#include "Error.h"
+#include "OffscreenRendering.h"
+#include "PerturbationRuns.h"
+#include "RegistrationRecordIO.h"
+#include "RegistrationReport.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+namespace vimlop
+{
+
+namespace
+{
+
+struct ReportCommandOptions
+{
+  std::string result;
+  std::string perturbation;
+  std::string out;
+  int maxOverlays = 0;
+};
+
+void runReport(const ReportCommandOptions& o)
+{
+  if (o.result.empty() && o.perturbation.empty())
+  {
+    throw Error("give --result, --perturbation or both");
+  }
+  // Read everything before rendering anything, so bad input fails fast.
+  std::optional<RegistrationRecord> record;
+  if (!o.result.empty())
+  {
+    record = readRegistrationRecord(o.result);
+  }
+  std::vector<PerturbationRun> runs;
+  if (!o.perturbation.empty())
+  {
+    runs = readPerturbationRuns(o.perturbation);
+    if (runs.empty())
+    {
+      throw Error("'" + o.perturbation + "': the perturbation study has no runs");
+    }
+  }
+  requireOffscreenRendering("vimlop report");
+  RegistrationReport::Options options;
+  options.maxOverlayFrames = o.maxOverlays;
+  const RegistrationReport report =
+    RegistrationReport::write(record ? &*record : nullptr, o.result, runs, o.out, options);
+
+  const std::string index = (std::filesystem::path(o.out) / "index.html").string();
+  std::printf("report: %zu pictures in %s", report.pictures.size(), index.c_str());
+  if (record)
+  {
+    std::printf("; contour error %.2f px before, %.2f px after", report.contourErrorBeforePx,
+      report.contourErrorAfterPx);
+    if (report.treAfterMm)
+    {
+      std::printf("; TRE %.3f mm before, %.3f mm after", *report.treBeforeMm, *report.treAfterMm);
+    }
+  }
+  if (!runs.empty())
+  {
+    std::printf("; %zu perturbation runs", runs.size());
+  }
+  std::printf("\n");
+}
+
+} // namespace
+
+void addReportCommand(CLI::App& app)
+{
+  auto options = std::make_shared<ReportCommandOptions>();
+  CLI::App* report = app.add_subcommand("report",
+    "Render the report of a registration result folder (contour overlays before and after, 3-D "
+    "scene, plots per iteration) and/or of a perturbation study: index.html, report.json, PNGs");
+  report->add_option("--result", options->result,
+    "result folder (written by vimlop evaluate synthetic --save-trial or vimlop register)");
+  report->add_option("--perturbation", options->perturbation,
+    "perturbation study JSON with a \"runs\" list (offset_mm, offset_deg, final_error_mm, "
+    "contour_error_px, success)");
+  report->add_option("--out", options->out, "report folder (created if needed)")->required();
+  report
+    ->add_option("--max-overlays", options->maxOverlays,
+      "draw overlays for at most this many frames, evenly spread (0: all)")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  report->callback([options] { runReport(*options); });
+}
+
+} // namespace vimlop

@@ -1,0 +1,35 @@
+#ifndef vimlop_RecordJson_h
+#define vimlop_RecordJson_h
+
+// JSON forms shared by the result folder (RegistrationRecordIO) and the
+// report (RegistrationReport); private to the Registration module.
+
+#include "RegistrationOptions.h"
+#include "SimilarityTransform.h"
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Core>
+
+#include <string>
+
+namespace vimlop::recordjson
+{
+
+using json = nlohmann::json;
+
+/// A matrix as a list of rows.
+json matrixJson(const Eigen::MatrixXd& m);
+/// An n x n matrix from a list of rows. @throws vimlop::Error naming `what`.
+Eigen::MatrixXd matrixFrom(const json& rows, int n, const std::string& what);
+/// {"matrix", "scale", "rotation", "translation", "rotation_angle_deg"}.
+json transformJson(const SimilarityTransform& t);
+SimilarityTransform transformFrom(const json& j, const std::string& what);
+/// Every option, in the units the names say (mm, px, deg); infinite bounds as null.
+json optionsJson(const RegistrationOptions& o);
+/// Options from optionsJson(); keys not given keep their defaults.
+RegistrationOptions optionsFrom(const json& j);
+
+} // namespace vimlop::recordjson
+
+#endif

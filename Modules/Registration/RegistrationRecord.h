@@ -1,0 +1,56 @@
+#ifndef vimlop_RegistrationRecord_h
+#define vimlop_RegistrationRecord_h
+
+#include "CameraPose.h"
+#include "RegistrationData.h"
+#include "RegistrationOptions.h"
+#include "RegistrationResult.h"
+#include "SimilarityTransform.h"
+#include "TriangleMesh.h"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vimlop
+{
+
+/**
+ * @brief Everything about one registration run: the model and the data it
+ * registered, the options, the start, the result, and the ground truth when
+ * the data were simulated. What a result folder holds (see
+ * RegistrationRecordIO.h) and what `vimlop report` draws.
+ */
+struct RegistrationRecord
+{
+  /// The truth of simulated data (P1, P2).
+  struct GroundTruth
+  {
+    /// The true T, SfM frame to CT frame.
+    SimilarityTransform sfmToCT;
+    /// The true camera of every frame, CT frame, in the order of the frames.
+    std::vector<CameraPose> camerasCT;
+    /// Points for the target registration error, CT frame, mm (may be empty).
+    std::vector<Eigen::Vector3d> targetsCT;
+  };
+
+  /// What produced the run, for people (e.g. "vimlop evaluate synthetic, seed 1, trial 0").
+  std::string source;
+  /// The model surface (CT frame, mm, normals into the air).
+  TriangleMesh model;
+  RegistrationData data;
+  RegistrationOptions options;
+  /// The start, SfM frame to CT frame.
+  SimilarityTransform initialSfmToCT;
+  RegistrationResult result;
+  /// Per frame (in the order of data.frames), the picture of the frame: a PNG
+  /// path relative to the result folder, or empty when there is none.
+  std::vector<std::string> frameImages;
+  std::optional<GroundTruth> truth;
+};
+
+} // namespace vimlop
+
+#endif

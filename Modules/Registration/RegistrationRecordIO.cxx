@@ -1,0 +1,460 @@
+#include "RegistrationRecordIO.h"
+
+#include "Error.h"
+#include "MeshIO.h"
+#include "PolyDataConversion.h"
+#include "RecordJson.h"
+#include "RegistrationInputConversion.h"
+#include "RegistrationMetrics.h"
+#include "RegistrationOutputConversion.h"
+
+#include <nlohmann/json.hpp>
+
+#include <vtkCellArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkTable.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLTableReader.h>
+#include <vtkXMLTableWriter.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+namespace vimlop
+{
+
+namespace
+{
+
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+using namespace recordjson;
+
+json timesJson(const StageTimes& t)
+{
+  return { { "match_3d", t.match3dMs }, { "contours", t.contoursMs },
+    { "visibility", t.visibilityMs }, { "match_2d", t.match2dMs }, { "outliers", t.outliersMs },
+    { "update", t.updateMs }, { "constraint", t.constraintMs } };
+}
+
+StageTimes timesFrom(const json& j)
+{
+  StageTimes t;
+  t.match3dMs = j.value("match_3d", 0.0);
+  t.contoursMs = j.value("contours", 0.0);
+  t.visibilityMs = j.value("visibility", 0.0);
+  t.match2dMs = j.value("match_2d", 0.0);
+  t.outliersMs = j.value("outliers", 0.0);
+  t.updateMs = j.value("update", 0.0);
+  t.constraintMs = j.value("constraint", 0.0);
+  return t;
+}
+
+json historyJson(const std::vector<IterationRecord>& history)
+{
+  json records = json::array();
+  for (const IterationRecord& r : history)
+  {
+    records.push_back({ { "iteration", r.iteration }, { "with_contours", r.withContours },
+      { "transform", matrixJson(r.transform.matrix()) },
+      { "updated", matrixJson(r.updated.matrix()) }, { "cost", r.cost }, { "cost_3d", r.cost3d },
+      { "cost_2d", r.cost2d }, { "point_inliers", r.pointInliers },
+      { "contour_matches", r.contourMatches }, { "contour_inliers", r.contourInliers },
+      { "residual_error_mm", r.residualErrorMm }, { "contour_error_px", r.contourErrorPx },
+      { "backoff_steps", r.backoffSteps }, { "acceleration", r.acceleration },
+      { "extrapolation_undone", r.extrapolationUndone }, { "times_ms", timesJson(r.times) } });
+  }
+  return records;
+}
+
+std::vector<IterationRecord> historyFrom(const json& records)
+{
+  std::vector<IterationRecord> history;
+  for (const json& j : records)
+  {
+    IterationRecord r;
+    r.iteration = j.at("iteration").get<int>();
+    r.withContours = j.value("with_contours", false);
+    const std::string what = "history, iteration " + std::to_string(r.iteration);
+    r.transform = SimilarityTransform::fromMatrix(
+      Eigen::Matrix4d(matrixFrom(j.at("transform"), 4, what)), 1e-6);
+    r.updated =
+      SimilarityTransform::fromMatrix(Eigen::Matrix4d(matrixFrom(j.at("updated"), 4, what)), 1e-6);
+    r.cost = j.value("cost", 0.0);
+    r.cost3d = j.value("cost_3d", 0.0);
+    r.cost2d = j.value("cost_2d", 0.0);
+    r.pointInliers = j.value("point_inliers", 0);
+    r.contourMatches = j.value("contour_matches", 0);
+    r.contourInliers = j.value("contour_inliers", 0);
+    r.residualErrorMm = j.value("residual_error_mm", 0.0);
+    r.contourErrorPx = j.value("contour_error_px", 0.0);
+    r.backoffSteps = j.value("backoff_steps", 0);
+    r.acceleration = j.value("acceleration", 0.0);
+    r.extrapolationUndone = j.value("extrapolation_undone", false);
+    if (j.contains("times_ms"))
+    {
+      r.times = timesFrom(j.at("times_ms"));
+    }
+    history.push_back(r);
+  }
+  return history;
+}
+
+TerminationReason terminationFrom(const std::string& name)
+{
+  for (TerminationReason reason :
+    { TerminationReason::Converged, TerminationReason::Stalled, TerminationReason::MaxIterations,
+      TerminationReason::Cancelled, TerminationReason::NumericalFailure })
+  {
+    if (name == toString(reason))
+    {
+      return reason;
+    }
+  }
+  throw Error("unknown termination '" + name + "'");
+}
+
+vtkSmartPointer<vtkPolyData> pointCloud(const std::vector<Eigen::Vector3d>& points)
+{
+  vtkNew<vtkPoints> coordinates;
+  coordinates->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> vertices;
+  for (const Eigen::Vector3d& p : points)
+  {
+    const vtkIdType id = coordinates->InsertNextPoint(p.data());
+    vertices->InsertNextCell(1, &id);
+  }
+  auto polyData = vtkSmartPointer<vtkPolyData>::New();
+  polyData->SetPoints(coordinates);
+  polyData->SetVerts(vertices);
+  return polyData;
+}
+
+void writeTable(vtkTable* table, const fs::path& path)
+{
+  vtkNew<vtkXMLTableWriter> writer;
+  writer->SetFileName(path.string().c_str());
+  writer->SetInputData(table);
+  writer->SetDataModeToBinary();
+  if (writer->Write() != 1)
+  {
+    throw Error("'" + path.string() + "': cannot write the table");
+  }
+}
+
+vtkSmartPointer<vtkTable> readTable(const fs::path& path)
+{
+  if (!fs::exists(path))
+  {
+    throw Error("'" + path.string() + "': no such file");
+  }
+  vtkNew<vtkXMLTableReader> reader;
+  reader->SetFileName(path.string().c_str());
+  reader->Update();
+  vtkTable* table = reader->GetOutput();
+  if (!table || table->GetNumberOfColumns() == 0)
+  {
+    throw Error("'" + path.string() + "': not a readable VTK table");
+  }
+  return table;
+}
+
+/// A polydata file that may hold no points (no contours, no matches).
+vtkSmartPointer<vtkPolyData> readPossiblyEmpty(const fs::path& path)
+{
+  if (!fs::exists(path))
+  {
+    throw Error("'" + path.string() + "': no such file");
+  }
+  vtkNew<vtkXMLPolyDataReader> reader;
+  if (!reader->CanReadFile(path.string().c_str()))
+  {
+    throw Error("'" + path.string() + "': not a VTK XML polydata file");
+  }
+  reader->SetFileName(path.string().c_str());
+  reader->Update();
+  vtkSmartPointer<vtkPolyData> polyData = reader->GetOutput();
+  return polyData;
+}
+
+void writeTextAtomically(const std::string& text, const fs::path& path)
+{
+  const fs::path temporary = path.string() + ".part";
+  {
+    std::ofstream out(temporary);
+    out << text;
+    if (!out)
+    {
+      std::remove(temporary.string().c_str());
+      throw Error("'" + path.string() + "': cannot write the file");
+    }
+  }
+  std::error_code ec;
+  fs::rename(temporary, path, ec);
+  if (ec)
+  {
+    std::remove(temporary.string().c_str());
+    throw Error("'" + path.string() + "': cannot write the file (" + ec.message() + ")");
+  }
+}
+
+} // namespace
+
+const char* resultFormatName()
+{
+  return "vimlop-result";
+}
+
+int resultFormatVersion()
+{
+  return 1;
+}
+
+RegistrationMethod registrationMethodFromString(const std::string& name)
+{
+  for (RegistrationMethod method :
+    { RegistrationMethod::VIMLOP, RegistrationMethod::IMLP, RegistrationMethod::TrimmedICP })
+  {
+    if (name == toString(method))
+    {
+      return method;
+    }
+  }
+  throw Error("unknown registration method '" + name + "' (expected vimlop, imlp or trimmed-icp)");
+}
+
+void writeRegistrationRecord(const RegistrationRecord& record, const std::string& folder)
+{
+  const fs::path dir(folder);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir))
+  {
+    throw Error("'" + folder + "': cannot create the folder");
+  }
+  const RegistrationResult& result = record.result;
+  writePolyData(toPolyData(record.model), (dir / "model.vtp").string());
+  writePolyData(makeSfmPointPolyData(record.data), (dir / "sfm-points.vtp").string());
+  writeTable(makeFrameTable(record.data.frames), dir / "frame-table.vtt");
+  writePolyData(makeContourPolyData(record.data.frames), (dir / "video-contours.vtp").string());
+  writePolyData(
+    makeRegisteredPointPolyData(record.data, result), (dir / "registered-points.vtp").string());
+  writeTable(makeFrameResultTable(result), dir / "camera-poses.vtt");
+  writePolyData(makeCorrespondencePolyData(result), (dir / "correspondences.vtp").string());
+
+  json files = { { "model", "model.vtp" }, { "sfm_points", "sfm-points.vtp" },
+    { "frame_table", "frame-table.vtt" }, { "video_contours", "video-contours.vtp" },
+    { "registered_points", "registered-points.vtp" }, { "camera_poses", "camera-poses.vtt" },
+    { "correspondences", "correspondences.vtp" } };
+
+  json frames = json::array();
+  for (size_t j = 0; j < record.data.frames.size(); ++j)
+  {
+    const VideoFrame& frame = record.data.frames[j];
+    const PinholeCamera& k = frame.intrinsics;
+    json f = { { "id", frame.frameId },
+      { "intrinsics",
+        { { "fx", k.fx }, { "fy", k.fy }, { "cx", k.cx }, { "cy", k.cy }, { "width_px", k.widthPx },
+          { "height_px", k.heightPx } } },
+      { "camera_to_sfm", matrixJson(frame.cameraToSfm.matrix()) } };
+    if (j < result.frames.size())
+    {
+      const FrameResult& r = result.frames[j];
+      f["camera_to_ct"] = matrixJson(r.cameraToCT.matrix());
+      f["contour_points"] = r.contourPoints;
+      f["matched"] = r.matched;
+      f["inliers"] = r.inliers;
+      f["contour_error_px"] = r.contourErrorPx;
+      f["contour_error_inliers_px"] = r.contourErrorInliersPx;
+      f["visible_model_samples"] = r.visibleModelSamples;
+    }
+    const bool hasImage = j < record.frameImages.size() && !record.frameImages[j].empty();
+    f["image"] = hasImage ? json(record.frameImages[j]) : json(nullptr);
+    frames.push_back(f);
+  }
+
+  int inliers = 0;
+  for (char in : result.pointInliers)
+  {
+    inliers += in != 0;
+  }
+  json summary = { { "format", resultFormatName() }, { "version", resultFormatVersion() },
+    { "vimlop_version", VIMLOP_VERSION }, { "source", record.source },
+    { "method", toString(record.options.method) }, { "parameters", optionsJson(record.options) },
+    { "initial_transform", transformJson(record.initialSfmToCT) },
+    { "transform", transformJson(result.sfmToCT) }, { "termination", toString(result.termination) },
+    { "iterations", result.iterations }, { "runtime_s", result.runtimeSeconds },
+    { "residual_error_mm", result.residualErrorMm }, { "contour_error_px", result.contourErrorPx },
+    { "contour_error_inliers_px", result.contourErrorInliersPx },
+    { "points", { { "count", record.data.points.size() }, { "inliers", inliers } } },
+    { "frames", frames }, { "history", historyJson(result.history) } };
+
+  if (record.truth)
+  {
+    const RegistrationRecord::GroundTruth& truth = *record.truth;
+    json cameras = json::array();
+    json positionErrors = json::array();
+    json angleErrors = json::array();
+    for (size_t j = 0; j < truth.camerasCT.size(); ++j)
+    {
+      cameras.push_back(matrixJson(truth.camerasCT[j].matrix()));
+      if (j < result.frames.size())
+      {
+        positionErrors.push_back(
+          cameraPositionError(result.frames[j].cameraToCT, truth.camerasCT[j]));
+        angleErrors.push_back(cameraAngleErrorDeg(result.frames[j].cameraToCT, truth.camerasCT[j]));
+      }
+    }
+    json gt = { { "transform", transformJson(truth.sfmToCT) }, { "cameras_ct", cameras },
+      { "camera_position_error_mm", positionErrors }, { "camera_angle_error_deg", angleErrors } };
+    if (!truth.targetsCT.empty())
+    {
+      writePolyData(pointCloud(truth.targetsCT), (dir / "targets.vtp").string());
+      gt["targets_file"] = "targets.vtp";
+      gt["tre_mm"] = targetRegistrationError(result.sfmToCT, truth.sfmToCT, truth.targetsCT);
+      files["targets"] = "targets.vtp";
+    }
+    summary["ground_truth"] = gt;
+  }
+  summary["files"] = files;
+  writeTextAtomically(summary.dump(2) + "\n", dir / "result.json");
+}
+
+RegistrationRecord readRegistrationRecord(const std::string& folder)
+{
+  const fs::path dir(folder);
+  if (fs::exists(dir) && !fs::is_directory(dir))
+  {
+    throw Error("'" + folder + "': not a folder (a result folder is expected)");
+  }
+  if (!fs::is_directory(dir))
+  {
+    throw Error("'" + folder + "': no such folder");
+  }
+  const fs::path jsonPath = dir / "result.json";
+  if (!fs::exists(jsonPath))
+  {
+    throw Error("'" + folder + "': not a VIMLOP result folder (no result.json)");
+  }
+  json j;
+  {
+    std::ifstream in(jsonPath);
+    try
+    {
+      in >> j;
+    }
+    catch (const json::exception& e)
+    {
+      throw Error("'" + jsonPath.string() + "': not valid JSON (" + e.what() + ")");
+    }
+  }
+  if (j.value("format", std::string()) != resultFormatName())
+  {
+    throw Error("'" + jsonPath.string() + "': not a VIMLOP result (format is not '" +
+      resultFormatName() + "')");
+  }
+  if (j.value("version", 0) > resultFormatVersion())
+  {
+    throw Error("'" + jsonPath.string() + "': format version " +
+      std::to_string(j.value("version", 0)) + " is newer than this program reads (" +
+      std::to_string(resultFormatVersion()) + ")");
+  }
+
+  RegistrationRecord record;
+  try
+  {
+    record.source = j.value("source", std::string());
+    record.model = toModelMesh(readPolyData((dir / "model.vtp").string()), nullptr);
+    vtkSmartPointer<vtkTable> frameTable = readTable(dir / "frame-table.vtt");
+    record.data = toRegistrationData(readPolyData((dir / "sfm-points.vtp").string()), frameTable,
+      readPossiblyEmpty(dir / "video-contours.vtp"), 1.0);
+    record.options = optionsFrom(j.at("parameters"));
+    record.initialSfmToCT = transformFrom(j.at("initial_transform"), "initial_transform");
+
+    RegistrationResult& result = record.result;
+    result.sfmToCT = transformFrom(j.at("transform"), "transform");
+    result.termination = terminationFrom(j.at("termination").get<std::string>());
+    result.iterations = j.value("iterations", 0);
+    result.runtimeSeconds = j.value("runtime_s", 0.0);
+    result.residualErrorMm = j.value("residual_error_mm", 0.0);
+    result.contourErrorPx = j.value("contour_error_px", 0.0);
+    result.contourErrorInliersPx = j.value("contour_error_inliers_px", 0.0);
+    result.history = historyFrom(j.at("history"));
+    const json& frames = j.at("frames");
+    if (frames.size() != record.data.frames.size())
+    {
+      throw Error("result.json lists " + std::to_string(frames.size()) +
+        " frames but the frame table has " + std::to_string(record.data.frames.size()));
+    }
+    for (size_t f = 0; f < frames.size(); ++f)
+    {
+      const json& fj = frames[f];
+      const std::string image = fj.contains("image") && fj.at("image").is_string()
+        ? fj.at("image").get<std::string>()
+        : std::string();
+      record.frameImages.push_back(image);
+      if (!fj.contains("camera_to_ct"))
+      {
+        continue;
+      }
+      FrameResult r;
+      r.frameId = fj.at("id").get<int>();
+      r.cameraToCT = CameraPose::fromMatrix(
+        Eigen::Matrix4d(matrixFrom(fj.at("camera_to_ct"), 4, "camera_to_ct")));
+      r.contourPoints = fj.value("contour_points", 0);
+      r.matched = fj.value("matched", 0);
+      r.inliers = fj.value("inliers", 0);
+      r.contourErrorPx = fj.value("contour_error_px", 0.0);
+      r.contourErrorInliersPx = fj.value("contour_error_inliers_px", 0.0);
+      r.visibleModelSamples = fj.value("visible_model_samples", 0);
+      result.frames.push_back(std::move(r));
+    }
+    readRegisteredPoints(readPolyData((dir / "registered-points.vtp").string()),
+      static_cast<int>(record.data.points.size()), result);
+    readCorrespondences(readPossiblyEmpty(dir / "correspondences.vtp"), result);
+
+    if (j.contains("ground_truth"))
+    {
+      const json& gt = j.at("ground_truth");
+      RegistrationRecord::GroundTruth truth;
+      truth.sfmToCT = transformFrom(gt.at("transform"), "ground_truth.transform");
+      for (const json& camera : gt.at("cameras_ct"))
+      {
+        truth.camerasCT.push_back(CameraPose::fromMatrix(
+          Eigen::Matrix4d(matrixFrom(camera, 4, "ground_truth.cameras_ct"))));
+      }
+      if (gt.contains("targets_file"))
+      {
+        vtkSmartPointer<vtkPolyData> targets =
+          readPolyData((dir / gt.at("targets_file").get<std::string>()).string());
+        for (vtkIdType i = 0; i < targets->GetNumberOfPoints(); ++i)
+        {
+          Eigen::Vector3d p;
+          targets->GetPoint(i, p.data());
+          truth.targetsCT.push_back(p);
+        }
+      }
+      record.truth = std::move(truth);
+    }
+  }
+  catch (const json::exception& e)
+  {
+    throw Error("'" + jsonPath.string() + "': " + e.what());
+  }
+  catch (const Error& e)
+  {
+    const std::string message = e.what();
+    // File errors already name their file; others are about this folder.
+    throw Error(message.rfind("'", 0) == 0 ? message : "'" + folder + "': " + message);
+  }
+  return record;
+}
+
+} // namespace vimlop

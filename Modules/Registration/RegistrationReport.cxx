@@ -1,0 +1,589 @@
+#include "RegistrationReport.h"
+
+#include "ContourMatcher.h"
+#include "ContourOverlay.h"
+#include "EmbreeRegistrationModel.h"
+#include "Error.h"
+#include "KdTree2D.h"
+#include "OccludingContours.h"
+#include "PNGImageIO.h"
+#include "RecordJson.h"
+#include "RegistrationMetrics.h"
+#include "RegistrationRecordIO.h"
+#include "RegistrationScene.h"
+#include "ReportCharts.h"
+#include "Statistics.h"
+#include "vtkVIMLOPSilhouetteRenderer.h"
+
+#include <vtkImageData.h>
+#include <vtkNew.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace vimlop
+{
+
+namespace
+{
+
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+
+const std::array<unsigned char, 3> blue = { 31, 119, 180 };
+const std::array<unsigned char, 3> orange = { 255, 127, 14 };
+const std::array<unsigned char, 3> green = { 44, 160, 44 };
+const std::array<unsigned char, 3> red = { 214, 39, 40 };
+const std::array<unsigned char, 3> purple = { 148, 103, 189 };
+
+struct ContourMeasure
+{
+  double meanPx = 0.0;
+  int matched = 0;
+};
+
+/// V3-V5 at one camera: the mean distance of the matched video contour points.
+ContourMeasure measureContours(const RegistrationModel& model, const VideoFrame& frame,
+  const CameraPose& camera, const RegistrationOptions& options)
+{
+  OccludingContourOptions contourOptions;
+  contourOptions.sampleSpacingPx = options.contourSampleSpacingPx;
+  const std::vector<ModelContourPoint> samples =
+    extractOccludingContours(model.mesh(), frame.intrinsics, camera, contourOptions);
+  std::vector<Eigen::Vector3d> points;
+  for (const ModelContourPoint& s : samples)
+  {
+    points.push_back(s.point);
+  }
+  std::vector<char> visible;
+  model.visibility().classify(frame.intrinsics, camera, points, visible);
+  std::vector<ModelContourPoint> seen;
+  std::vector<Eigen::Vector2d> pixels;
+  for (size_t i = 0; i < samples.size(); ++i)
+  {
+    if (visible[i])
+    {
+      seen.push_back(samples[i]);
+      pixels.push_back(samples[i].pixel);
+    }
+  }
+  const KdTree2D tree(std::move(pixels));
+  ContourMeasure measure;
+  double sum = 0.0;
+  for (const ContourMatch& m : matchContours(frame.contour, seen, tree, options.contourMatch))
+  {
+    if (m.model >= 0)
+    {
+      sum += m.errorPx.norm();
+      ++measure.matched;
+    }
+  }
+  measure.meanPx = measure.matched ? sum / measure.matched : 0.0;
+  return measure;
+}
+
+std::string escapeHtml(const std::string& text)
+{
+  std::string out;
+  for (char c : text)
+  {
+    switch (c)
+    {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string number(double value, int decimals = 3)
+{
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+std::string jsonValueText(const json& value)
+{
+  if (value.is_number_float())
+  {
+    std::ostringstream s;
+    s << value.get<double>();
+    return s.str();
+  }
+  return value.is_string() ? value.get<std::string>() : value.dump();
+}
+
+/// Frames to draw: all, or `limit` spread evenly (first and last included).
+std::vector<size_t> chooseFrames(size_t count, int limit)
+{
+  std::vector<size_t> chosen;
+  if (limit <= 0 || static_cast<size_t>(limit) >= count)
+  {
+    for (size_t j = 0; j < count; ++j)
+    {
+      chosen.push_back(j);
+    }
+    return chosen;
+  }
+  for (int k = 0; k < limit; ++k)
+  {
+    const size_t j = limit == 1 ? 0 : (k * (count - 1)) / static_cast<size_t>(limit - 1);
+    if (chosen.empty() || chosen.back() != j)
+    {
+      chosen.push_back(j);
+    }
+  }
+  return chosen;
+}
+
+std::vector<double> positive(std::vector<double> values, std::vector<double>& x)
+{
+  std::vector<double> keptX;
+  std::vector<double> keptY;
+  for (size_t i = 0; i < values.size(); ++i)
+  {
+    if (values[i] > 0.0 && std::isfinite(values[i]))
+    {
+      keptX.push_back(x[i]);
+      keptY.push_back(values[i]);
+    }
+  }
+  x = keptX;
+  return keptY;
+}
+
+ChartSpec::Series series(const std::string& name, std::vector<double> x, std::vector<double> y,
+  const std::array<unsigned char, 3>& colour, bool points = false)
+{
+  ChartSpec::Series s;
+  s.name = name;
+  s.x = std::move(x);
+  s.y = std::move(y);
+  s.colour = colour;
+  s.points = points;
+  return s;
+}
+
+vtkSmartPointer<vtkImageData> iterationCharts(
+  const RegistrationRecord& record, const RegistrationReport::Options& options)
+{
+  const std::vector<IterationRecord>& history = record.result.history;
+  std::vector<double> iteration;
+  std::vector<double> cost;
+  std::vector<double> residual;
+  std::vector<double> contourIteration;
+  std::vector<double> contour;
+  std::vector<double> tre;
+  std::vector<double> camera;
+  for (const IterationRecord& r : history)
+  {
+    iteration.push_back(r.iteration);
+    cost.push_back(r.cost);
+    residual.push_back(r.residualErrorMm);
+    if (r.withContours)
+    {
+      contourIteration.push_back(r.iteration);
+      contour.push_back(r.contourErrorPx);
+    }
+    if (record.truth)
+    {
+      if (!record.truth->targetsCT.empty())
+      {
+        tre.push_back(
+          targetRegistrationError(r.transform, record.truth->sfmToCT, record.truth->targetsCT));
+      }
+      double sum = 0.0;
+      const size_t n = std::min(record.truth->camerasCT.size(), record.data.frames.size());
+      for (size_t j = 0; j < n; ++j)
+      {
+        sum += cameraPositionError(
+          r.transform.apply(record.data.frames[j].cameraToSfm), record.truth->camerasCT[j]);
+      }
+      if (n > 0)
+      {
+        camera.push_back(sum / n);
+      }
+    }
+  }
+  ChartSpec costChart;
+  costChart.title = "Cost per iteration";
+  costChart.xTitle = "iteration";
+  costChart.yTitle = "cost (sum of C3d and C2d over inliers)";
+  costChart.logY = true;
+  std::vector<double> costX = iteration;
+  std::vector<double> costY = positive(cost, costX);
+  costChart.series.push_back(series("cost", costX, costY, blue));
+
+  ChartSpec errorChart;
+  errorChart.title = "Errors per iteration";
+  errorChart.xTitle = "iteration";
+  errorChart.yTitle = "error (mm; contour error in px)";
+  errorChart.series.push_back(series("residual (mm)", iteration, residual, blue));
+  if (!contour.empty())
+  {
+    errorChart.series.push_back(series("contour (px)", contourIteration, contour, orange));
+  }
+  if (!tre.empty())
+  {
+    errorChart.series.push_back(series("TRE (mm)", iteration, tre, green));
+  }
+  if (!camera.empty())
+  {
+    errorChart.series.push_back(series("camera position (mm)", iteration, camera, purple));
+  }
+  return renderCharts({ costChart, errorChart }, options.chartWidthPx, options.chartHeightPx);
+}
+
+vtkSmartPointer<vtkImageData> perturbationCharts(
+  const std::vector<PerturbationRun>& runs, const RegistrationReport::Options& options)
+{
+  std::vector<double> okOffset, okError, okContour, badOffset, badError, badContour;
+  for (const PerturbationRun& run : runs)
+  {
+    (run.success ? okOffset : badOffset).push_back(run.offsetMm);
+    (run.success ? okError : badError).push_back(run.finalErrorMm);
+    (run.success ? okContour : badContour).push_back(run.contourErrorPx);
+  }
+  ChartSpec error;
+  error.title = "Final error against initial offset";
+  error.xTitle = "initial offset (mm)";
+  error.yTitle = "final error (mm)";
+  ChartSpec contour;
+  contour.title = "Contour error against initial offset";
+  contour.xTitle = "initial offset (mm)";
+  contour.yTitle = "contour error (px)";
+  // Failures gather at large offsets and errors: the top left stays free.
+  error.legendLeft = true;
+  contour.legendLeft = true;
+  if (!okOffset.empty())
+  {
+    error.series.push_back(series("success", okOffset, okError, blue, true));
+    contour.series.push_back(series("success", okOffset, okContour, blue, true));
+  }
+  if (!badOffset.empty())
+  {
+    error.series.push_back(series("failure", badOffset, badError, red, true));
+    contour.series.push_back(series("failure", badOffset, badContour, red, true));
+  }
+  return renderCharts({ error, contour }, options.chartWidthPx, options.chartHeightPx);
+}
+
+json perturbationSummary(const std::vector<PerturbationRun>& runs)
+{
+  std::map<long, std::vector<const PerturbationRun*>> byOffset;
+  for (const PerturbationRun& run : runs)
+  {
+    byOffset[std::lround(run.offsetMm * 1000.0)].push_back(&run);
+  }
+  json offsets = json::array();
+  for (const auto& [key, group] : byOffset)
+  {
+    std::vector<double> errors, contours;
+    int successes = 0;
+    for (const PerturbationRun* run : group)
+    {
+      errors.push_back(run->finalErrorMm);
+      contours.push_back(run->contourErrorPx);
+      successes += run->success;
+    }
+    offsets.push_back({ { "offset_mm", key / 1000.0 }, { "offset_deg", group.front()->offsetDeg },
+      { "runs", group.size() }, { "success_rate", static_cast<double>(successes) / group.size() },
+      { "final_error_mm_median", summarize(errors).median },
+      { "contour_error_px_median", summarize(contours).median } });
+  }
+  return { { "runs", runs.size() }, { "offsets", offsets } };
+}
+
+void writeText(const std::string& text, const fs::path& path)
+{
+  std::ofstream out(path);
+  out << text;
+  if (!out)
+  {
+    throw Error("'" + path.string() + "': cannot write the file");
+  }
+}
+
+} // namespace
+
+RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
+  const std::string& resultFolder, const std::vector<PerturbationRun>& runs,
+  const std::string& outFolder, const Options& options)
+{
+  if (!record && runs.empty())
+  {
+    throw Error("report: nothing to report (no registration result and no perturbation runs)");
+  }
+  const fs::path out(outFolder);
+  std::error_code ec;
+  fs::create_directories(out / "overlays", ec);
+  if (!fs::is_directory(out / "overlays"))
+  {
+    throw Error("'" + outFolder + "': cannot create the folder");
+  }
+
+  RegistrationReport report;
+  json reportJson = { { "format", "vimlop-report" }, { "version", 1 } };
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\">\n"
+       << "<title>VIMLOP registration report</title>\n"
+       << "<style>body{font-family:sans-serif;margin:2em;max-width:1200px}"
+       << "table{border-collapse:collapse;margin:0.5em 0}"
+       << "td,th{border:1px solid #ccc;padding:0.2em 0.6em;text-align:right}"
+       << "th{background:#eee}td:first-child,th:first-child{text-align:left}"
+       << "img{max-width:100%;border:1px solid #888}</style>\n"
+       << "</head><body>\n<h1>VIMLOP registration report</h1>\n";
+
+  if (record)
+  {
+    const RegistrationResult& result = record->result;
+    const RegistrationModel model = makeEmbreeRegistrationModel(record->model);
+    vtkNew<vtkVIMLOPSilhouetteRenderer> silhouettes;
+    silhouettes->SetMesh(record->model);
+
+    // Per-frame overlays and contour errors, before and after.
+    const size_t frameCount = std::min(record->data.frames.size(), result.frames.size());
+    const std::vector<size_t> drawn = chooseFrames(frameCount, options.maxOverlayFrames);
+    json framesJson = json::array();
+    double sumBefore = 0.0;
+    double sumAfter = 0.0;
+    for (size_t j = 0; j < frameCount; ++j)
+    {
+      const VideoFrame& frame = record->data.frames[j];
+      const CameraPose before = record->initialSfmToCT.apply(frame.cameraToSfm);
+      const CameraPose after = result.frames[j].cameraToCT;
+      Frame f;
+      f.frameId = frame.frameId;
+      const ContourMeasure b = measureContours(model, frame, before, record->options);
+      const ContourMeasure a = measureContours(model, frame, after, record->options);
+      f.contourErrorBeforePx = b.meanPx;
+      f.matchedBefore = b.matched;
+      f.contourErrorAfterPx = a.meanPx;
+      f.matchedAfter = a.matched;
+      if (record->truth && j < record->truth->camerasCT.size())
+      {
+        f.cameraPositionErrorMm = cameraPositionError(after, record->truth->camerasCT[j]);
+        f.cameraAngleErrorDeg = cameraAngleErrorDeg(after, record->truth->camerasCT[j]);
+      }
+      if (std::find(drawn.begin(), drawn.end(), j) != drawn.end())
+      {
+        vtkSmartPointer<vtkImageData> picture;
+        if (j < record->frameImages.size() && !record->frameImages[j].empty())
+        {
+          picture = readPNG((fs::path(resultFolder) / record->frameImages[j]).string());
+        }
+        const int w = frame.intrinsics.widthPx;
+        const int h = frame.intrinsics.heightPx;
+        try
+        {
+          const auto left = composeContourOverlay(
+            w, h, picture, silhouettes->RenderContours(frame.intrinsics, before), frame.contour);
+          const auto right = composeContourOverlay(
+            w, h, picture, silhouettes->RenderContours(frame.intrinsics, after), frame.contour);
+          char name[64];
+          std::snprintf(name, sizeof name, "overlays/frame-%04d.png", frame.frameId);
+          writePNG(placeSideBySide({ left, right }, 4), (out / name).string());
+          f.overlay = name;
+          report.pictures.push_back(name);
+        }
+        catch (const Error& e)
+        {
+          throw Error("frame " + std::to_string(frame.frameId) + ": " + e.what());
+        }
+      }
+      sumBefore += f.contourErrorBeforePx;
+      sumAfter += f.contourErrorAfterPx;
+      json fj = { { "id", f.frameId }, { "contour_error_before_px", f.contourErrorBeforePx },
+        { "contour_error_after_px", f.contourErrorAfterPx }, { "matched_before", f.matchedBefore },
+        { "matched_after", f.matchedAfter },
+        { "registration_contour_error_px", result.frames[j].contourErrorPx },
+        { "registration_contour_inliers", result.frames[j].inliers },
+        { "overlay", f.overlay.empty() ? json(nullptr) : json(f.overlay) } };
+      if (f.cameraPositionErrorMm)
+      {
+        fj["camera_position_error_mm"] = *f.cameraPositionErrorMm;
+        fj["camera_angle_error_deg"] = *f.cameraAngleErrorDeg;
+      }
+      framesJson.push_back(fj);
+      report.frames.push_back(f);
+    }
+    if (frameCount > 0)
+    {
+      report.contourErrorBeforePx = sumBefore / frameCount;
+      report.contourErrorAfterPx = sumAfter / frameCount;
+    }
+    if (record->truth && !record->truth->targetsCT.empty())
+    {
+      report.treBeforeMm = targetRegistrationError(
+        record->initialSfmToCT, record->truth->sfmToCT, record->truth->targetsCT);
+      report.treAfterMm =
+        targetRegistrationError(result.sfmToCT, record->truth->sfmToCT, record->truth->targetsCT);
+    }
+
+    // The 3-D scene and the iteration plots.
+    std::vector<Eigen::Vector3d> registered;
+    for (const Eigen::Vector3d& x : record->data.points)
+    {
+      registered.push_back(result.sfmToCT.apply(x));
+    }
+    std::vector<CameraPose> cameras;
+    for (const FrameResult& fr : result.frames)
+    {
+      cameras.push_back(fr.cameraToCT);
+    }
+    const std::vector<CameraPose> trueCameras =
+      record->truth ? record->truth->camerasCT : std::vector<CameraPose>();
+    writePNG(renderRegistrationScene(record->model, registered, cameras, trueCameras,
+               options.sceneWidthPx, options.sceneHeightPx),
+      (out / "scene.png").string());
+    report.pictures.push_back("scene.png");
+    if (!result.history.empty())
+    {
+      writePNG(iterationCharts(*record, options), (out / "iterations.png").string());
+      report.pictures.push_back("iterations.png");
+    }
+
+    const Eigen::Vector3d& t = result.sfmToCT.translation;
+    json summary = { { "source", record->source }, { "method", toString(record->options.method) },
+      { "termination", toString(result.termination) }, { "iterations", result.iterations },
+      { "runtime_s", result.runtimeSeconds },
+      { "transform", recordjson::transformJson(result.sfmToCT) },
+      { "initial_transform", recordjson::transformJson(record->initialSfmToCT) },
+      { "residual_error_mm", result.residualErrorMm },
+      { "registration_contour_error_px", result.contourErrorPx },
+      { "contour_error_before_px", report.contourErrorBeforePx },
+      { "contour_error_after_px", report.contourErrorAfterPx },
+      { "points", record->data.points.size() }, { "frames", frameCount } };
+    if (report.treAfterMm)
+    {
+      summary["tre_before_mm"] = *report.treBeforeMm;
+      summary["tre_after_mm"] = *report.treAfterMm;
+    }
+    reportJson["registration"] = summary;
+    reportJson["frames"] = framesJson;
+    reportJson["parameters"] = recordjson::optionsJson(record->options);
+
+    html << "<p>" << escapeHtml(record->source) << "</p>\n<h2>Result</h2>\n<table>\n"
+         << "<tr><td>method</td><td>" << toString(record->options.method) << "</td></tr>\n"
+         << "<tr><td>termination</td><td>" << toString(result.termination) << " after "
+         << result.iterations << " iterations (" << number(result.runtimeSeconds, 2)
+         << " s)</td></tr>\n"
+         << "<tr><td>scale s</td><td>" << number(result.sfmToCT.scale, 5) << "</td></tr>\n"
+         << "<tr><td>rotation angle (deg)</td><td>"
+         << number(Eigen::AngleAxisd(result.sfmToCT.rotation).angle() * 180.0 / M_PI, 3)
+         << "</td></tr>\n"
+         << "<tr><td>translation t (mm)</td><td>(" << number(t.x(), 3) << ", " << number(t.y(), 3)
+         << ", " << number(t.z(), 3) << ")</td></tr>\n"
+         << "<tr><td>residual error (mm)</td><td>" << number(result.residualErrorMm)
+         << "</td></tr>\n"
+         << "<tr><td>contour error before / after (px)</td><td>"
+         << number(report.contourErrorBeforePx, 2) << " / " << number(report.contourErrorAfterPx, 2)
+         << "</td></tr>\n";
+    if (report.treAfterMm)
+    {
+      html << "<tr><td>TRE before / after (mm)</td><td>" << number(*report.treBeforeMm) << " / "
+           << number(*report.treAfterMm) << "</td></tr>\n";
+    }
+    html << "<tr><td>points (inliers)</td><td>" << record->data.points.size() << " ("
+         << std::count(result.pointInliers.begin(), result.pointInliers.end(), 1)
+         << ")</td></tr>\n</table>\n";
+    html << "<h2>Frames</h2>\n<p>Model contours in green, video contours in white; before "
+            "registration on the left, after on the right.</p>\n<table>\n<tr><th>frame</th>"
+            "<th>contour error before (px)</th><th>after (px)</th><th>matched</th>";
+    if (record->truth)
+    {
+      html << "<th>camera error (mm)</th><th>(deg)</th>";
+    }
+    html << "</tr>\n";
+    for (const Frame& f : report.frames)
+    {
+      html << "<tr><td>" << f.frameId << "</td><td>" << number(f.contourErrorBeforePx, 2)
+           << "</td><td>" << number(f.contourErrorAfterPx, 2) << "</td><td>" << f.matchedAfter
+           << "</td>";
+      if (f.cameraPositionErrorMm)
+      {
+        html << "<td>" << number(*f.cameraPositionErrorMm) << "</td><td>"
+             << number(*f.cameraAngleErrorDeg) << "</td>";
+      }
+      html << "</tr>\n";
+    }
+    html << "</table>\n";
+    for (const Frame& f : report.frames)
+    {
+      if (!f.overlay.empty())
+      {
+        html << "<h3>Frame " << f.frameId << "</h3>\n<img src=\"" << f.overlay << "\" alt=\"frame "
+             << f.frameId << " before and after\">\n";
+      }
+    }
+    html << "<h2>3-D scene</h2>\n<p>Airway cut open; registered SfM points in red, registered "
+            "camera path in yellow"
+         << (record->truth ? ", true cameras in cyan" : "") << ".</p>\n"
+         << "<img src=\"scene.png\" alt=\"3-D scene\">\n";
+    if (!result.history.empty())
+    {
+      html << "<h2>Iterations</h2>\n<img src=\"iterations.png\" alt=\"cost and errors per "
+              "iteration\">\n";
+    }
+  }
+
+  if (!runs.empty())
+  {
+    writePNG(perturbationCharts(runs, options), (out / "perturbation.png").string());
+    report.pictures.push_back("perturbation.png");
+    const json summary = perturbationSummary(runs);
+    reportJson["perturbation"] = summary;
+    html << "<h2>Perturbation study</h2>\n<img src=\"perturbation.png\" alt=\"final and "
+            "contour error against initial offset\">\n<table>\n<tr><th>offset (mm)</th>"
+            "<th>offset (deg)</th><th>runs</th><th>success rate</th><th>final error median "
+            "(mm)</th><th>contour error median (px)</th></tr>\n";
+    for (const json& o : summary.at("offsets"))
+    {
+      html << "<tr><td>" << number(o.at("offset_mm").get<double>(), 2) << "</td><td>"
+           << number(o.at("offset_deg").get<double>(), 2) << "</td><td>" << o.at("runs")
+           << "</td><td>" << number(100.0 * o.at("success_rate").get<double>(), 0) << " %</td><td>"
+           << number(o.at("final_error_mm_median").get<double>()) << "</td><td>"
+           << number(o.at("contour_error_px_median").get<double>(), 2) << "</td></tr>\n";
+    }
+    html << "</table>\n";
+  }
+
+  if (record)
+  {
+    html << "<h2>Parameters</h2>\n<table>\n";
+    for (const auto& [key, value] : reportJson.at("parameters").items())
+    {
+      html << "<tr><td>" << escapeHtml(key) << "</td><td>" << escapeHtml(jsonValueText(value))
+           << "</td></tr>\n";
+    }
+    html << "</table>\n";
+  }
+  html << "<p>Numbers: <a href=\"report.json\">report.json</a>.</p>\n</body></html>\n";
+  reportJson["pictures"] = report.pictures;
+  writeText(reportJson.dump(2) + "\n", out / "report.json");
+  writeText(html.str(), out / "index.html");
+  return report;
+}
+
+} // namespace vimlop

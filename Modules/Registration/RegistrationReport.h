@@ -1,0 +1,91 @@
+#ifndef vimlop_RegistrationReport_h
+#define vimlop_RegistrationReport_h
+
+#include "PerturbationRuns.h"
+#include "RegistrationRecord.h"
+
+#include "VIMLOPRegistrationModule.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vimlop
+{
+
+/**
+ * @brief The rendered report of a registration (and of a perturbation study),
+ * as `vimlop report` writes it, and the numbers it holds.
+ *
+ * write() renders offscreen with VTK (needs an X display) into the output folder:
+ * - `overlays/frame-<id>.png`: per frame, the frame's picture with the
+ *   model's visible occluding contours in green (drawn by
+ *   vtkVIMLOPSilhouetteRenderer) and the video contour points in white,
+ *   before registration (cameras at the initial transform) on the left and
+ *   after on the right, as in the paper's Fig. 2;
+ * - `scene.png`: the model cut open, the registered points in red, the
+ *   camera path as arrows (and the true cameras in cyan) (Fig. 1b);
+ * - `iterations.png`: the cost per iteration (log scale) beside the errors
+ *   per iteration (residual mm, contour px, and with ground truth TRE and
+ *   mean camera position error, mm);
+ * - `perturbation.png` (with runs): final error and contour error against
+ *   the initial offset, successes in blue and failures in red (Fig. 3);
+ * - `report.json` (format "vimlop-report", version 1) with the numbers and
+ *   `index.html` tying pictures, metrics and parameters together.
+ * The contour errors before and after are measured the same way for both:
+ * the mean distance from each video contour point to its V5 match among the
+ * model's visible contour samples (Embree visibility), pixels.
+ */
+class VIMLOPREGISTRATION_EXPORT RegistrationReport
+{
+public:
+  /// @brief Picture sizes, pixels.
+  struct Options
+  {
+    int sceneWidthPx = 800;  ///< default 800
+    int sceneHeightPx = 600; ///< default 600
+    int chartWidthPx = 520;  ///< per chart (default 520)
+    int chartHeightPx = 380; ///< default 380
+    /// At most this many frames get an overlay, evenly spread (default 0: every frame).
+    int maxOverlayFrames = 0;
+  };
+
+  /// @brief The numbers of one frame.
+  struct Frame
+  {
+    int frameId = 0;
+    double contourErrorBeforePx = 0.0;
+    double contourErrorAfterPx = 0.0;
+    int matchedBefore = 0;
+    int matchedAfter = 0;
+    /// With ground truth: distance and angle of the registered camera from the true one.
+    std::optional<double> cameraPositionErrorMm;
+    std::optional<double> cameraAngleErrorDeg;
+    /// The overlay picture, relative to the report folder (empty when not drawn).
+    std::string overlay;
+  };
+
+  /**
+   * @brief Writes the report of `record` (null when only a perturbation study
+   * is reported) whose frame pictures are relative to `resultFolder`, and of
+   * `runs` (may be empty), into `outFolder` (created if needed).
+   * @throws vimlop::Error for nothing to report, a frame picture that cannot
+   * be read or does not fit its intrinsics, or a file that cannot be written.
+   */
+  static RegistrationReport write(const RegistrationRecord* record, const std::string& resultFolder,
+    const std::vector<PerturbationRun>& runs, const std::string& outFolder, const Options& options);
+
+  std::vector<Frame> frames;
+  /// Mean over frames of the contour errors, pixels (0 without frames).
+  double contourErrorBeforePx = 0.0;
+  double contourErrorAfterPx = 0.0;
+  /// With ground truth and targets: the TRE of the start and of the result, mm.
+  std::optional<double> treBeforeMm;
+  std::optional<double> treAfterMm;
+  /// Every picture written, relative to the report folder.
+  std::vector<std::string> pictures;
+};
+
+} // namespace vimlop
+
+#endif

@@ -1,0 +1,153 @@
+#include "Error.h"
+#include "PerturbationRuns.h"
+#include "RegistrationRecordIO.h"
+#include "ReportFixture.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace vimlop;
+
+namespace
+{
+
+std::string freshFolder(const std::string& name)
+{
+  const std::filesystem::path dir = std::filesystem::path(VIMLOP_TEST_OUTPUT_DIR) / name;
+  std::filesystem::remove_all(dir);
+  return dir.string();
+}
+
+void expectMessage(const std::function<void()>& action, const std::string& expected)
+{
+  try
+  {
+    action();
+    ADD_FAILURE() << "no error; expected: " << expected;
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(std::string(e.what()), expected);
+  }
+}
+
+} // namespace
+
+TEST(RegistrationRecordIO, RoundTripsEverything)
+{
+  const RegistrationRecord record = fixtures::makeReportRecord();
+  RegistrationRecord changed = record;
+  changed.options.maxScale = 1.25; // finite and infinite bounds both survive
+  changed.options.minScale = 0.8;
+  changed.options.contourMatch.kappa = 150.0;
+  changed.options.method = RegistrationMethod::IMLP;
+  const std::string dir = freshFolder("record-round-trip");
+  writeRegistrationRecord(changed, dir);
+  for (const char* file :
+    { "result.json", "model.vtp", "sfm-points.vtp", "frame-table.vtt", "video-contours.vtp",
+      "registered-points.vtp", "camera-poses.vtt", "correspondences.vtp", "targets.vtp" })
+  {
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / file)) << file;
+  }
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(dir) / "result.json.part"));
+
+  const RegistrationRecord back = readRegistrationRecord(dir);
+  EXPECT_EQ(back.source, record.source);
+  EXPECT_EQ(back.model.numberOfFaces(), record.model.numberOfFaces());
+  EXPECT_LT((back.model.faceNormals()[7] - record.model.faceNormals()[7]).norm(), 1e-12);
+  ASSERT_EQ(back.data.points.size(), record.data.points.size());
+  EXPECT_LT((back.data.points[3] - record.data.points[3]).norm(), 1e-12);
+  EXPECT_LT((back.data.pointCovariances[3] - record.data.pointCovariances[3]).norm(), 1e-15);
+  ASSERT_EQ(back.data.frames.size(), record.data.frames.size());
+  for (size_t j = 0; j < record.data.frames.size(); ++j)
+  {
+    const VideoFrame& a = record.data.frames[j];
+    const VideoFrame& b = back.data.frames[j];
+    EXPECT_EQ(a.frameId, b.frameId);
+    EXPECT_EQ(a.intrinsics.widthPx, b.intrinsics.widthPx);
+    EXPECT_DOUBLE_EQ(a.intrinsics.cx, b.intrinsics.cx);
+    EXPECT_LT((a.cameraToSfm.matrix() - b.cameraToSfm.matrix()).norm(), 1e-12);
+    ASSERT_EQ(a.contour.size(), b.contour.size());
+    EXPECT_LT((a.contour.back().pixel - b.contour.back().pixel).norm(), 1e-12);
+    EXPECT_LT((a.contour.back().normal - b.contour.back().normal).norm(), 1e-12);
+  }
+  EXPECT_EQ(back.options.method, RegistrationMethod::IMLP);
+  EXPECT_DOUBLE_EQ(back.options.maxScale, 1.25);
+  EXPECT_DOUBLE_EQ(back.options.contourMatch.kappa, 150.0);
+  EXPECT_NEAR(
+    back.options.contourMatch.maxAngleRad, record.options.contourMatch.maxAngleRad, 1e-15);
+  EXPECT_LT((back.initialSfmToCT.matrix() - record.initialSfmToCT.matrix()).norm(), 1e-12);
+
+  const RegistrationResult& a = record.result;
+  const RegistrationResult& b = back.result;
+  EXPECT_LT((a.sfmToCT.matrix() - b.sfmToCT.matrix()).norm(), 1e-12);
+  EXPECT_EQ(b.termination, TerminationReason::Converged);
+  EXPECT_EQ(b.iterations, 8);
+  ASSERT_EQ(b.history.size(), a.history.size());
+  EXPECT_EQ(b.history[4].withContours, true);
+  EXPECT_DOUBLE_EQ(b.history[4].cost, a.history[4].cost);
+  EXPECT_DOUBLE_EQ(b.history[4].contourErrorPx, a.history[4].contourErrorPx);
+  EXPECT_LT((b.history[4].transform.matrix() - a.history[4].transform.matrix()).norm(), 1e-12);
+  EXPECT_EQ(b.pointInliers, a.pointInliers);
+  EXPECT_LT((b.pointMatches[9] - a.pointMatches[9]).norm(), 1e-12);
+  ASSERT_EQ(b.frames.size(), a.frames.size());
+  EXPECT_EQ(b.frames[1].inliers, a.frames[1].inliers);
+  EXPECT_LT((b.frames[1].cameraToCT.matrix() - a.frames[1].cameraToCT.matrix()).norm(), 1e-12);
+  ASSERT_EQ(b.frames[1].correspondences.size(), 3u);
+  EXPECT_FALSE(b.frames[1].correspondences[1].inlier);
+  EXPECT_LT(
+    (b.frames[1].correspondences[2].modelPixel - a.frames[1].correspondences[2].modelPixel).norm(),
+    1e-12);
+  ASSERT_TRUE(back.truth.has_value());
+  EXPECT_EQ(back.truth->targetsCT.size(), record.truth->targetsCT.size());
+  EXPECT_EQ(back.truth->camerasCT.size(), record.truth->camerasCT.size());
+  EXPECT_EQ(back.frameImages, std::vector<std::string>(3, std::string()));
+}
+
+TEST(RegistrationRecordIO, ReportsFoldersThatAreNotResults)
+{
+  expectMessage(
+    [] { readRegistrationRecord("no-such-folder"); }, "'no-such-folder': no such folder");
+  const std::string empty = freshFolder("record-empty");
+  std::filesystem::create_directories(empty);
+  expectMessage([&] { readRegistrationRecord(empty); },
+    "'" + empty + "': not a VIMLOP result folder (no result.json)");
+
+  const std::string other = freshFolder("record-other");
+  std::filesystem::create_directories(other);
+  std::ofstream(other + "/result.json") << "{\"format\": \"something-else\"}\n";
+  expectMessage([&] { readRegistrationRecord(other); },
+    "'" + other + "/result.json': not a VIMLOP result (format is not 'vimlop-result')");
+
+  std::ofstream(other + "/result.json") << "{\"format\": \"vimlop-result\", \"version\": 99}\n";
+  expectMessage([&] { readRegistrationRecord(other); },
+    "'" + other + "/result.json': format version 99 is newer than this program reads (1)");
+
+  // A result folder that lost a file names the file.
+  const std::string partial = freshFolder("record-partial");
+  writeRegistrationRecord(fixtures::makeReportRecord(), partial);
+  std::filesystem::remove(partial + "/registered-points.vtp");
+  expectMessage([&] { readRegistrationRecord(partial); },
+    "'" + partial + "/registered-points.vtp': no such file");
+}
+
+TEST(PerturbationRuns, RoundTripAndBadInput)
+{
+  const std::string dir = freshFolder("perturbation-runs");
+  std::filesystem::create_directories(dir);
+  const std::vector<PerturbationRun> runs = { { 2.0, 2.0, 0.3, 1.1, true },
+    { 8.0, 8.0, 6.5, 9.0, false } };
+  writePerturbationRuns(runs, dir + "/runs.json");
+  const std::vector<PerturbationRun> back = readPerturbationRuns(dir + "/runs.json");
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_DOUBLE_EQ(back[1].finalErrorMm, 6.5);
+  EXPECT_FALSE(back[1].success);
+  std::ofstream(dir + "/bad.json") << "{\"runs\": [{\"offset_mm\": 1}]}\n";
+  expectMessage([&] { readPerturbationRuns(dir + "/bad.json"); },
+    "'" + dir + "/bad.json': run 0 needs numbers offset_mm, final_error_mm and contour_error_px");
+  std::ofstream(dir + "/none.json") << "{\"offsets\": []}\n";
+  expectMessage([&] { readPerturbationRuns(dir + "/none.json"); },
+    "'" + dir + "/none.json': no \"runs\" list (a perturbation study lists its runs)");
+}

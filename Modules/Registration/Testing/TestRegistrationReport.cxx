@@ -1,0 +1,266 @@
+// The report's pictures against baseline images (VTK's image comparison,
+// vtkImageDifference), and a proof that the comparison catches a wrong overlay.
+//
+// Baselines live in Testing/Data/Baseline. When a picture changes on
+// purpose, run the test with VIMLOP_UPDATE_BASELINES=1 in the environment:
+// it then writes the new pictures there (check them before committing).
+
+#include "ContourOverlay.h"
+#include "Error.h"
+#include "PNGImageIO.h"
+#include "RegistrationRecordIO.h"
+#include "RegistrationReport.h"
+#include "ReportFixture.h"
+#include "vtkVIMLOPSilhouetteRenderer.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkImageData.h>
+#include <vtkImageDifference.h>
+#include <vtkNew.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace vimlop;
+
+namespace
+{
+
+namespace fs = std::filesystem;
+
+/**
+ * The comparison: VTK's vtkImageDifference without its allowances for
+ * rendering differences between machines (a shift of up to two pixels and
+ * 3 x 3 averaging), which forgive a one-pixel contour line moved by three
+ * pixels entirely. A pixel counts when its colour differs by more than
+ * `pixelThreshold` (sum over R, G, B); the picture fails when the thresholded
+ * error exceeds `maxError`. Identical renderings (Mesa llvmpipe, no
+ * anti-aliasing) give 0; the model contours of one overlay moved by one pixel
+ * give about 170, by three pixels about 240.
+ */
+constexpr int pixelThreshold = 16;
+constexpr double maxError = 25.0;
+
+std::string freshFolder(const std::string& name)
+{
+  const fs::path dir = fs::path(VIMLOP_TEST_OUTPUT_DIR) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+struct Comparison
+{
+  bool passed = false;
+  double error = 0.0;
+  std::string log;
+};
+
+Comparison compareWithBaseline(vtkImageData* image, const std::string& name)
+{
+  const std::string baseline = std::string(VIMLOP_TEST_DATA_DIR) + "/Baseline/" + name;
+  const char* update = std::getenv("VIMLOP_UPDATE_BASELINES");
+  if (update && std::strcmp(update, "1") == 0)
+  {
+    writePNG(image, baseline);
+  }
+  Comparison c;
+  vtkSmartPointer<vtkImageData> expected;
+  try
+  {
+    expected = readPNG(baseline);
+  }
+  catch (const Error& e)
+  {
+    c.log = e.what();
+    return c;
+  }
+  int a[3], b[3];
+  image->GetDimensions(a);
+  expected->GetDimensions(b);
+  if (a[0] != b[0] || a[1] != b[1])
+  {
+    c.log = "the picture is " + std::to_string(a[0]) + " x " + std::to_string(a[1]) +
+      " pixels, the baseline " + std::to_string(b[0]) + " x " + std::to_string(b[1]);
+    return c;
+  }
+  vtkNew<vtkImageDifference> difference;
+  difference->SetInputData(image);
+  difference->SetImageData(expected);
+  difference->AllowShiftOff();
+  difference->AveragingOff();
+  difference->SetThreshold(pixelThreshold);
+  difference->Update();
+  c.error = difference->GetThresholdedError();
+  c.passed = c.error <= maxError;
+  if (!c.passed)
+  {
+    // What was drawn and where it differs, for a look.
+    const std::string stem =
+      std::string(VIMLOP_TEST_OUTPUT_DIR) + "/" + name.substr(0, name.size() - 4);
+    writePNG(image, stem + "-test.png");
+    writePNG(difference->GetOutput(), stem + "-difference.png");
+    c.log = "thresholded error " + std::to_string(c.error) + " > " + std::to_string(maxError) +
+      "; see " + stem + "-test.png and -difference.png";
+  }
+  return c;
+}
+
+Comparison compareFileWithBaseline(const std::string& path, const std::string& name)
+{
+  return compareWithBaseline(readPNG(path), name);
+}
+
+std::vector<PerturbationRun> makeRuns()
+{
+  // Offsets 0..10 mm, three runs each; errors grow with the offset and the
+  // last offsets fail, with a contour error that says so.
+  std::vector<PerturbationRun> runs;
+  for (int offset = 0; offset <= 10; offset += 2)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      PerturbationRun run;
+      run.offsetMm = offset;
+      run.offsetDeg = offset;
+      run.success = offset < 8 || (offset == 8 && k == 0);
+      run.finalErrorMm = run.success ? 0.2 + 0.03 * offset + 0.05 * k : 3.0 + 0.4 * offset + k;
+      run.contourErrorPx = run.success ? 1.0 + 0.1 * k + 0.02 * offset : 6.0 + 0.5 * offset + k;
+      runs.push_back(run);
+    }
+  }
+  return runs;
+}
+
+RegistrationReport::Options smallPictures()
+{
+  RegistrationReport::Options options;
+  options.sceneWidthPx = 320;
+  options.sceneHeightPx = 240;
+  options.chartWidthPx = 320;
+  options.chartHeightPx = 240;
+  options.maxOverlayFrames = 1;
+  return options;
+}
+
+} // namespace
+
+TEST(RegistrationReport, WritesEveryPictureAsInTheBaselines)
+{
+  const std::string result = freshFolder("report-fixture-result");
+  writeRegistrationRecord(fixtures::makeReportRecord(result), result);
+  const RegistrationRecord record = readRegistrationRecord(result);
+  const std::string out = freshFolder("report-fixture");
+  const RegistrationReport report =
+    RegistrationReport::write(&record, result, makeRuns(), out, smallPictures());
+
+  // Numbers: the made-up result is better than its start, as it should be.
+  ASSERT_EQ(report.frames.size(), 3u);
+  EXPECT_LT(report.contourErrorAfterPx, 0.5 * report.contourErrorBeforePx);
+  ASSERT_TRUE(report.treAfterMm.has_value());
+  EXPECT_LT(*report.treAfterMm, 0.3);
+  EXPECT_GT(*report.treBeforeMm, 1.0);
+  EXPECT_FALSE(report.frames[0].overlay.empty());
+  EXPECT_TRUE(report.frames[1].overlay.empty()); // one overlay asked for
+  ASSERT_TRUE(report.frames[0].cameraPositionErrorMm.has_value());
+
+  // Files.
+  for (const char* file :
+    { "index.html", "report.json", "scene.png", "iterations.png", "perturbation.png" })
+  {
+    EXPECT_TRUE(fs::exists(fs::path(out) / file)) << file;
+  }
+  nlohmann::json j;
+  std::ifstream(fs::path(out) / "report.json") >> j;
+  EXPECT_EQ(j.at("format"), "vimlop-report");
+  EXPECT_EQ(j.at("frames").size(), 3u);
+  EXPECT_NEAR(j.at("registration").at("tre_after_mm").get<double>(), *report.treAfterMm, 1e-12);
+  EXPECT_EQ(j.at("perturbation").at("offsets").size(), 6u);
+  EXPECT_DOUBLE_EQ(
+    j.at("perturbation").at("offsets")[4].at("success_rate").get<double>(), 1.0 / 3.0);
+  EXPECT_EQ(j.at("parameters").at("method"), "vimlop");
+  std::stringstream html;
+  html << std::ifstream(fs::path(out) / "index.html").rdbuf();
+  for (const std::string& picture : report.pictures)
+  {
+    EXPECT_NE(html.str().find("src=\"" + picture + "\""), std::string::npos) << picture;
+  }
+  EXPECT_NE(html.str().find("TRE before / after (mm)"), std::string::npos);
+  EXPECT_NE(html.str().find("contour_kappa"), std::string::npos);
+
+  // Pictures.
+  const std::pair<std::string, std::string> pictures[] = {
+    { report.frames[0].overlay, "report-overlay.png" }, { "scene.png", "report-scene.png" },
+    { "iterations.png", "report-iterations.png" }, { "perturbation.png", "report-perturbation.png" }
+  };
+  for (const auto& [file, baseline] : pictures)
+  {
+    const Comparison c = compareFileWithBaseline((fs::path(out) / file).string(), baseline);
+    EXPECT_TRUE(c.passed) << file << " differs from " << baseline << " (error " << c.error << "):\n"
+                          << c.log;
+  }
+}
+
+TEST(RegistrationReport, TheBaselineComparisonFailsOnAShiftedOverlay)
+{
+  // The overlay of the first test, composed again: as is it passes; with the
+  // model contours of the right half moved 3 pixels it must fail.
+  const std::string result = freshFolder("report-shift-result");
+  const RegistrationRecord record = fixtures::makeReportRecord(result);
+  const VideoFrame& frame = record.data.frames.front();
+  vtkSmartPointer<vtkImageData> picture = readPNG(result + "/" + record.frameImages.front());
+  vtkNew<vtkVIMLOPSilhouetteRenderer> silhouettes;
+  silhouettes->SetMesh(record.model);
+  const int w = frame.intrinsics.widthPx;
+  const int h = frame.intrinsics.heightPx;
+  const auto before =
+    silhouettes->RenderContours(frame.intrinsics, record.initialSfmToCT.apply(frame.cameraToSfm));
+  const auto after =
+    silhouettes->RenderContours(frame.intrinsics, record.result.frames[0].cameraToCT);
+  const auto left = composeContourOverlay(w, h, picture, before, frame.contour);
+
+  const Comparison same = compareWithBaseline(
+    placeSideBySide({ left, composeContourOverlay(w, h, picture, after, frame.contour) }, 4),
+    "report-overlay.png");
+  EXPECT_TRUE(same.passed) << same.log;
+
+  auto shifted = vtkSmartPointer<vtkImageData>::New();
+  shifted->DeepCopy(after);
+  auto* in = static_cast<unsigned char*>(after->GetScalarPointer());
+  auto* out = static_cast<unsigned char*>(shifted->GetScalarPointer());
+  std::memset(out, 0, static_cast<size_t>(w) * h);
+  const int shiftPx = 3;
+  for (int row = 0; row < h; ++row)
+  {
+    for (int u = 0; u + shiftPx < w; ++u)
+    {
+      out[row * w + u + shiftPx] = in[row * w + u];
+    }
+  }
+  const auto wrongImage =
+    placeSideBySide({ left, composeContourOverlay(w, h, picture, shifted, frame.contour) }, 4);
+  const Comparison wrong = compareWithBaseline(wrongImage, "report-overlay.png");
+  std::cout << "overlay vs baseline: error " << same.error << " as is, " << wrong.error
+            << " with the contours shifted by " << shiftPx << " px (limit " << maxError << ")\n";
+  EXPECT_FALSE(wrong.passed) << wrong.log;
+}
+
+TEST(RegistrationReport, ReportsNothingToReport)
+{
+  try
+  {
+    RegistrationReport::write(nullptr, "", {}, freshFolder("report-nothing"), {});
+    FAIL();
+  }
+  catch (const Error& e)
+  {
+    EXPECT_STREQ(
+      e.what(), "report: nothing to report (no registration result and no perturbation runs)");
+  }
+}

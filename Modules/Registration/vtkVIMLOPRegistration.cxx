@@ -1,0 +1,453 @@
+#include "vtkVIMLOPRegistration.h"
+
+#include "EmbreeRegistrationModel.h"
+#include "Error.h"
+#include "OffscreenRendering.h"
+#include "Registration.h"
+#include "RegistrationInputConversion.h"
+#include "RegistrationModel.h"
+#include "RegistrationOutputConversion.h"
+#include "vtkVIMLOPDepthVisibility.h"
+
+#include <vtkAlgorithmOutput.h>
+#include <vtkDemandDrivenPipeline.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkLinearTransform.h>
+#include <vtkMatrix4x4.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+#include <vtkTable.h>
+#include <vtkTransform.h>
+
+#include <cmath>
+#include <exception>
+
+vtkStandardNewMacro(vtkVIMLOPRegistration);
+
+namespace
+{
+
+const char* backendName(vtkVIMLOPRegistration::VisibilityBackend backend)
+{
+  return backend == vtkVIMLOPRegistration::VisibilityBackend::Embree ? "Embree" : "ZBuffer";
+}
+
+} // namespace
+
+vtkVIMLOPRegistration::vtkVIMLOPRegistration()
+{
+  this->SetNumberOfInputPorts(4);
+  this->SetNumberOfOutputPorts(3);
+}
+
+vtkVIMLOPRegistration::~vtkVIMLOPRegistration() = default;
+
+template <typename T>
+void vtkVIMLOPRegistration::SetOption(T& field, T value)
+{
+  if (field != value)
+  {
+    field = value;
+    this->Modified();
+  }
+}
+
+int vtkVIMLOPRegistration::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(
+    vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == FramesPort ? "vtkTable" : "vtkPolyData");
+  // Checked in RequestData, which can say what is missing and why.
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+int vtkVIMLOPRegistration::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == CameraPosesPort ? "vtkTable" : "vtkPolyData");
+  return 1;
+}
+
+vtkTypeBool vtkVIMLOPRegistration::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    return this->RequestData(request, inputs, outputs);
+  }
+  return this->Superclass::ProcessRequest(request, inputs, outputs);
+}
+
+void vtkVIMLOPRegistration::SetModelConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(ModelPort, output);
+}
+
+void vtkVIMLOPRegistration::SetModelData(vtkPolyData* surface)
+{
+  this->SetInputDataObject(ModelPort, surface);
+}
+
+void vtkVIMLOPRegistration::SetPointsConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(PointsPort, output);
+}
+
+void vtkVIMLOPRegistration::SetPointsData(vtkPolyData* points)
+{
+  this->SetInputDataObject(PointsPort, points);
+}
+
+void vtkVIMLOPRegistration::SetFramesConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(FramesPort, output);
+}
+
+void vtkVIMLOPRegistration::SetFramesData(vtkTable* frames)
+{
+  this->SetInputDataObject(FramesPort, frames);
+}
+
+void vtkVIMLOPRegistration::SetContoursConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(ContoursPort, output);
+}
+
+void vtkVIMLOPRegistration::SetContoursData(vtkPolyData* contours)
+{
+  this->SetInputDataObject(ContoursPort, contours);
+}
+
+vtkPolyData* vtkVIMLOPRegistration::GetRegisteredPoints()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(RegisteredPointsPort));
+}
+
+vtkTable* vtkVIMLOPRegistration::GetCameraPoses()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(CameraPosesPort));
+}
+
+vtkPolyData* vtkVIMLOPRegistration::GetCorrespondences()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(CorrespondencesPort));
+}
+
+vtkLinearTransform* vtkVIMLOPRegistration::GetTransform()
+{
+  return this->Transform;
+}
+
+void vtkVIMLOPRegistration::SetInitialTransform(vtkLinearTransform* transform)
+{
+  if (this->InitialTransform != transform)
+  {
+    this->InitialTransform = transform;
+    this->Modified();
+  }
+}
+
+vtkLinearTransform* vtkVIMLOPRegistration::GetInitialTransform()
+{
+  return this->InitialTransform;
+}
+
+vtkMTimeType vtkVIMLOPRegistration::GetMTime()
+{
+  vtkMTimeType time = this->Superclass::GetMTime();
+  if (this->InitialTransform)
+  {
+    time = std::max(time, this->InitialTransform->GetMTime());
+  }
+  return time;
+}
+
+void vtkVIMLOPRegistration::SetMethod(vimlop::RegistrationMethod method)
+{
+  this->SetOption(this->Options.method, method);
+}
+
+void vtkVIMLOPRegistration::SetVisibilityBackend(VisibilityBackend backend)
+{
+  this->SetOption(this->Backend, backend);
+}
+
+void vtkVIMLOPRegistration::SetContourPositionCovariancePx2(double uu, double uv, double vv)
+{
+  Eigen::Matrix2d c;
+  c << uu, uv, uv, vv;
+  if (c != this->Options.contourMatch.positionCovariancePx2)
+  {
+    this->Options.contourMatch.positionCovariancePx2 = c;
+    this->Modified();
+  }
+}
+
+void vtkVIMLOPRegistration::GetContourPositionCovariancePx2(double covariance[3]) const
+{
+  const Eigen::Matrix2d& c = this->Options.contourMatch.positionCovariancePx2;
+  covariance[0] = c(0, 0);
+  covariance[1] = c(0, 1);
+  covariance[2] = c(1, 1);
+}
+
+void vtkVIMLOPRegistration::SetContourKappa(double kappa)
+{
+  this->SetOption(this->Options.contourMatch.kappa, kappa);
+}
+
+void vtkVIMLOPRegistration::SetMaxContourNormalAngleDeg(double degrees)
+{
+  this->SetOption(this->Options.contourMatch.maxAngleRad, degrees * M_PI / 180.0);
+}
+
+double vtkVIMLOPRegistration::GetMaxContourNormalAngleDeg() const
+{
+  return this->Options.contourMatch.maxAngleRad * 180.0 / M_PI;
+}
+
+void vtkVIMLOPRegistration::SetContourSampleSpacingPx(double spacing)
+{
+  this->SetOption(this->Options.contourSampleSpacingPx, spacing);
+}
+
+void vtkVIMLOPRegistration::SetMinScale(double scale)
+{
+  this->SetOption(this->Options.minScale, scale);
+}
+
+void vtkVIMLOPRegistration::SetMaxScale(double scale)
+{
+  this->SetOption(this->Options.maxScale, scale);
+}
+
+void vtkVIMLOPRegistration::SetTrimFraction(double fraction)
+{
+  this->SetOption(this->Options.trimFraction, fraction);
+}
+
+void vtkVIMLOPRegistration::SetChiSquareProbability(double p)
+{
+  this->SetOption(this->Options.chiSquareProbability, p);
+}
+
+void vtkVIMLOPRegistration::SetMaxContourOutlierFraction(double fraction)
+{
+  this->SetOption(this->Options.maxContourOutlierFraction, fraction);
+}
+
+void vtkVIMLOPRegistration::SetEqualInfluence(bool on)
+{
+  this->SetOption(this->Options.equalInfluence, on);
+}
+
+void vtkVIMLOPRegistration::SetAnatomicalConstraint(bool on)
+{
+  this->SetOption(this->Options.anatomicalConstraint, on);
+}
+
+void vtkVIMLOPRegistration::SetMaxBackoffSteps(int steps)
+{
+  this->SetOption(this->Options.maxBackoffSteps, steps);
+}
+
+void vtkVIMLOPRegistration::SetMaxIterations(int iterations)
+{
+  this->SetOption(this->Options.maxIterations, iterations);
+}
+
+void vtkVIMLOPRegistration::SetConvergenceTranslationMm(double mm)
+{
+  this->SetOption(this->Options.convergenceTranslationMm, mm);
+}
+
+void vtkVIMLOPRegistration::SetConvergenceRotationDeg(double degrees)
+{
+  this->SetOption(this->Options.convergenceRotationDeg, degrees);
+}
+
+void vtkVIMLOPRegistration::SetConvergenceScaleRelative(double fraction)
+{
+  this->SetOption(this->Options.convergenceScaleRelative, fraction);
+}
+
+void vtkVIMLOPRegistration::SetAccelerate(bool on)
+{
+  this->SetOption(this->Options.accelerate, on);
+}
+
+void vtkVIMLOPRegistration::SetMaxAcceleration(double factor)
+{
+  this->SetOption(this->Options.maxAcceleration, factor);
+}
+
+void vtkVIMLOPRegistration::SetStallRelativeDecrease(double fraction)
+{
+  this->SetOption(this->Options.stallRelativeDecrease, fraction);
+}
+
+void vtkVIMLOPRegistration::SetStallIterations(int iterations)
+{
+  this->SetOption(this->Options.stallIterations, iterations);
+}
+
+void vtkVIMLOPRegistration::SetPointsFirst(bool on)
+{
+  this->SetOption(this->Options.pointsFirst, on);
+}
+
+void vtkVIMLOPRegistration::SetPoseUpdateMaxIterations(int iterations)
+{
+  this->SetOption(this->Options.poseUpdate.maxIterations, iterations);
+}
+
+void vtkVIMLOPRegistration::SetPoseUpdateRelativeTolerance(double tolerance)
+{
+  this->SetOption(this->Options.poseUpdate.relativeTolerance, tolerance);
+}
+
+void vtkVIMLOPRegistration::SetNumberOfThreads(int threads)
+{
+  this->SetOption(this->Options.threads, threads);
+}
+
+const vimlop::RegistrationModel& vtkVIMLOPRegistration::ModelFor(vtkPolyData* surface)
+{
+  if (this->Model && this->ModelSource == surface && this->ModelTime >= surface->GetMTime() &&
+    this->ModelBackend == this->Backend)
+  {
+    return *this->Model;
+  }
+  this->Model.reset();
+  std::string note;
+  const vimlop::TriangleMesh mesh = vimlop::toModelMesh(surface, &note);
+  if (!note.empty())
+  {
+    vtkWarningMacro(<< note);
+  }
+  auto model =
+    std::make_unique<vimlop::RegistrationModel>(vimlop::makeEmbreeRegistrationModel(mesh));
+  if (this->Backend == VisibilityBackend::ZBuffer)
+  {
+    vimlop::requireOffscreenRendering("the z-buffer visibility backend");
+    this->DepthVisibility = vtkSmartPointer<vtkVIMLOPDepthVisibility>::New();
+    this->DepthVisibility->SetMesh(mesh);
+    model->setVisibility(this->DepthVisibility->AsContourVisibility());
+  }
+  this->Model = std::move(model);
+  this->ModelSource = surface;
+  this->ModelTime = surface->GetMTime();
+  this->ModelBackend = this->Backend;
+  return *this->Model;
+}
+
+int vtkVIMLOPRegistration::RequestData(
+  vtkInformation*, vtkInformationVector** inputs, vtkInformationVector* outputs)
+{
+  vtkPolyData* surface = vtkPolyData::GetData(inputs[ModelPort], 0);
+  vtkPolyData* points = vtkPolyData::GetData(inputs[PointsPort], 0);
+  vtkTable* frames = vtkTable::GetData(inputs[FramesPort], 0);
+  vtkPolyData* contours = vtkPolyData::GetData(inputs[ContoursPort], 0);
+  if (!surface)
+  {
+    vtkErrorMacro(<< "no model surface on input port 0 (SetModelConnection or SetModelData)");
+    return 0;
+  }
+  if (!points)
+  {
+    vtkErrorMacro(<< "no SfM points on input port 1 (SetPointsConnection or SetPointsData)");
+    return 0;
+  }
+  if (this->Options.method == vimlop::RegistrationMethod::VIMLOP && (!frames || !contours))
+  {
+    vtkErrorMacro(<< "V-IMLOP needs the frame table on input port 2 and the video contours on "
+                     "input port 3 (IMLP and trimmed ICP register the points alone)");
+    return 0;
+  }
+
+  try
+  {
+    vimlop::SimilarityTransform initial;
+    if (this->InitialTransform)
+    {
+      Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m;
+      vtkMatrix4x4* matrix = this->InitialTransform->GetMatrix();
+      std::copy(&matrix->Element[0][0], &matrix->Element[0][0] + 16, m.data());
+      try
+      {
+        initial = vimlop::SimilarityTransform::fromMatrix(m, 1e-6);
+      }
+      catch (const vimlop::Error& e)
+      {
+        throw vimlop::Error(std::string("the initial transform is not a similarity: ") + e.what());
+      }
+    }
+    this->Data = vimlop::toRegistrationData(points, frames, contours, this->DefaultPointSigmaMm);
+    const vimlop::RegistrationModel& model = this->ModelFor(surface);
+
+    const double maxIterations = std::max(this->Options.maxIterations, 1);
+    auto callback = [this, maxIterations](const vimlop::IterationRecord& record)
+    {
+      this->UpdateProgress(std::min(1.0, record.iteration / maxIterations));
+      this->InvokeEvent(IterationEvent, const_cast<vimlop::IterationRecord*>(&record));
+      return !this->GetAbortExecute();
+    };
+    this->Result = vimlop::registerVideo(model, this->Data, initial, this->Options, callback);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    this->Result = vimlop::RegistrationResult();
+    return 0;
+  }
+
+  this->Transform->SetMatrix(
+    Eigen::Matrix<double, 4, 4, Eigen::RowMajor>(this->Result.sfmToCT.matrix()).data());
+  vtkPolyData::GetData(outputs, RegisteredPointsPort)
+    ->ShallowCopy(vimlop::makeRegisteredPointPolyData(this->Data, this->Result));
+  vtkTable::GetData(outputs, CameraPosesPort)
+    ->ShallowCopy(vimlop::makeFrameResultTable(this->Result));
+  vtkPolyData::GetData(outputs, CorrespondencesPort)
+    ->ShallowCopy(vimlop::makeCorrespondencePolyData(this->Result));
+  return 1;
+}
+
+void vtkVIMLOPRegistration::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const vimlop::RegistrationOptions& o = this->Options;
+  os << indent << "Method: " << vimlop::toString(o.method) << "\n";
+  os << indent << "VisibilityBackend: " << backendName(this->Backend) << "\n";
+  os << indent << "DefaultPointSigmaMm: " << this->DefaultPointSigmaMm << "\n";
+  const Eigen::Matrix2d& c = o.contourMatch.positionCovariancePx2;
+  os << indent << "ContourPositionCovariancePx2: (" << c(0, 0) << ", " << c(0, 1) << ", " << c(1, 1)
+     << ")\n";
+  os << indent << "ContourKappa: " << o.contourMatch.kappa << "\n";
+  os << indent << "MaxContourNormalAngleDeg: " << this->GetMaxContourNormalAngleDeg() << "\n";
+  os << indent << "ContourSampleSpacingPx: " << o.contourSampleSpacingPx << "\n";
+  os << indent << "MinScale: " << o.minScale << "\n";
+  os << indent << "MaxScale: " << o.maxScale << "\n";
+  os << indent << "TrimFraction: " << o.trimFraction << "\n";
+  os << indent << "ChiSquareProbability: " << o.chiSquareProbability << "\n";
+  os << indent << "MaxContourOutlierFraction: " << o.maxContourOutlierFraction << "\n";
+  os << indent << "EqualInfluence: " << (o.equalInfluence ? "On" : "Off") << "\n";
+  os << indent << "AnatomicalConstraint: " << (o.anatomicalConstraint ? "On" : "Off") << "\n";
+  os << indent << "MaxBackoffSteps: " << o.maxBackoffSteps << "\n";
+  os << indent << "MaxIterations: " << o.maxIterations << "\n";
+  os << indent << "ConvergenceTranslationMm: " << o.convergenceTranslationMm << "\n";
+  os << indent << "ConvergenceRotationDeg: " << o.convergenceRotationDeg << "\n";
+  os << indent << "ConvergenceScaleRelative: " << o.convergenceScaleRelative << "\n";
+  os << indent << "Accelerate: " << (o.accelerate ? "On" : "Off") << "\n";
+  os << indent << "MaxAcceleration: " << o.maxAcceleration << "\n";
+  os << indent << "StallRelativeDecrease: " << o.stallRelativeDecrease << "\n";
+  os << indent << "StallIterations: " << o.stallIterations << "\n";
+  os << indent << "PointsFirst: " << (o.pointsFirst ? "On" : "Off") << "\n";
+  os << indent << "PoseUpdateMaxIterations: " << o.poseUpdate.maxIterations << "\n";
+  os << indent << "PoseUpdateRelativeTolerance: " << o.poseUpdate.relativeTolerance << "\n";
+  os << indent << "NumberOfThreads: " << o.threads << "\n";
+  os << indent << "InitialTransform: " << this->InitialTransform.Get() << "\n";
+  os << indent << "Transform: " << this->Transform.Get() << "\n";
+  os << indent << "Result: " << vimlop::toString(this->Result.termination) << " after "
+     << this->Result.iterations << " iterations, residual " << this->Result.residualErrorMm
+     << " mm, contour error " << this->Result.contourErrorPx << " px\n";
+}

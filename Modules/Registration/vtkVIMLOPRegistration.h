@@ -1,0 +1,358 @@
+#ifndef vtkVIMLOPRegistration_h
+#define vtkVIMLOPRegistration_h
+
+#include "RegistrationData.h"
+#include "RegistrationOptions.h"
+#include "RegistrationResult.h"
+
+#include "VIMLOPRegistrationModule.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkCommand.h>
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+
+#include <memory>
+
+class vtkAlgorithmOutput;
+class vtkLinearTransform;
+class vtkPolyData;
+class vtkTable;
+class vtkTransform;
+class vtkVIMLOPDepthVisibility;
+
+namespace vimlop
+{
+class RegistrationModel;
+}
+
+/**
+ * @brief V-IMLOP as a VTK algorithm: registers video data (SfM points and
+ * oriented video contours) to a CT model surface and offers the similarity
+ * transform T (SfM frame to CT frame) as a live vtkLinearTransform.
+ *
+ * Inputs, one connection each (the layouts are in RegistrationInputConversion.h):
+ * - port 0 (ModelPort), vtkPolyData: the model surface, CT frame, mm, normals
+ *   into the air. Required. Without a "Normals" cell array the normals are
+ *   computed, with a warning.
+ * - port 1 (PointsPort), vtkPolyData: the SfM points, SfM frame, with an
+ *   optional "Covariance" point array. Required.
+ * - port 2 (FramesPort), vtkTable: the frames' intrinsics and SfM-frame poses.
+ *   Required by V-IMLOP; optional for IMLP and trimmed ICP (without frames
+ *   there is no camera to keep inside the airway).
+ * - port 3 (ContoursPort), vtkPolyData: the video contour points of all
+ *   frames, told apart by a "FrameId" point array. Required by V-IMLOP.
+ *
+ * Why four fixed ports and not a repeatable port or a multi-block: the four
+ * inputs are of different kinds with different producers (a surface filter,
+ * an SfM reader, a frame table, a contour detector), each is one data object
+ * whatever the number of frames, and fixed ports let each come from its own
+ * pipeline branch and re-execute alone. Frames are told apart by ids, not by
+ * connections, so a frame table and contours that disagree are caught with a
+ * clear message. All four ports are declared optional to the pipeline, so
+ * that a missing connection is reported by this filter with what is missing
+ * instead of by the executive.
+ *
+ * Outputs (layouts in RegistrationOutputConversion.h):
+ * - port 0, vtkPolyData: the registered points, CT frame, with inlier flags;
+ * - port 1, vtkTable: the camera pose of every frame in CT (FrameId, 4 x 4
+ *   CameraToCT), its contour error and inlier counts;
+ * - port 2, vtkPolyData: the matched model and video contour pairs.
+ * GetTransform() is T = [s, R, t] with T(x) = s R x + t (SfM frame to CT
+ * frame, mm): the same object for the filter's lifetime, updated in place
+ * whenever the filter executes, so that actors (SetUserTransform) and
+ * vtkTransformPolyDataFilter instances holding it follow every re-execution.
+ *
+ * The start of the registration is SetInitialTransform() (SfM to CT, a
+ * similarity; identity when none). Its modification time counts as the
+ * filter's: changing it re-executes the filter. Do not pass GetTransform()
+ * itself (that would make the filter always out of date); copy its matrix
+ * into a vtkTransform of your own to restart from a result.
+ *
+ * Events: after every iteration that updates the estimate (vimlop's
+ * iteration callback; the iterations that stop on a stall return to an
+ * earlier estimate instead and are only in the result's history), one
+ * vtkCommand::ProgressEvent (progress = iteration / MaxIterations; the
+ * executive adds 0 before and 1 after) and one IterationEvent whose call data
+ * is a `const vimlop::IterationRecord*` (valid during the callback: the
+ * iteration's estimates, costs, inlier counts, errors and stage times). Setting
+ * AbortExecute (e.g. from an observer) stops the registration after the
+ * current iteration; the outputs then hold its last estimate and
+ * GetTerminationReason() says Cancelled. Errors (missing inputs, bad data, a
+ * camera starting outside the model) are reported through vtkErrorMacro and
+ * fail the execution.
+ *
+ * RequestData only converts the inputs to Core's structs, calls
+ * vimlop::registerVideo() and converts the result. The model's search
+ * structures are kept between executions while the model input and the
+ * visibility backend stay the same.
+ */
+class VIMLOPREGISTRATION_EXPORT vtkVIMLOPRegistration : public vtkAlgorithm
+{
+public:
+  static vtkVIMLOPRegistration* New();
+  vtkTypeMacro(vtkVIMLOPRegistration, vtkAlgorithm)
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Input and output port numbers.
+  enum Ports
+  {
+    ModelPort = 0,
+    PointsPort = 1,
+    FramesPort = 2,
+    ContoursPort = 3,
+    RegisteredPointsPort = 0,
+    CameraPosesPort = 1,
+    CorrespondencesPort = 2
+  };
+
+  /// The event fired after every iteration; call data: `const vimlop::IterationRecord*`.
+  enum Events
+  {
+    IterationEvent = vtkCommand::UserEvent + 7811
+  };
+
+  /// Which backend decides contour visibility (V4).
+  enum class VisibilityBackend
+  {
+    Embree, ///< ray-occlusion tests (the fast path; thread-safe)
+    ZBuffer ///< the paper's offscreen z-buffer (vtkVIMLOPDepthVisibility; needs a display)
+  };
+
+  ///@{
+  /// Connect the inputs (see the class description).
+  void SetModelConnection(vtkAlgorithmOutput* output);
+  void SetModelData(vtkPolyData* surface);
+  void SetPointsConnection(vtkAlgorithmOutput* output);
+  void SetPointsData(vtkPolyData* points);
+  void SetFramesConnection(vtkAlgorithmOutput* output);
+  void SetFramesData(vtkTable* frames);
+  void SetContoursConnection(vtkAlgorithmOutput* output);
+  void SetContoursData(vtkPolyData* contours);
+  ///@}
+
+  ///@{
+  /// The outputs (see the class description); valid after Update().
+  vtkPolyData* GetRegisteredPoints();
+  vtkTable* GetCameraPoses();
+  vtkPolyData* GetCorrespondences();
+  ///@}
+
+  /// The estimated transform T, SfM frame to CT frame (live: see the class description).
+  vtkLinearTransform* GetTransform();
+
+  ///@{
+  /// Start of the registration, SfM frame to CT frame: a similarity (uniform
+  /// scale, rotation, translation in mm). Default none: identity.
+  void SetInitialTransform(vtkLinearTransform* transform);
+  vtkLinearTransform* GetInitialTransform();
+  ///@}
+
+  ///@{
+  /// The algorithm (default V-IMLOP; IMLP and trimmed ICP are the baselines).
+  void SetMethod(vimlop::RegistrationMethod method);
+  vimlop::RegistrationMethod GetMethod() const { return this->Options.method; }
+  void SetMethodToVIMLOP() { this->SetMethod(vimlop::RegistrationMethod::VIMLOP); }
+  void SetMethodToIMLP() { this->SetMethod(vimlop::RegistrationMethod::IMLP); }
+  void SetMethodToTrimmedICP() { this->SetMethod(vimlop::RegistrationMethod::TrimmedICP); }
+  ///@}
+
+  ///@{
+  /// Contour visibility backend (default Embree).
+  void SetVisibilityBackend(VisibilityBackend backend);
+  VisibilityBackend GetVisibilityBackend() const { return this->Backend; }
+  ///@}
+
+  ///@{
+  /// Isotropic std of the SfM points when the points carry no "Covariance"
+  /// array, mm (default 0.5).
+  vtkSetClampMacro(DefaultPointSigmaMm, double, 1e-6, 1e6);
+  vtkGetMacro(DefaultPointSigmaMm, double);
+  ///@}
+
+  ///@{
+  /// V5: covariance Σ2d of video contour positions, pixels² in image axes, as
+  /// (σuu², σuv, σvv²) (default (9, 0, 9): 3 px std, the paper's P1 value).
+  void SetContourPositionCovariancePx2(double uu, double uv, double vv);
+  void GetContourPositionCovariancePx2(double covariance[3]) const;
+  ///@}
+
+  ///@{
+  /// V5: von Mises concentration κ of contour normals, dimensionless (default 200).
+  void SetContourKappa(double kappa);
+  double GetContourKappa() const { return this->Options.contourMatch.kappa; }
+  ///@}
+
+  ///@{
+  /// V5: largest angle between the normals of a matched contour pair, degrees (default 45).
+  void SetMaxContourNormalAngleDeg(double degrees);
+  double GetMaxContourNormalAngleDeg() const;
+  ///@}
+
+  ///@{
+  /// V3: spacing of model contour samples along their edges, pixels (default 1).
+  void SetContourSampleSpacingPx(double spacing);
+  double GetContourSampleSpacingPx() const { return this->Options.contourSampleSpacingPx; }
+  ///@}
+
+  ///@{
+  /// V7: bounds on the scale s, SfM units to mm (defaults 0 and +infinity:
+  /// unbounded). The initial transform's scale must lie within them.
+  void SetMinScale(double scale);
+  double GetMinScale() const { return this->Options.minScale; }
+  void SetMaxScale(double scale);
+  double GetMaxScale() const { return this->Options.maxScale; }
+  ///@}
+
+  ///@{
+  /// V8: initial trim ratio p_t, the fraction of 3-D pairs trimmed in the
+  /// first stage, in [0, 1) (default 0.1).
+  void SetTrimFraction(double fraction);
+  double GetTrimFraction() const { return this->Options.trimFraction; }
+  ///@}
+
+  ///@{
+  /// V8: probability p of the chi-square outlier tests, in (0, 1) (default 0.95).
+  void SetChiSquareProbability(double p);
+  double GetChiSquareProbability() const { return this->Options.chiSquareProbability; }
+  ///@}
+
+  ///@{
+  /// V8: largest fraction of a frame's contour points rejected as outliers (default 0.5).
+  void SetMaxContourOutlierFraction(double fraction);
+  double GetMaxContourOutlierFraction() const { return this->Options.maxContourOutlierFraction; }
+  ///@}
+
+  ///@{
+  /// V9: scale the 3-D covariances so that 3-D and 2-D data weigh the same (default on).
+  void SetEqualInfluence(bool on);
+  bool GetEqualInfluence() const { return this->Options.equalInfluence; }
+  ///@}
+
+  ///@{
+  /// V10: keep every camera inside the model surface (default on; never for trimmed ICP).
+  void SetAnatomicalConstraint(bool on);
+  bool GetAnatomicalConstraint() const { return this->Options.anatomicalConstraint; }
+  ///@}
+
+  ///@{
+  /// V10: halvings of an update tried before it is undone (default 10).
+  void SetMaxBackoffSteps(int steps);
+  int GetMaxBackoffSteps() const { return this->Options.maxBackoffSteps; }
+  ///@}
+
+  ///@{
+  /// V11: iteration cap (default 100).
+  void SetMaxIterations(int iterations);
+  int GetMaxIterations() const { return this->Options.maxIterations; }
+  ///@}
+
+  ///@{
+  /// V11: convergence thresholds: motion of the data's centroid, mm (default
+  /// 0.005); rotation change, degrees (default 0.005); relative scale change
+  /// (default 2e-4). Converged when all three changes are below them.
+  void SetConvergenceTranslationMm(double mm);
+  double GetConvergenceTranslationMm() const { return this->Options.convergenceTranslationMm; }
+  void SetConvergenceRotationDeg(double degrees);
+  double GetConvergenceRotationDeg() const { return this->Options.convergenceRotationDeg; }
+  void SetConvergenceScaleRelative(double fraction);
+  double GetConvergenceScaleRelative() const { return this->Options.convergenceScaleRelative; }
+  ///@}
+
+  ///@{
+  /// Besl-McKay extrapolation along consistent updates (default on), by at
+  /// most MaxAcceleration times the last update (default 10).
+  void SetAccelerate(bool on);
+  bool GetAccelerate() const { return this->Options.accelerate; }
+  void SetMaxAcceleration(double factor);
+  double GetMaxAcceleration() const { return this->Options.maxAcceleration; }
+  ///@}
+
+  ///@{
+  /// V11: stop when the mean match cost has not fallen by StallRelativeDecrease
+  /// (default 0.001) below its lowest value for StallIterations iterations (default 5).
+  void SetStallRelativeDecrease(double fraction);
+  double GetStallRelativeDecrease() const { return this->Options.stallRelativeDecrease; }
+  void SetStallIterations(int iterations);
+  int GetStallIterations() const { return this->Options.stallIterations; }
+  ///@}
+
+  ///@{
+  /// V-IMLOP: leave the contours out until the points alone converge (default on).
+  void SetPointsFirst(bool on);
+  bool GetPointsFirst() const { return this->Options.pointsFirst; }
+  ///@}
+
+  ///@{
+  /// V6: Levenberg-Marquardt iterations per pose update (default 20) and its
+  /// relative cost tolerance (default 1e-9).
+  void SetPoseUpdateMaxIterations(int iterations);
+  int GetPoseUpdateMaxIterations() const { return this->Options.poseUpdate.maxIterations; }
+  void SetPoseUpdateRelativeTolerance(double tolerance);
+  double GetPoseUpdateRelativeTolerance() const
+  {
+    return this->Options.poseUpdate.relativeTolerance;
+  }
+  ///@}
+
+  ///@{
+  /// Threads, 0 for all cores (default 0). Results do not depend on it.
+  void SetNumberOfThreads(int threads);
+  int GetNumberOfThreads() const { return this->Options.threads; }
+  ///@}
+
+  /// @brief Every option above as Core's struct (what RequestData passes on).
+  const vimlop::RegistrationOptions& GetRegistrationOptions() const { return this->Options; }
+
+  ///@{
+  /// Outcome of the last execution.
+  const vimlop::RegistrationResult& GetResult() const { return this->Result; }
+  /// The data of the last execution, as converted from the inputs.
+  const vimlop::RegistrationData& GetRegistrationData() const { return this->Data; }
+  vimlop::TerminationReason GetTerminationReason() const { return this->Result.termination; }
+  int GetNumberOfIterations() const { return this->Result.iterations; }
+  double GetResidualErrorMm() const { return this->Result.residualErrorMm; }
+  double GetContourErrorPx() const { return this->Result.contourErrorPx; }
+  ///@}
+
+  vtkMTimeType GetMTime() override;
+
+  vtkTypeBool ProcessRequest(
+    vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs) override;
+
+protected:
+  vtkVIMLOPRegistration();
+  ~vtkVIMLOPRegistration() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(
+    vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs);
+
+private:
+  vtkVIMLOPRegistration(const vtkVIMLOPRegistration&) = delete;
+  void operator=(const vtkVIMLOPRegistration&) = delete;
+
+  /// The model for `surface`, rebuilt when the surface or the backend changed.
+  const vimlop::RegistrationModel& ModelFor(vtkPolyData* surface);
+  /// Sets an option and marks the filter modified when the value changes.
+  template <typename T>
+  void SetOption(T& field, T value);
+
+  vimlop::RegistrationOptions Options;
+  VisibilityBackend Backend = VisibilityBackend::Embree;
+  double DefaultPointSigmaMm = 0.5;
+  vtkSmartPointer<vtkLinearTransform> InitialTransform;
+  vtkNew<vtkTransform> Transform;
+
+  std::unique_ptr<vimlop::RegistrationModel> Model;
+  vtkSmartPointer<vtkVIMLOPDepthVisibility> DepthVisibility;
+  vtkMTimeType ModelTime = 0;
+  const void* ModelSource = nullptr;
+  VisibilityBackend ModelBackend = VisibilityBackend::Embree;
+
+  vimlop::RegistrationData Data;
+  vimlop::RegistrationResult Result;
+};
+
+#endif

@@ -1,0 +1,22 @@
+#ifndef vimlop_OffscreenRendering_h
+#define vimlop_OffscreenRendering_h
+
+#include "VIMLOPRenderingModule.h"
+
+#include <string>
+
+namespace vimlop
+{
+
+/**
+ * @brief Checks, before anything is rendered, that VTK can render offscreen
+ * here: a VTK built for X11 (as Debian's) needs an X display even offscreen,
+ * and aborts the process when it has none.
+ * @throws vimlop::Error "`what` renders offscreen with VTK, which needs an X
+ * display; ..." when VTK's render window is an X11 one and DISPLAY is not set.
+ */
+VIMLOPRENDERING_EXPORT void requireOffscreenRendering(const std::string& what);
+
+} // namespace vimlop
+
+#endif
