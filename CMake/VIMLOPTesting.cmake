@@ -27,6 +27,8 @@ function(vimlop_add_gtest name)
     # GoogleTest discovery and every test run go through this launcher.
     set_target_properties(${name} PROPERTIES CROSSCOMPILING_EMULATOR "${VIMLOP_DISPLAY_LAUNCHER}")
   endif()
+  # PROPERTIES is a flat key-value list: a list value needs its ';' escaped.
+  string(REPLACE ";" "\\;" labels "${labels}")
   # Discovery at test time keeps configuring fast and lists every TEST in ctest.
   gtest_discover_tests(${name}
     DISCOVERY_MODE PRE_TEST

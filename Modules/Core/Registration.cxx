@@ -595,6 +595,11 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
       record.updated = bestTransform;
       history.push_back(record);
       T = bestTransform;
+      if (callback && !callback(history.back()))
+      {
+        termination = TerminationReason::Cancelled;
+        break;
+      }
       if (!icp && !refining)
       {
         startRefinement();
@@ -612,6 +617,10 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
       termination = TerminationReason::NumericalFailure;
       record.updated = T;
       history.push_back(record);
+      if (callback)
+      {
+        callback(history.back());
+      }
       break;
     }
     stageStart = Clock::now();

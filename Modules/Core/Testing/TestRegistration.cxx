@@ -119,6 +119,23 @@ TEST(Registration, CallbackSeesEveryIterationAndCanCancel)
   EXPECT_EQ(result.iterations, 3);
 }
 
+TEST(Registration, CallbackSeesTheIterationsThatEndAStage)
+{
+  // A stall ends a stage without an update; observers still hear of it, so
+  // that progress bars and vtkVIMLOPRegistration's IterationEvent count every
+  // iteration of the history.
+  const RegistrationModel& model = cavityModel();
+  const SyntheticTrial trial = makeSyntheticTrial(model, syntheticOptions(), 7);
+  RegistrationOptions options = optionsFor(RegistrationMethod::VIMLOP);
+  options.stallIterations = 2;
+  options.stallRelativeDecrease = 0.5; // every stage stalls after two iterations
+  int calls = 0;
+  const RegistrationResult result = registerVideo(model, trial.data, trial.initialSfmToCT,
+    options, [&](const IterationRecord&) { return ++calls > 0; });
+  EXPECT_EQ(result.termination, TerminationReason::Stalled);
+  EXPECT_EQ(calls, result.iterations);
+}
+
 TEST(Registration, AnatomicalConstraintKeepsCamerasInside)
 {
   // A box cavity; the data says the floor and walls lie 3 mm lower than the

@@ -1,0 +1,189 @@
+#include "MultiStartRegistration.h"
+
+#include "Error.h"
+#include "TaskPool.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <numeric>
+
+namespace vimlop
+{
+
+void MultiStartOptions::validate() const
+{
+  this->registration.validate();
+  if (this->scaleFactors.empty())
+  {
+    throw Error("multi-start: at least one scale factor is needed");
+  }
+  for (double f : this->scaleFactors)
+  {
+    if (!(f > 0.0) || !std::isfinite(f))
+    {
+      throw Error("multi-start: scale factors must be positive, got " + std::to_string(f));
+    }
+  }
+  if (this->screeningIterations < 0 || this->finalists < 1 || this->threads < 0)
+  {
+    throw Error("multi-start: screening iterations and threads must be non-negative and "
+                "finalists at least 1");
+  }
+  if (!(this->failureContourErrorPx > 0.0))
+  {
+    throw Error("multi-start: the failure threshold must be positive");
+  }
+}
+
+SimilarityTransform startFromCameraPose(
+  const CameraPose& cameraToCT, const CameraPose& cameraToSfm, double scale)
+{
+  SimilarityTransform t;
+  t.scale = scale;
+  t.rotation = cameraToCT.rotation * cameraToSfm.rotation.transpose();
+  t.translation = cameraToCT.centre - scale * t.rotation * cameraToSfm.centre;
+  return t;
+}
+
+MultiStartResult registerMultiStart(const RegistrationModel& model, const RegistrationData& data,
+  const std::vector<SimilarityTransform>& starts, const MultiStartOptions& options,
+  const MultiStartProgress& progress)
+{
+  options.validate();
+  data.validate();
+  if (starts.empty())
+  {
+    throw Error("multi-start: no starting pose");
+  }
+
+  // The candidates, in a fixed order: start-major, then scale factor.
+  MultiStartResult out;
+  out.failureThresholdPx = options.failureContourErrorPx;
+  const RegistrationOptions& base = options.registration;
+  for (size_t s = 0; s < starts.size(); ++s)
+  {
+    for (double factor : options.scaleFactors)
+    {
+      MultiStartCandidate c;
+      c.start = static_cast<int>(s);
+      c.scaleFactor = factor;
+      c.initialSfmToCT = starts[s];
+      c.initialSfmToCT.scale =
+        std::clamp(starts[s].scale * factor, base.minScale, base.maxScale);
+      if (!c.initialSfmToCT.isValid())
+      {
+        c.skipped = "not a valid similarity";
+      }
+      else if (base.anatomicalConstraint && base.method != RegistrationMethod::TrimmedICP)
+      {
+        for (const VideoFrame& frame : data.frames)
+        {
+          if (!model.isInside(c.initialSfmToCT.apply(frame.cameraToSfm.centre)))
+          {
+            c.skipped =
+              "the camera of frame " + std::to_string(frame.frameId) + " starts outside the airway";
+            break;
+          }
+        }
+      }
+      out.candidates.push_back(c);
+    }
+  }
+  std::vector<int> runnable;
+  for (size_t i = 0; i < out.candidates.size(); ++i)
+  {
+    if (out.candidates[i].skipped.empty())
+    {
+      runnable.push_back(static_cast<int>(i));
+    }
+  }
+  if (runnable.empty())
+  {
+    throw Error("multi-start: none of the " + std::to_string(out.candidates.size()) +
+      " candidates can start (" + out.candidates.front().skipped + ")");
+  }
+
+  // Each registration runs on one thread, the candidates in parallel (unless
+  // the visibility backend, e.g. an OpenGL one, must stay on one thread).
+  const int threads = model.visibility().isThreadSafe() ? options.threads : 1;
+  TaskPool pool(threads);
+  std::atomic<bool> cancelled{ false };
+  std::mutex progressMutex;
+  std::vector<RegistrationResult> results(out.candidates.size());
+  auto runPhase = [&](const char* phase, const std::vector<int>& which, int maxIterations)
+  {
+    int done = 0;
+    if (progress && !progress(phase, 0, static_cast<int>(which.size())))
+    {
+      cancelled = true;
+    }
+    pool.run(static_cast<int>(which.size()),
+      [&](int k)
+      {
+        if (cancelled)
+        {
+          return;
+        }
+        MultiStartCandidate& c = out.candidates[which[k]];
+        RegistrationOptions o = base;
+        o.threads = 1;
+        o.maxIterations = maxIterations;
+        results[which[k]] = registerVideo(
+          model, data, c.initialSfmToCT, o, [&](const IterationRecord&) { return !cancelled; });
+        const RegistrationResult& r = results[which[k]];
+        c.contourErrorPx = r.contourErrorPx;
+        c.residualErrorMm = r.residualErrorMm;
+        c.iterations += r.iterations;
+        c.termination = r.termination;
+        if (progress)
+        {
+          std::lock_guard<std::mutex> lock(progressMutex);
+          if (!progress(phase, ++done, static_cast<int>(which.size())))
+          {
+            cancelled = true;
+          }
+        }
+      });
+    if (cancelled)
+    {
+      throw Error("multi-start: cancelled");
+    }
+  };
+
+  // The least contour error first; the candidate index breaks ties, so the
+  // order never depends on which thread finished first.
+  auto byContourError = [&](int a, int b)
+  {
+    const double ea = out.candidates[a].contourErrorPx;
+    const double eb = out.candidates[b].contourErrorPx;
+    return ea != eb ? ea < eb : a < b;
+  };
+  std::vector<int> finalists = runnable;
+  if (options.screeningIterations > 0 &&
+    static_cast<int>(runnable.size()) > options.finalists &&
+    options.screeningIterations < base.maxIterations)
+  {
+    runPhase("screening", runnable, options.screeningIterations);
+    for (int i : runnable)
+    {
+      out.candidates[i].screeningContourErrorPx = out.candidates[i].contourErrorPx;
+    }
+    std::sort(finalists.begin(), finalists.end(), byContourError);
+    finalists.resize(options.finalists);
+    std::sort(finalists.begin(), finalists.end());
+  }
+  for (int i : finalists)
+  {
+    out.candidates[i].finalist = true;
+  }
+  runPhase("final", finalists, base.maxIterations);
+
+  out.bestCandidate = *std::min_element(finalists.begin(), finalists.end(), byContourError);
+  out.best = std::move(results[out.bestCandidate]);
+  out.failure = !(out.best.contourErrorPx <= options.failureContourErrorPx);
+  return out;
+}
+
+} // namespace vimlop

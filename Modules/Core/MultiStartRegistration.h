@@ -1,0 +1,97 @@
+#ifndef vimlop_MultiStartRegistration_h
+#define vimlop_MultiStartRegistration_h
+
+#include "CameraPose.h"
+#include "Registration.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vimlop
+{
+
+/**
+ * @brief Settings of the multi-start registration (V13 b): one V-IMLOP run
+ * per start and scale variation, the least contour error wins.
+ */
+struct MultiStartOptions
+{
+  /// The registration every candidate runs (method, noise, trimming, scale
+  /// bounds, iterations). Its `threads` is ignored: candidates run in
+  /// parallel, each on one thread.
+  RegistrationOptions registration;
+  /// Factors applied to each start's scale (default 0.9, 1, 1.1: the paper's
+  /// "slightly vary the initial scale"). A factor that leaves the scale
+  /// bounds is clamped into them.
+  std::vector<double> scaleFactors{ 0.9, 1.0, 1.1 };
+  /// Screening (default 20 iterations): every candidate first runs this many
+  /// iterations and only the `finalists` with the least contour error then
+  /// run to convergence. 0 runs every candidate to convergence.
+  int screeningIterations = 20;
+  /// Candidates kept after screening (default 8).
+  int finalists = 8;
+  /// Threads over candidates, 0 for all cores. The result does not depend on it.
+  int threads = 0;
+  /// Mean contour error (px) above which the winner is flagged as a failure
+  /// (default 6 px; calibrated on P3, see Documentation/Algorithm.md).
+  double failureContourErrorPx = 6.0;
+  /// @throws vimlop::Error naming the first invalid field.
+  void validate() const;
+};
+
+/// @brief How one candidate (a start and a scale factor) fared.
+struct MultiStartCandidate
+{
+  int start = 0;            ///< index into the starts
+  double scaleFactor = 1.0; ///< applied to the start's scale
+  SimilarityTransform initialSfmToCT;
+  /// Empty when the candidate ran; otherwise why not (e.g. a camera outside the airway).
+  std::string skipped;
+  double screeningContourErrorPx = 0.0; ///< after screening (when screening ran)
+  bool finalist = false;                ///< ran to convergence
+  double contourErrorPx = 0.0;          ///< at its end
+  double residualErrorMm = 0.0;         ///< at its end
+  int iterations = 0;                   ///< screening and final runs together
+  TerminationReason termination = TerminationReason::MaxIterations;
+};
+
+/// @brief The outcome of a multi-start registration.
+struct MultiStartResult
+{
+  RegistrationResult best;   ///< the winner's full result
+  int bestCandidate = -1;    ///< index into `candidates`
+  std::vector<MultiStartCandidate> candidates;
+  /// True when the winner's contour error exceeds the failure threshold.
+  bool failure = false;
+  double failureThresholdPx = 0.0;
+};
+
+/// @brief Progress: candidates finished of the phase's total ("screening" or
+/// "final"). Return false to cancel. Called from one thread at a time.
+using MultiStartProgress = std::function<bool(const char* phase, int done, int total)>;
+
+/**
+ * @brief The start T (SfM to CT) that puts the camera of a frame, posed
+ * `cameraToSfm` in the SfM reconstruction, at `cameraToCT`, with scale `scale`.
+ */
+SimilarityTransform startFromCameraPose(
+  const CameraPose& cameraToCT, const CameraPose& cameraToSfm, double scale);
+
+/**
+ * @brief Registers from every start in `startsSfmToCT` (times each scale
+ * factor) and keeps the solution with the least mean contour error (ties: the
+ * lower candidate index), flagging it as a failure above the threshold.
+ * Candidates whose cameras do not all start inside the airway are skipped
+ * with the reason. Results do not depend on the number of threads.
+ *
+ * @throws vimlop::Error for invalid options or data, no starts, no candidate
+ * that could run (the message gives the first reason), or cancellation.
+ */
+MultiStartResult registerMultiStart(const RegistrationModel& model, const RegistrationData& data,
+  const std::vector<SimilarityTransform>& startsSfmToCT, const MultiStartOptions& options,
+  const MultiStartProgress& progress = MultiStartProgress());
+
+} // namespace vimlop
+
+#endif

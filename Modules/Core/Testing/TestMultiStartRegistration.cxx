@@ -1,0 +1,144 @@
+#include "Error.h"
+#include "MultiStartRegistration.h"
+#include "RegistrationMetrics.h"
+#include "Rotation.h"
+#include "SyntheticExperiment.h"
+#include "TestMeshes.h"
+
+#include <gtest/gtest.h>
+
+using namespace vimlop;
+
+namespace
+{
+
+const RegistrationModel& cavityModel()
+{
+  static const RegistrationModel model(fixtures::makeCavityWithBlobs());
+  return model;
+}
+
+SyntheticTrial trial(std::uint64_t seed)
+{
+  SyntheticOptions o;
+  o.points = 400;
+  return makeSyntheticTrial(cavityModel(), o, seed);
+}
+
+MultiStartOptions options()
+{
+  MultiStartOptions o;
+  o.registration.minScale = 0.8;
+  o.registration.maxScale = 1.25;
+  o.screeningIterations = 6;
+  o.finalists = 2;
+  return o;
+}
+
+/// The trial's start turned by `degrees` about the z axis through the
+/// centroid of its cameras: far off when large.
+SimilarityTransform turned(const SyntheticTrial& t, double degrees)
+{
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const VideoFrame& f : t.data.frames)
+  {
+    centre += t.initialSfmToCT.apply(f.cameraToSfm.centre);
+  }
+  centre /= static_cast<double>(t.data.frames.size());
+  SimilarityTransform turn;
+  turn.rotation = rotationFromVector(degrees * M_PI / 180.0 * Eigen::Vector3d::UnitZ());
+  turn.translation = centre - turn.rotation * centre;
+  return turn.compose(t.initialSfmToCT);
+}
+
+} // namespace
+
+TEST(MultiStartRegistration, StartFromCameraPosePlacesTheFrame)
+{
+  CameraPose inCT;
+  inCT.rotation = rotationFromVector(Eigen::Vector3d(0.3, -0.2, 0.5));
+  inCT.centre = Eigen::Vector3d(4, 5, 6);
+  CameraPose inSfm;
+  inSfm.rotation = rotationFromVector(Eigen::Vector3d(-0.1, 0.4, 0.2));
+  inSfm.centre = Eigen::Vector3d(-1, 2, 0.5);
+  const SimilarityTransform t = startFromCameraPose(inCT, inSfm, 2.5);
+  EXPECT_DOUBLE_EQ(t.scale, 2.5);
+  EXPECT_LT((t.apply(inSfm).matrix() - inCT.matrix()).norm(), 1e-12);
+}
+
+TEST(MultiStartRegistration, TheLeastContourErrorWinsWhateverTheThreads)
+{
+  const SyntheticTrial t = trial(11);
+  // A hopeless start first, the trial's own start second.
+  const std::vector<SimilarityTransform> starts = { turned(t, 70.0), t.initialSfmToCT };
+  MultiStartOptions one = options();
+  one.threads = 1;
+  MultiStartOptions two = one;
+  two.threads = 2;
+  const MultiStartResult a = registerMultiStart(cavityModel(), t.data, starts, one);
+  const MultiStartResult b = registerMultiStart(cavityModel(), t.data, starts, two);
+  ASSERT_EQ(a.candidates.size(), 6u);
+  EXPECT_EQ(a.candidates[a.bestCandidate].start, 1);
+  EXPECT_LT(targetRegistrationError(a.best.sfmToCT, t.truthSfmToCT, t.targetsCT), 0.5);
+  EXPECT_FALSE(a.failure);
+  // Screening kept two finalists; the winner's error is the least of them.
+  int finalists = 0;
+  for (const MultiStartCandidate& c : a.candidates)
+  {
+    finalists += c.finalist;
+    if (c.finalist && c.skipped.empty())
+    {
+      EXPECT_GE(c.contourErrorPx, a.best.contourErrorPx);
+    }
+  }
+  EXPECT_EQ(finalists, 2);
+  EXPECT_EQ(a.bestCandidate, b.bestCandidate);
+  EXPECT_EQ(a.best.sfmToCT.matrix(), b.best.sfmToCT.matrix());
+  for (size_t i = 0; i < a.candidates.size(); ++i)
+  {
+    EXPECT_EQ(a.candidates[i].contourErrorPx, b.candidates[i].contourErrorPx);
+  }
+}
+
+TEST(MultiStartRegistration, FlagsFailureSkipsOutsideStartsAndCancels)
+{
+  const SyntheticTrial t = trial(12);
+  SimilarityTransform outside = t.initialSfmToCT;
+  outside.translation += Eigen::Vector3d(100.0, 0.0, 0.0);
+  MultiStartOptions o = options();
+  o.scaleFactors = { 1.0 };
+  o.failureContourErrorPx = 1e-6; // nothing fits this well
+  const MultiStartResult r =
+    registerMultiStart(cavityModel(), t.data, { outside, t.initialSfmToCT }, o);
+  ASSERT_EQ(r.candidates.size(), 2u);
+  EXPECT_NE(r.candidates[0].skipped.find("starts outside the airway"), std::string::npos);
+  EXPECT_EQ(r.bestCandidate, 1);
+  EXPECT_TRUE(r.failure);
+  EXPECT_EQ(r.failureThresholdPx, 1e-6);
+
+  try
+  {
+    registerMultiStart(cavityModel(), t.data, { outside }, o);
+    FAIL() << "expected an error";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("none of the 1 candidates can start"), std::string::npos)
+      << e.what();
+  }
+  EXPECT_THROW(registerMultiStart(cavityModel(), t.data, {}, o), Error);
+  o.scaleFactors = { -1.0 };
+  EXPECT_THROW(registerMultiStart(cavityModel(), t.data, { t.initialSfmToCT }, o), Error);
+
+  // Progress sees both phases; returning false cancels.
+  o = options();
+  std::vector<std::string> phases;
+  EXPECT_THROW(registerMultiStart(cavityModel(), t.data, { t.initialSfmToCT, t.initialSfmToCT }, o,
+                 [&](const char* phase, int done, int) {
+                   phases.emplace_back(phase);
+                   return done < 2;
+                 }),
+    Error);
+  ASSERT_FALSE(phases.empty());
+  EXPECT_EQ(phases.front(), "screening");
+}
