@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace vimlop
 {
@@ -74,6 +75,28 @@ void writeJsonFile(const nlohmann::json& json, const std::string& path)
     std::remove(temporary.c_str());
     throw Error("'" + path + "': cannot write the file (" + ec.message() + ")");
   }
+}
+
+std::vector<double> parseNumbers(const std::string& text, const std::string& what)
+{
+  std::vector<double> numbers;
+  for (const std::string& item : parseList(text, what))
+  {
+    try
+    {
+      size_t used = 0;
+      numbers.push_back(std::stod(item, &used));
+      if (used != item.size())
+      {
+        throw std::invalid_argument(item);
+      }
+    }
+    catch (const std::exception&)
+    {
+      throw Error(what + ": '" + item + "' is not a number");
+    }
+  }
+  return numbers;
 }
 
 } // namespace vimlop

@@ -18,6 +18,8 @@ namespace vimlop
 /// @brief "a,b" as two numbers with 0 <= a <= b; `what` names the option in errors.
 std::pair<double, double> parseRange(const std::string& text, const std::string& what);
 
+/// @brief "1,2.5,3" as numbers; `what` names the option in errors.
+std::vector<double> parseNumbers(const std::string& text, const std::string& what);
 /// @brief "a,b,c" as a list of non-empty items.
 std::vector<std::string> parseList(const std::string& text, const std::string& what);
 
@@ -27,6 +29,16 @@ std::vector<std::string> parseList(const std::string& text, const std::string& w
  * @throws vimlop::Error if the file cannot be written.
  */
 void writeJsonFile(const nlohmann::json& json, const std::string& path);
+
+/**
+ * @brief Thrown by a subcommand to end the program with `code` after it has
+ * said what it had to (e.g. 3: `vimlop register` flagged its result as a
+ * failure; 130: interrupted).
+ */
+struct ExitRequest
+{
+  int code = 0;
+};
 
 } // namespace vimlop
 

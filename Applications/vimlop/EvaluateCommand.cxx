@@ -4,12 +4,17 @@
 #include "Error.h"
 #include "ModelLoading.h"
 #include "OffscreenRendering.h"
+#include "PerturbationStudy.h"
+#include "RegistrationReport.h"
 #include "SyntheticEvaluation.h"
 #include "VideoEvaluation.h"
+
+#include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -79,6 +84,13 @@ struct VideoCommandOptions
   std::string perturbMm = "2,3";
   std::string perturbDeg = "2,3";
   int threads = 0;
+  std::string init = "perturbed";
+  double uprightDeg = 10.0;
+  double canonicalSpacingMm = CanonicalPoseOptions().spacingMm;
+  std::string scaleFactors = "0.9,1,1.1";
+  int screeningIterations = MultiStartOptions().screeningIterations;
+  int finalists = MultiStartOptions().finalists;
+  double failureThresholdPx = MultiStartOptions().failureContourErrorPx;
 };
 
 void runVideo(const VideoCommandOptions& o)
@@ -97,6 +109,13 @@ void runVideo(const VideoCommandOptions& o)
   std::tie(options.perturbMinMm, options.perturbMaxMm) = parseRange(o.perturbMm, "--perturb-mm");
   std::tie(options.perturbMinDeg, options.perturbMaxDeg) =
     parseRange(o.perturbDeg, "--perturb-deg");
+  options.init = o.init;
+  options.uprightRollDeg = o.uprightDeg;
+  options.canonical.spacingMm = o.canonicalSpacingMm;
+  options.multiStart.scaleFactors = parseNumbers(o.scaleFactors, "--scale-factors");
+  options.multiStart.screeningIterations = o.screeningIterations;
+  options.multiStart.finalists = o.finalists;
+  options.multiStart.failureContourErrorPx = o.failureThresholdPx;
   if (o.sfm != "builtin" && o.sfm != "colmap")
   {
     throw Error("--sfm: expected 'builtin' or 'colmap', got '" + o.sfm + "'");
@@ -118,6 +137,71 @@ void runVideo(const VideoCommandOptions& o)
       m["camera_position_mm"]["max"].get<double>(), m["camera_angle_deg"]["mean"].get<double>(),
       m["camera_angle_deg"]["max"].get<double>(), 100.0 * m["scale_error_rel"].get<double>(),
       m["runtime_s"].get<double>());
+    if (m.contains("failure_flag"))
+    {
+      std::printf("P2 %-6s multi-start of %d candidates: contour error %.2f px, %s\n", method,
+        report["candidates"].get<int>(), m["contour_error_px"].get<double>(),
+        m["failure_flag"].get<bool>() ? "FLAGGED as a failure" : "not flagged");
+    }
+  }
+}
+
+struct PerturbationCommandOptions
+{
+  std::string mesh;
+  std::string ct;
+  std::string out;
+  std::string offsets = "0,2,4,6,8,10";
+  int trialsPerOffset = 10;
+  std::uint64_t seed = 1;
+  int frames = 30;
+  double successMm = 1.0;
+  int threads = 0;
+  bool noReport = false;
+};
+
+void runPerturbation(const PerturbationCommandOptions& o)
+{
+  PerturbationStudyOptions options;
+  options.offsets = parseNumbers(o.offsets, "--offsets-mm");
+  options.trialsPerOffset = o.trialsPerOffset;
+  options.successMm = o.successMm;
+  options.video.simulation.seed = o.seed;
+  options.video.simulation.frames = o.frames;
+  options.video.threads = o.threads;
+  requireOffscreenRendering("vimlop evaluate perturbation");
+  const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
+  std::filesystem::create_directories(o.out);
+  std::vector<PerturbationRun> runs;
+  const nlohmann::json p3 = runPerturbationStudy(mesh, options, runs, &std::cerr);
+  namespace fs = std::filesystem;
+  writePerturbationRuns(runs, (fs::path(o.out) / "runs.json").string());
+  if (!o.noReport)
+  {
+    RegistrationReport::write(
+      nullptr, "", runs, (fs::path(o.out) / "report").string(), RegistrationReport::Options());
+  }
+  writeJsonFile(p3, (fs::path(o.out) / "p3.json").string());
+  for (const nlohmann::json& offset : p3["offsets"])
+  {
+    std::printf("P3 offset %4.1f mm / %4.1f deg: success %3.0f %%, camera error median %.3f mm, "
+                "contour error median %.2f px\n",
+      offset["offset_mm"].get<double>(), offset["offset_deg"].get<double>(),
+      100.0 * offset["success_rate"].get<double>(),
+      offset["camera_position_mm_median"].get<double>(),
+      offset["contour_error_px_median"].get<double>());
+  }
+  if (p3["auc"].is_null())
+  {
+    std::printf("P3 %s; no ROC area (it needs both successes and failures)\n",
+      p3["failures"].get<int>() == 0 ? "every run succeeded" : "every run failed");
+  }
+  else
+  {
+    std::printf("P3 contour error separates failures from successes: ROC AUC %.3f, best "
+                "threshold %.2f px (%d failures of %d runs)\n",
+      p3["auc"].get<double>(), p3["failure_threshold_px"].get<double>(),
+      p3["failures"].get<int>(), p3["runs_total"].get<int>());
   }
 }
 
@@ -184,9 +268,66 @@ CLI::App* addEvaluateCommand(CLI::App& app)
     ->capture_default_str();
   p2->add_option("--perturb-deg", video->perturbDeg, "range of the initial rotation error, degrees")
     ->capture_default_str();
+  p2->add_option("--init", video->init,
+      "start: perturbed (the truth moved by --perturb-mm/--perturb-deg) or canonical "
+      "(multi-start from canonical poses)")
+    ->capture_default_str();
+  p2->add_option("--upright-deg", video->uprightDeg,
+      "with --init canonical: the simulated scope's image up stays this close to superior, deg")
+    ->capture_default_str()
+    ->check(CLI::Range(0.0, 180.0));
+  p2->add_option("--canonical-spacing-mm", video->canonicalSpacingMm,
+      "with --init canonical: distance between canonical positions, mm")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  p2->add_option("--scale-factors", video->scaleFactors,
+      "with --init canonical: variations of the tracker's scale per start")
+    ->capture_default_str();
+  p2->add_option("--screen-iterations", video->screeningIterations,
+      "with --init canonical: iterations of every start before the finalists are chosen "
+      "(0: run all fully)")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  p2->add_option("--finalists", video->finalists, "with --init canonical: starts run fully, at every scale factor")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  p2->add_option("--failure-threshold-px", video->failureThresholdPx,
+      "contour error above which a result is flagged as a failure, px")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
   p2->add_option("--threads", video->threads, "threads per registration, 0 for all cores")
     ->capture_default_str();
   p2->callback([video] { runVideo(*video); });
+
+  auto perturbation = std::make_shared<PerturbationCommandOptions>();
+  CLI::App* p3 = evaluate->add_subcommand("perturbation",
+    "P3: robustness to the initial pose on a simulated sequence; OUT/p3.json, OUT/runs.json and "
+    "the Fig. 3 report in OUT/report");
+  CLI::Option* p3Mesh =
+    p3->add_option("--mesh", perturbation->mesh, "airway surface (CT frame, normals into the air)");
+  CLI::Option* p3Ct =
+    p3->add_option("--ct", perturbation->ct, "CT volume whose airway is segmented with the defaults");
+  p3Mesh->excludes(p3Ct);
+  p3->add_option("--out", perturbation->out, "output folder")->required();
+  p3->add_option("--offsets-mm", perturbation->offsets,
+      "offsets of the start, each both mm of translation and degrees of rotation")
+    ->capture_default_str();
+  p3->add_option("--trials-per-offset", perturbation->trialsPerOffset, "registrations per offset")
+    ->capture_default_str()
+    ->check(CLI::Range(1, 10000));
+  p3->add_option("--seed", perturbation->seed, "random seed (sequence and starts)")
+    ->capture_default_str();
+  p3->add_option("--frames", perturbation->frames, "frames of the sequence")
+    ->capture_default_str()
+    ->check(CLI::Range(2, 1000));
+  p3->add_option("--success-mm", perturbation->successMm,
+      "a run succeeds when its mean camera position error is at most this, mm")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  p3->add_option("--threads", perturbation->threads, "threads over runs, 0 for all cores")
+    ->capture_default_str();
+  p3->add_flag("--no-report", perturbation->noReport, "skip the rendered report");
+  p3->callback([perturbation] { runPerturbation(*perturbation); });
   return evaluate;
 }
 

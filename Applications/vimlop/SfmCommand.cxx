@@ -1,20 +1,14 @@
 #include "SfmCommand.h"
 
-#include "ColmapImport.h"
 #include "Error.h"
-#include "FrameSequence.h"
 #include "IntrinsicsIO.h"
 #include "SfmReconstructionIO.h"
-#include "StructureFromMotion.h"
-#include "TrackerScale.h"
+#include "VideoInput.h"
 
 #include <CLI/CLI.hpp>
 
-#include <opencv2/calib3d.hpp>
-
 #include <cstdio>
 #include <iostream>
-#include <limits>
 #include <memory>
 #include <optional>
 
@@ -43,16 +37,11 @@ void runSfm(const SfmOptions& o)
   if (!o.tracker.empty())
   {
     tracker = TrackerTrajectory::readCsv(o.tracker, &trackerWarnings);
-  }
-  auto frameTimes = [&](size_t count)
-  {
-    std::vector<double> times;
-    for (size_t f = 0; f < count; ++f)
+    for (const std::string& w : trackerWarnings)
     {
-      times.push_back(o.timeOffset + static_cast<double>(f) / o.fps);
+      std::cerr << "vimlop: warning: " << w << "\n";
     }
-    return times;
-  };
+  }
   SfmReconstruction sfm;
   if (!o.colmap.empty())
   {
@@ -65,12 +54,7 @@ void runSfm(const SfmOptions& o)
         names.push_back(sequence.name(f));
       }
     }
-    std::vector<std::string> warnings;
-    sfm = readColmapModel(o.colmap, ColmapFormat::Automatic, names, 0.5, &warnings);
-    for (const std::string& w : warnings)
-    {
-      std::cerr << "vimlop: warning: " << w << "\n";
-    }
+    sfm = reconstructFrames({}, names, PinholeCamera(), o.colmap, &std::cerr);
   }
   else
   {
@@ -82,71 +66,22 @@ void runSfm(const SfmOptions& o)
     const FrameSequence sequence = FrameSequence::load(o.frames);
     if (tracker)
     {
-      checkTrackerOverlap(*tracker, frameTimes(static_cast<size_t>(sequence.size())));
+      checkTrackerOverlap(*tracker, frameTimesS(static_cast<size_t>(sequence.size()), o.fps, o.timeOffset));
     }
-    if (k.widthPx != sequence.widthPx() || k.heightPx != sequence.heightPx())
-    {
-      throw Error("'" + o.intrinsics + "': the intrinsics are for " + std::to_string(k.widthPx) +
-        "x" + std::to_string(k.heightPx) + " pixels but the frames in '" + o.frames + "' are " +
-        std::to_string(sequence.widthPx()) + "x" + std::to_string(sequence.heightPx()));
-    }
-    // SfM works on ideal pinhole frames: lens distortion is removed first.
-    const bool distorted = k.distortion.size() > 0 && !k.distortion.isZero();
-    cv::Mat matrix;
-    cv::Mat coefficients;
-    if (distorted)
-    {
-      std::cerr
-        << "vimlop: note: undistorting the frames with the intrinsics' distortion coefficients\n";
-      matrix = (cv::Mat_<double>(3, 3) << k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0);
-      coefficients = cv::Mat(1, static_cast<int>(k.distortion.size()), CV_64F);
-      for (int i = 0; i < coefficients.cols; ++i)
-      {
-        coefficients.at<double>(i) = k.distortion[i];
-      }
-    }
-    std::vector<cv::Mat> frames;
+    const std::vector<cv::Mat> frames = idealFrames(sequence, k, o.frames, o.intrinsics, &std::cerr);
     std::vector<std::string> names;
     for (int f = 0; f < sequence.size(); ++f)
     {
-      cv::Mat frame = sequence.frame(f);
-      if (distorted)
-      {
-        cv::Mat undistorted;
-        cv::undistort(frame, undistorted, matrix, coefficients);
-        frame = undistorted;
-      }
-      frames.push_back(frame);
       names.push_back(sequence.name(f));
     }
     PinholeCamera ideal = k;
     ideal.distortion.resize(0);
-    sfm = StructureFromMotion().reconstruct(frames, ideal, names, &std::cerr);
-  }
-  for (const SfmReconstruction::Frame& f : sfm.frames)
-  {
-    if (!f.registered)
-    {
-      std::cerr << "vimlop: warning: frame '" << f.name << "' was not registered; it is dropped\n";
-    }
+    sfm = reconstructFrames(frames, names, ideal, "", &std::cerr);
   }
   if (tracker)
   {
-    std::vector<std::string> warnings = trackerWarnings;
-    const std::vector<double> times = frameTimes(sfm.frames.size());
-    std::vector<Eigen::Vector3d> centres;
-    for (size_t f = 0; f < sfm.frames.size(); ++f)
-    {
-      centres.push_back(sfm.frames[f].registered
-          ? sfm.frames[f].cameraToSfm.centre
-          : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
-    }
-    const TrackerScaleResult scale = estimateTrackerScale(*tracker, times, centres);
-    warnings.insert(warnings.end(), scale.warnings.begin(), scale.warnings.end());
-    for (const std::string& w : warnings)
-    {
-      std::cerr << "vimlop: warning: " << w << "\n";
-    }
+    const TrackerScaleResult scale = scaleFromTracker(
+      *tracker, sfm, frameTimesS(sfm.frames.size(), o.fps, o.timeOffset), &std::cerr);
     sfm.trackerScale = scale.scale;
     std::printf("tracker scale: 1 SfM unit = %.4f mm (tracked %.2f mm over %zu frames)\n",
       scale.scale, scale.trackerLengthMm, scale.framesUsed.size());

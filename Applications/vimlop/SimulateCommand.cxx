@@ -96,6 +96,11 @@ void addSimulateCommand(CLI::App& app)
       "least distance of the optical centre to the wall, mm")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
+  simulate
+    ->add_option("--upright-deg", o->simulation.trajectory.uprightRollDeg,
+      "keep the image up within this many degrees of superior (negative: any roll)")
+    ->capture_default_str()
+    ->check(CLI::Range(-1.0, 180.0));
   simulate->add_option("--noise", o->simulation.noiseSigma, "picture noise std, grey levels")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);

@@ -1,10 +1,12 @@
 #include "VideoEvaluation.h"
 
+#include "CanonicalPoses.h"
 #include "ColmapImport.h"
 #include "ColmapRunner.h"
 #include "ContourEvaluation.h"
 #include "EmbreeRegistrationModel.h"
 #include "Error.h"
+#include "MultiStartRegistration.h"
 #include "OccludingContours.h"
 #include "Registration.h"
 #include "RegistrationMetrics.h"
@@ -32,13 +34,27 @@ namespace
 
 constexpr double Degree = M_PI / 180.0;
 
+Eigen::Vector3d randomDirection(std::mt19937_64& rng)
+{
+  std::normal_distribution<double> normal;
+  Eigen::Vector3d v;
+  do
+  {
+    v = Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+  } while (v.norm() < 1e-9);
+  return v.normalized();
+}
+
+} // namespace
+
 /**
  * The true SfM-to-CT similarity from the registered cameras: the rotation is
  * the chordal mean of R_true R_sfmᵀ over the frames (the camera centres of a
  * path along a passage are nearly collinear and leave the roll about it
  * undetermined), then the least-squares scale and translation of the centres.
  */
-SimilarityTransform trueSfmToCT(const SfmReconstruction& sfm, const std::vector<CameraPose>& truth)
+SimilarityTransform similarityFromCameras(
+  const SfmReconstruction& sfm, const std::vector<CameraPose>& truth)
 {
   Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
   Eigen::Vector3d meanSfm = Eigen::Vector3d::Zero();
@@ -74,41 +90,8 @@ SimilarityTransform trueSfmToCT(const SfmReconstruction& sfm, const std::vector<
   return t;
 }
 
-Eigen::Vector3d randomDirection(std::mt19937_64& rng)
-{
-  std::normal_distribution<double> normal;
-  Eigen::Vector3d v;
-  do
-  {
-    v = Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
-  } while (v.norm() < 1e-9);
-  return v.normalized();
-}
-
-/// Camera errors of the registered frames moved to CT by `sfmToCT`.
-nlohmann::json cameraErrors(const SimilarityTransform& sfmToCT, const RegistrationData& data,
-  const std::vector<int>& frameOf, const std::vector<CameraPose>& truth, double trueScale,
-  double seconds)
-{
-  std::vector<double> position;
-  std::vector<double> angle;
-  for (size_t j = 0; j < data.frames.size(); ++j)
-  {
-    const CameraPose estimate = sfmToCT.apply(data.frames[j].cameraToSfm);
-    position.push_back(cameraPositionError(estimate, truth[frameOf[j]]));
-    angle.push_back(cameraAngleErrorDeg(estimate, truth[frameOf[j]]));
-  }
-  const Summary p = summarize(position);
-  const Summary a = summarize(angle);
-  return { { "camera_position_mm", { { "mean", p.mean }, { "max", p.max } } },
-    { "camera_angle_deg", { { "mean", a.mean }, { "max", a.max } } },
-    { "scale_error_rel", std::abs(sfmToCT.scale / trueScale - 1.0) }, { "runtime_s", seconds } };
-}
-
-} // namespace
-
-nlohmann::json runVideoEvaluation(
-  const TriangleMesh& mesh, const VideoEvaluationOptions& o, std::ostream* progress)
+VideoCase prepareVideoCase(
+  const RegistrationModel& model, const VideoEvaluationOptions& o, std::ostream* progress)
 {
   if (o.sfm != "builtin" && o.sfm != "colmap")
   {
@@ -125,8 +108,10 @@ nlohmann::json runVideoEvaluation(
       *progress << "P2: " << text << "\n";
     }
   };
-  const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
-  const SimulatedVideo video = simulateVideo(model, o.simulation, progress);
+  const TriangleMesh& mesh = model.mesh();
+  VideoCase c;
+  c.video = simulateVideo(model, o.simulation, progress);
+  const SimulatedVideo& video = c.video;
   const PinholeCamera& k = video.intrinsics;
 
   // Contours: detected on the pictures, scored against the true ones.
@@ -160,12 +145,14 @@ nlohmann::json runVideoEvaluation(
     evaluation.addFrame(dense, truth, depths, video.depth[f]);
     contours.push_back(OccludingContourDetector::thin(dense, o.contours.spacingPx));
   }
+  c.contourScores = { { "precision", evaluation.precision() }, { "recall", evaluation.recall() },
+    { "normal_error_deg_median", evaluation.medianNormalErrorDeg() } };
   say("contours: precision " + std::to_string(evaluation.precision()) + ", recall " +
     std::to_string(evaluation.recall()) + ", median normal error " +
     std::to_string(evaluation.medianNormalErrorDeg()) + " deg");
 
   // Structure from motion.
-  SfmReconstruction sfm;
+  SfmReconstruction& sfm = c.sfm;
   if (o.sfm == "builtin")
   {
     sfm = StructureFromMotion().reconstruct(video.frames, k, video.names, progress);
@@ -203,7 +190,7 @@ nlohmann::json runVideoEvaluation(
     " points, RMS reprojection error " + std::to_string(sfm.rmsReprojectionErrorPx()) + " px");
 
   // Ground truth and the initial scale from the tracker (V14).
-  const SimilarityTransform truth = trueSfmToCT(sfm, video.camerasCT);
+  c.truth = similarityFromCameras(sfm, video.camerasCT);
   std::vector<Eigen::Vector3d> centres;
   for (const SfmReconstruction::Frame& f : sfm.frames)
   {
@@ -217,12 +204,11 @@ nlohmann::json runVideoEvaluation(
   {
     say(w);
   }
-  const double s0 = trackerScale.scale;
-  say("scale: tracker " + std::to_string(s0) + ", truth " + std::to_string(truth.scale));
+  c.initialScale = trackerScale.scale;
+  say("scale: tracker " + std::to_string(c.initialScale) + ", truth " +
+    std::to_string(c.truth.scale));
 
   // Registration data: the registered frames with their contours.
-  RegistrationData data;
-  std::vector<int> frameOf;
   for (size_t f = 0; f < sfm.frames.size(); ++f)
   {
     if (!sfm.frames[f].registered)
@@ -235,89 +221,220 @@ nlohmann::json runVideoEvaluation(
     frame.intrinsics.distortion.resize(0);
     frame.cameraToSfm = sfm.frames[f].cameraToSfm;
     frame.contour = contours[f];
-    data.frames.push_back(frame);
-    frameOf.push_back(static_cast<int>(f));
+    c.data.frames.push_back(frame);
+    c.frameOf.push_back(static_cast<int>(f));
   }
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  const double s0 = c.initialScale;
+  c.centroidCT = Eigen::Vector3d::Zero();
   for (const SfmReconstruction::Point& p : sfm.points)
   {
-    data.points.push_back(p.position);
+    c.data.points.push_back(p.position);
     // SfM units² to mm² with the initial scale; the registration keeps it fixed.
-    data.pointCovariances.push_back(s0 * s0 * p.covariance +
+    c.data.pointCovariances.push_back(s0 * s0 * p.covariance +
       o.pointNoiseFloorMm * o.pointNoiseFloorMm * Eigen::Matrix3d::Identity());
-    centroid += truth.apply(p.position);
+    c.centroidCT += c.truth.apply(p.position);
   }
-  centroid /= static_cast<double>(sfm.points.size());
+  c.centroidCT /= static_cast<double>(sfm.points.size());
 
   // What SfM alone allows: its cameras moved by the true similarity.
-  const nlohmann::json floor =
-    cameraErrors(truth, data, frameOf, video.camerasCT, truth.scale, 0.0);
+  c.floor = cameraErrors(c, c.truth, 0.0);
   say("SfM cameras through the true similarity: " +
-    std::to_string(floor["camera_position_mm"]["mean"].get<double>()) + " mm, " +
-    std::to_string(floor["camera_angle_deg"]["mean"].get<double>()) + " deg (the floor)");
+    std::to_string(c.floor["camera_position_mm"]["mean"].get<double>()) + " mm, " +
+    std::to_string(c.floor["camera_angle_deg"]["mean"].get<double>()) + " deg (the floor)");
+  return c;
+}
 
-  // The start: the truth with the tracker's scale, rotated about the
-  // points' centroid and shifted; drawn again until every camera starts
-  // inside the airway, which V-IMLOP's anatomical constraint requires.
-  std::mt19937_64 rng(o.simulation.seed * 2654435761ull + 99ull);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  SimilarityTransform initial;
-  bool inside = false;
-  for (int draw = 0; draw < 500 && !inside; ++draw)
+nlohmann::json cameraErrors(const VideoCase& c, const SimilarityTransform& sfmToCT, double seconds)
+{
+  const std::vector<double> position = cameraPositionErrorsMm(c, sfmToCT);
+  std::vector<double> angle;
+  for (size_t j = 0; j < c.data.frames.size(); ++j)
   {
-    const Eigen::Matrix3d rotation =
-      rotationFromVector((o.perturbMinDeg + unit(rng) * (o.perturbMaxDeg - o.perturbMinDeg)) *
-        Degree * randomDirection(rng));
-    const Eigen::Vector3d shift =
-      (o.perturbMinMm + unit(rng) * (o.perturbMaxMm - o.perturbMinMm)) * randomDirection(rng);
-    SimilarityTransform scaled = truth;
-    // Keep the centroid of the points where the truth puts it, at the new scale.
-    scaled.scale = s0;
-    scaled.translation = centroid - s0 * truth.rotation * (truth.inverse().apply(centroid));
+    const CameraPose estimate = sfmToCT.apply(c.data.frames[j].cameraToSfm);
+    angle.push_back(cameraAngleErrorDeg(estimate, c.video.camerasCT[c.frameOf[j]]));
+  }
+  const Summary p = summarize(position);
+  const Summary a = summarize(angle);
+  return { { "camera_position_mm", { { "mean", p.mean }, { "max", p.max } } },
+    { "camera_angle_deg", { { "mean", a.mean }, { "max", a.max } } },
+    { "scale_error_rel", std::abs(sfmToCT.scale / c.truth.scale - 1.0) },
+    { "runtime_s", seconds } };
+}
+
+std::vector<double> cameraPositionErrorsMm(const VideoCase& c, const SimilarityTransform& sfmToCT)
+{
+  std::vector<double> position;
+  for (size_t j = 0; j < c.data.frames.size(); ++j)
+  {
+    const CameraPose estimate = sfmToCT.apply(c.data.frames[j].cameraToSfm);
+    position.push_back(cameraPositionError(estimate, c.video.camerasCT[c.frameOf[j]]));
+  }
+  return position;
+}
+
+SimilarityTransform perturbedStart(const VideoCase& c, const RegistrationModel& model,
+  std::mt19937_64& rng, double minMm, double maxMm, double minDeg, double maxDeg)
+{
+  // The truth with the tracker's scale, rotated about the points' centroid
+  // and shifted; drawn again until every camera starts inside the airway,
+  // which V-IMLOP's anatomical constraint requires.
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double s0 = c.initialScale;
+  SimilarityTransform scaled = c.truth;
+  // Keep the centroid of the points where the truth puts it, at the new scale.
+  scaled.scale = s0;
+  scaled.translation = c.centroidCT - s0 * c.truth.rotation * (c.truth.inverse().apply(c.centroidCT));
+  for (int draw = 0; draw < 500; ++draw)
+  {
+    const Eigen::Matrix3d rotation = rotationFromVector(
+      (minDeg + unit(rng) * (maxDeg - minDeg)) * Degree * randomDirection(rng));
+    const Eigen::Vector3d shift = (minMm + unit(rng) * (maxMm - minMm)) * randomDirection(rng);
+    SimilarityTransform initial;
     initial.scale = s0;
     initial.rotation = rotation * scaled.rotation;
-    initial.translation = rotation * (scaled.translation - centroid) + centroid + shift;
-    inside = true;
-    for (const VideoFrame& frame : data.frames)
+    initial.translation = rotation * (scaled.translation - c.centroidCT) + c.centroidCT + shift;
+    bool inside = true;
+    for (const VideoFrame& frame : c.data.frames)
     {
       inside = inside && model.isInside(initial.apply(frame.cameraToSfm.centre));
     }
+    if (inside)
+    {
+      return initial;
+    }
   }
-  if (!inside)
+  throw Error("P2: no perturbed start keeps every camera inside the airway");
+}
+
+RegistrationOptions videoRegistrationOptions(
+  double initialScale, const VideoEvaluationOptions& o, RegistrationMethod method)
+{
+  RegistrationOptions options;
+  options.method = method;
+  options.contourMatch.positionCovariancePx2 = o.contourVariancePx2 * Eigen::Matrix2d::Identity();
+  options.contourMatch.kappa = o.kappa;
+  options.minScale = initialScale / o.scaleBoundFactor;
+  options.maxScale = initialScale * o.scaleBoundFactor;
+  options.threads = o.threads;
+  options.stallRelativeDecrease = o.stallRelativeDecrease;
+  options.stallIterations = o.stallIterations;
+  options.maxIterations = o.maxIterations;
+  return options;
+}
+
+std::vector<SimilarityTransform> canonicalStarts(const RegistrationData& data,
+  double initialScale, const std::vector<CameraPose>& posesCT, int* anchorFrame)
+{
+  // The middle registered frame stands at each canonical pose: the sequence
+  // then reaches both ways from it, as the scope moves through the region.
+  if (data.frames.empty())
   {
-    throw Error("P2: no perturbed start keeps every camera inside the airway");
+    throw Error("canonical starts: no registered frame");
+  }
+  const size_t anchor = data.frames.size() / 2;
+  if (anchorFrame)
+  {
+    *anchorFrame = data.frames[anchor].frameId;
+  }
+  std::vector<SimilarityTransform> starts;
+  for (const CameraPose& pose : posesCT)
+  {
+    starts.push_back(startFromCameraPose(pose, data.frames[anchor].cameraToSfm, initialScale));
+  }
+  return starts;
+}
+
+nlohmann::json runVideoEvaluation(
+  const TriangleMesh& mesh, const VideoEvaluationOptions& o, std::ostream* progress)
+{
+  if (o.init != "perturbed" && o.init != "canonical")
+  {
+    throw Error("--init: expected 'perturbed' or 'canonical', got '" + o.init + "'");
+  }
+  auto say = [&](const std::string& text)
+  {
+    if (progress)
+    {
+      *progress << "P2: " << text << "\n";
+    }
+  };
+  const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
+  VideoEvaluationOptions simulated = o;
+  if (o.init == "canonical" && simulated.simulation.trajectory.uprightRollDeg < 0.0)
+  {
+    // Canonical poses assume the scope is held upright (see CanonicalPoses.h).
+    simulated.simulation.trajectory.uprightRollDeg = o.uprightRollDeg;
+  }
+  const VideoCase c = prepareVideoCase(model, simulated, progress);
+
+  nlohmann::json result = { { "protocol", "P2" }, { "frames", o.simulation.frames },
+    { "seed", o.simulation.seed }, { "sfm", o.sfm }, { "sfm_points", c.sfm.points.size() },
+    { "contours", c.contourScores }, { "sfm_floor", c.floor }, { "init", o.init } };
+
+  std::vector<SimilarityTransform> starts;
+  if (o.init == "perturbed")
+  {
+    std::mt19937_64 rng(o.simulation.seed * 2654435761ull + 99ull);
+    starts.push_back(perturbedStart(
+      c, model, rng, o.perturbMinMm, o.perturbMaxMm, o.perturbMinDeg, o.perturbMaxDeg));
+  }
+  else
+  {
+    const std::vector<CameraPose> poses = makeCanonicalPoses(model, o.canonical);
+    int anchor = 0;
+    starts = canonicalStarts(c.data, c.initialScale, poses, &anchor);
+    say("canonical poses: " + std::to_string(poses.size()) + " (frame " + std::to_string(anchor) +
+      " placed at each), " + std::to_string(poses.size() * o.multiStart.scaleFactors.size()) +
+      " candidates");
+    result["candidates"] = poses.size() * o.multiStart.scaleFactors.size();
   }
 
   nlohmann::json methods = nlohmann::json::object();
   for (const RegistrationMethod method : { RegistrationMethod::VIMLOP, RegistrationMethod::IMLP })
   {
-    RegistrationOptions options;
-    options.method = method;
-    options.contourMatch.positionCovariancePx2 = o.contourVariancePx2 * Eigen::Matrix2d::Identity();
-    options.contourMatch.kappa = o.kappa;
-    options.minScale = s0 / o.scaleBoundFactor;
-    options.maxScale = s0 * o.scaleBoundFactor;
-    options.threads = o.threads;
-    options.stallRelativeDecrease = o.stallRelativeDecrease;
-    options.stallIterations = o.stallIterations;
-    options.maxIterations = o.maxIterations;
+    const RegistrationOptions options = videoRegistrationOptions(c.initialScale, o, method);
     const auto start = std::chrono::steady_clock::now();
-    const RegistrationResult result = registerVideo(model, data, initial, options);
+    RegistrationResult r;
+    nlohmann::json extra = nlohmann::json::object();
+    if (o.init == "perturbed")
+    {
+      r = registerVideo(model, c.data, starts.front(), options);
+    }
+    else
+    {
+      MultiStartOptions m = o.multiStart;
+      m.registration = options;
+      m.threads = o.threads;
+      const MultiStartResult ms = registerMultiStart(model, c.data, starts, m,
+        [&](const char* phase, int done, int total)
+        {
+          if (progress && (done == total || done % 20 == 0))
+          {
+            *progress << "P2: " << toString(method) << " multi-start " << phase << " " << done
+                      << "/" << total << "\n";
+          }
+          return true;
+        });
+      r = ms.best;
+      int skipped = 0;
+      for (const MultiStartCandidate& candidate : ms.candidates)
+      {
+        skipped += !candidate.skipped.empty();
+      }
+      extra = { { "failure_flag", ms.failure }, { "contour_error_px", ms.best.contourErrorPx },
+        { "failure_threshold_px", ms.failureThresholdPx }, { "winner", ms.bestCandidate },
+        { "skipped_candidates", skipped } };
+    }
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    methods[toString(method)] =
-      cameraErrors(result.sfmToCT, data, frameOf, video.camerasCT, truth.scale, seconds);
-    say(std::string(toString(method)) + ": " + methods[toString(method)].dump() + " (" +
-      toString(result.termination) + " after " + std::to_string(result.iterations) +
-      " iterations)");
+    nlohmann::json errors = cameraErrors(c, r.sfmToCT, seconds);
+    errors.update(extra);
+    methods[toString(method)] = errors;
+    say(std::string(toString(method)) + ": " + errors.dump() + " (" + toString(r.termination) +
+      " after " + std::to_string(r.iterations) + " iterations)");
   }
-
-  return { { "protocol", "P2" }, { "frames", o.simulation.frames }, { "seed", o.simulation.seed },
-    { "sfm", o.sfm }, { "sfm_points", sfm.points.size() },
-    { "contours",
-      { { "precision", evaluation.precision() }, { "recall", evaluation.recall() },
-        { "normal_error_deg_median", evaluation.medianNormalErrorDeg() } } },
-    { "methods", methods } };
+  result["methods"] = methods;
+  return result;
 }
 
 } // namespace vimlop

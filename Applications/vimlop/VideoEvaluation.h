@@ -1,14 +1,20 @@
 #ifndef vimlop_VideoEvaluation_h
 #define vimlop_VideoEvaluation_h
 
+#include "CanonicalPoses.h"
+#include "MultiStartRegistration.h"
 #include "OccludingContourDetector.h"
+#include "RegistrationData.h"
+#include "SfmReconstruction.h"
 #include "TriangleMesh.h"
 #include "VideoSimulation.h"
 
 #include <nlohmann/json.hpp>
 
 #include <iosfwd>
+#include <random>
 #include <string>
+#include <vector>
 
 namespace vimlop
 {
@@ -53,7 +59,69 @@ struct VideoEvaluationOptions
   int stallIterations = 10;
   int maxIterations = 300;
   int threads = 0;
+  /// The start: "perturbed" (the truth moved by the ranges above) or
+  /// "canonical" (the multi-start from canonical poses, V13 b).
+  std::string init = "perturbed";
+  /// With "canonical": the poses, the multi-start, and the roll spread of the
+  /// simulated scope, held upright within this many degrees (default 10).
+  CanonicalPoseOptions canonical;
+  MultiStartOptions multiStart;
+  double uprightRollDeg = 10.0;
 };
+
+/// @brief A simulated sequence turned into registration data, with its truth.
+struct VideoCase
+{
+  SimulatedVideo video;
+  nlohmann::json contourScores; ///< precision, recall, median normal error
+  SfmReconstruction sfm;
+  SimilarityTransform truth; ///< true SfM-to-CT similarity
+  double initialScale = 1.0; ///< from the simulated tracker (V14)
+  RegistrationData data;     ///< registered frames with contours, points with covariances
+  std::vector<int> frameOf;  ///< data frame -> simulated frame
+  Eigen::Vector3d centroidCT = Eigen::Vector3d::Zero(); ///< of the points, through the truth
+  nlohmann::json floor; ///< camera errors of SfM through the true similarity
+};
+
+/**
+ * @brief Simulates the sequence of `o` in `model`, detects and scores its
+ * contours, runs SfM and the tracker scale, and builds the registration data.
+ * @throws vimlop::Error when a stage fails (no path, too little SfM).
+ */
+VideoCase prepareVideoCase(
+  const RegistrationModel& model, const VideoEvaluationOptions& o, std::ostream* progress);
+
+/// @brief Mean/max camera position (mm) and angle (deg) errors and the scale error of `sfmToCT`.
+nlohmann::json cameraErrors(const VideoCase& c, const SimilarityTransform& sfmToCT, double seconds);
+
+/// @brief Per registered frame, the camera position error (mm) of `sfmToCT`.
+std::vector<double> cameraPositionErrorsMm(const VideoCase& c, const SimilarityTransform& sfmToCT);
+
+/**
+ * @brief The truth at the tracker's scale, turned about the points' centroid
+ * by an angle in [minDeg, maxDeg] and shifted by [minMm, maxMm], both in
+ * random directions; drawn again until every camera is inside the airway.
+ * @throws vimlop::Error when 500 draws leave a camera outside.
+ */
+SimilarityTransform perturbedStart(const VideoCase& c, const RegistrationModel& model,
+  std::mt19937_64& rng, double minMm, double maxMm, double minDeg, double maxDeg);
+
+/// @brief The registration options of P2 for `method` (noise, scale bounds, V11).
+RegistrationOptions videoRegistrationOptions(
+  double initialScale, const VideoEvaluationOptions& o, RegistrationMethod method);
+
+/// @brief One start per pose: the middle registered frame (its id in
+/// `anchorFrame`) placed at the pose, at the tracker's scale.
+std::vector<SimilarityTransform> canonicalStarts(const RegistrationData& data, double initialScale,
+  const std::vector<CameraPose>& posesCT, int* anchorFrame = nullptr);
+
+/**
+ * @brief The SfM-to-CT similarity that best carries the registered SfM
+ * cameras onto `camerasCT` (one per SfM frame): the chordal mean rotation,
+ * then least-squares scale and translation of the centres.
+ */
+SimilarityTransform similarityFromCameras(
+  const SfmReconstruction& sfm, const std::vector<CameraPose>& camerasCT);
 
 /**
  * @brief Runs P2 on `mesh`: simulates the sequence, detects contours (scored

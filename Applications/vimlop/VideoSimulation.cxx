@@ -145,12 +145,14 @@ void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder)
         rows.push_back(m(r, c));
       }
     }
-    frames.push_back(
-      { { "name", video.names[f] }, { "time_s", video.frameTimesS[f] }, { "camera_to_ct", rows } });
+    frames.push_back({ { "frame_id", f }, { "name", video.names[f] },
+      { "time_s", video.frameTimesS[f] }, { "camera_to_ct", rows } });
   }
   writeIntrinsics(video.intrinsics, (fs::path(folder) / "intrinsics.yaml").string());
-  const nlohmann::json poses = { { "frame", "CT (LPS, mm); cameras camera-to-CT, OpenCV axes" },
-    { "frames", frames } };
+  // The layout of FramePoseIO.h (with each frame's name and time), so that
+  // every pose reader of VIMLOP reads it.
+  const nlohmann::json poses = { { "frame", "CT (LPS, mm); camera x right, y down, z forward" },
+    { "poses", frames } };
   const std::string posesPath = (fs::path(folder) / "poses.json").string();
   std::ofstream out(posesPath);
   out << poses.dump(1) << "\n";

@@ -2,11 +2,13 @@
 // registers itself here; errors the user can act on are vimlop::Error and end
 // the program with one line on stderr and exit code 1.
 
+#include "CommandLine.h"
 #include "ContoursCommand.h"
 #include "Error.h"
 #include "EvaluateCommand.h"
 #include "EvaluateWarpCommand.h"
 #include "InfoCommand.h"
+#include "RegisterCommand.h"
 #include "ReportCommand.h"
 #include "SegmentCommand.h"
 #include "ServeCommand.h"
@@ -39,6 +41,7 @@ int main(int argc, char** argv)
   vimlop::addContoursCommand(app);
   vimlop::addSfmCommand(app);
   vimlop::addReportCommand(app);
+  vimlop::addRegisterCommand(app);
   try
   {
     app.parse(argc, argv);
@@ -51,6 +54,10 @@ int main(int argc, char** argv)
   {
     std::cerr << "vimlop: error: " << e.what() << "\n";
     return 1;
+  }
+  catch (const vimlop::ExitRequest& e)
+  {
+    return e.code;
   }
   catch (const std::exception& e)
   {

@@ -17,9 +17,10 @@ namespace vimlop
  */
 struct CanonicalPoseOptions
 {
-  /// Least distance between two positions (default 3 mm, inside the
-  /// registration's capture range measured by P3).
-  double spacingMm = 3.0;
+  /// Least distance between two positions (default 4 mm: every point of a
+  /// passage is then within about 3 mm of a position, inside the capture
+  /// range P3 measures, about 6 mm and 6 degrees).
+  double spacingMm = 4.0;
   /// Least distance of a position to the wall (default 2 mm: the radius of a
   /// 4 mm endoscope).
   double minClearanceMm = 2.0;

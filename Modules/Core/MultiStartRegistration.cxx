@@ -161,18 +161,46 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
     return ea != eb ? ea < eb : a < b;
   };
   std::vector<int> finalists = runnable;
-  if (options.screeningIterations > 0 &&
-    static_cast<int>(runnable.size()) > options.finalists &&
-    options.screeningIterations < base.maxIterations)
+  if (options.screeningIterations > 0 && options.screeningIterations < base.maxIterations)
   {
-    runPhase("screening", runnable, options.screeningIterations);
+    // Screening: each start once, at the scale factor closest to 1; the
+    // starts whose screening ends with the least contour error go on, at
+    // every scale factor.
+    const auto nearestToOne = std::min_element(options.scaleFactors.begin(),
+      options.scaleFactors.end(),
+      [](double a, double b) { return std::abs(std::log(a)) < std::abs(std::log(b)); });
+    const double screeningFactor = *nearestToOne;
+    std::vector<int> screened;
     for (int i : runnable)
     {
-      out.candidates[i].screeningContourErrorPx = out.candidates[i].contourErrorPx;
+      if (out.candidates[i].scaleFactor == screeningFactor)
+      {
+        screened.push_back(i);
+      }
     }
-    std::sort(finalists.begin(), finalists.end(), byContourError);
-    finalists.resize(options.finalists);
-    std::sort(finalists.begin(), finalists.end());
+    if (static_cast<int>(screened.size()) > options.finalists)
+    {
+      runPhase("screening", screened, options.screeningIterations);
+      for (int i : screened)
+      {
+        out.candidates[i].screeningContourErrorPx = out.candidates[i].contourErrorPx;
+      }
+      std::sort(screened.begin(), screened.end(), byContourError);
+      screened.resize(options.finalists);
+      std::vector<char> startGoesOn(starts.size(), 0);
+      for (int i : screened)
+      {
+        startGoesOn[out.candidates[i].start] = 1;
+      }
+      finalists.clear();
+      for (int i : runnable)
+      {
+        if (startGoesOn[out.candidates[i].start])
+        {
+          finalists.push_back(i);
+        }
+      }
+    }
   }
   for (int i : finalists)
   {

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,22 @@ struct RegistrationRecord
   /// path relative to the result folder, or empty when there is none.
   std::vector<std::string> frameImages;
   std::optional<GroundTruth> truth;
+  /// How much to trust the result (V13): written as "confidence".
+  struct Confidence
+  {
+    /// True when the contour error exceeds the threshold: do not navigate with it.
+    bool failure = false;
+    double failureThresholdPx = 0.0;
+    /// How the start was found: "manual", "canonical", "perturbed", ...
+    std::string init;
+    /// Candidates of a multi-start (1 for a single start) and the winner's index.
+    int candidates = 1;
+    int winner = 0;
+  };
+  std::optional<Confidence> confidence;
+  /// Versions of the libraries and inputs worth recording (name -> text),
+  /// written as "versions" next to VIMLOP's own.
+  std::map<std::string, std::string> versions;
 };
 
 } // namespace vimlop

@@ -323,6 +323,19 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
     }
     summary["ground_truth"] = gt;
   }
+  if (record.confidence)
+  {
+    const RegistrationRecord::Confidence& c = *record.confidence;
+    summary["confidence"] = { { "failure", c.failure },
+      { "failure_threshold_px", c.failureThresholdPx }, { "init", c.init },
+      { "candidates", c.candidates }, { "winner", c.winner } };
+  }
+  json versions = { { "vimlop", VIMLOP_VERSION } };
+  for (const auto& [name, version] : record.versions)
+  {
+    versions[name] = version;
+  }
+  summary["versions"] = versions;
   summary["files"] = files;
   writeTextAtomically(summary.dump(2) + "\n", dir / "result.json");
 }
@@ -442,6 +455,27 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
         }
       }
       record.truth = std::move(truth);
+    }
+    if (j.contains("confidence"))
+    {
+      const json& cj = j.at("confidence");
+      RegistrationRecord::Confidence c;
+      c.failure = cj.at("failure").get<bool>();
+      c.failureThresholdPx = cj.value("failure_threshold_px", 0.0);
+      c.init = cj.value("init", std::string());
+      c.candidates = cj.value("candidates", 1);
+      c.winner = cj.value("winner", 0);
+      record.confidence = c;
+    }
+    if (j.contains("versions") && j.at("versions").is_object())
+    {
+      for (const auto& [name, version] : j.at("versions").items())
+      {
+        if (name != "vimlop" && version.is_string())
+        {
+          record.versions[name] = version.get<std::string>();
+        }
+      }
     }
   }
   catch (const json::exception& e)

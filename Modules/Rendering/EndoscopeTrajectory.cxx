@@ -163,6 +163,9 @@ std::vector<CameraPose> makeEndoscopeTrajectory(
     const double phase2 = 2.0 * M_PI * unit(rng);
     const double phase3 = 2.0 * M_PI * unit(rng);
     const double rollPhase = 2.0 * M_PI * unit(rng);
+    // Drawn only when asked for, so that the default paths stay as they were.
+    const double rollOffset =
+      o.uprightRollDeg >= 0.0 ? (2.0 * unit(rng) - 1.0) * o.uprightRollDeg * Degree : 0.0;
 
     std::vector<CameraPose> path;
     bool ok = true;
@@ -179,8 +182,13 @@ std::vector<CameraPose> makeEndoscopeTrajectory(
       const Eigen::Vector3d look = (axis + wobble * std::sin(0.8 * t + phase3) * across1 +
         wobble * std::cos(0.6 * t + phase3) * across2)
                                      .normalized();
+      // Looking straight up or down, the upright scope's "up" is anterior (-y).
+      const Eigen::Vector3d superior = std::abs(look.z()) < 0.95
+        ? Eigen::Vector3d(Eigen::Vector3d::UnitZ())
+        : Eigen::Vector3d(-Eigen::Vector3d::UnitY());
       const Eigen::Vector3d up =
-        rotationFromVector(0.5 * wobble * std::sin(0.5 * t + rollPhase) * look) * across1;
+        rotationFromVector((rollOffset + 0.5 * wobble * std::sin(0.5 * t + rollPhase)) * look) *
+        (o.uprightRollDeg >= 0.0 ? superior : across1);
       path.push_back(CameraPose::lookAt(centre, centre + look, up));
     }
     if (!ok)

@@ -38,6 +38,10 @@ struct EndoscopeTrajectoryOptions
   /// Free length required beyond the last camera along the passage, mm
   /// (default 8), so that the scope looks down an open passage, not at a wall.
   double lookAheadMm = 8.0;
+  /// Roll of the scope: negative (default) for any roll about the view axis;
+  /// otherwise the image "up" stays within this many degrees of anatomical
+  /// superior (+z, LPS), as when a surgeon holds the scope upright.
+  double uprightRollDeg = -1.0;
   /// Camera used to check that every view shows occluding contours.
   PinholeCamera intrinsics;
   /// Least number of visible occluding-contour samples (1 px apart) in each

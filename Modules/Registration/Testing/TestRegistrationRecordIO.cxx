@@ -35,6 +35,13 @@ void expectMessage(const std::function<void()>& action, const std::string& expec
 
 } // namespace
 
+static std::string freshRecordWithoutConfidence()
+{
+  const std::string dir = freshFolder("record-without-confidence");
+  writeRegistrationRecord(fixtures::makeReportRecord(), dir);
+  return dir;
+}
+
 TEST(RegistrationRecordIO, RoundTripsEverything)
 {
   const RegistrationRecord record = fixtures::makeReportRecord();
@@ -43,6 +50,8 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   changed.options.minScale = 0.8;
   changed.options.contourMatch.kappa = 150.0;
   changed.options.method = RegistrationMethod::IMLP;
+  changed.confidence = RegistrationRecord::Confidence{ true, 6.5, "canonical", 120, 17 };
+  changed.versions["opencv"] = "4.6.0";
   const std::string dir = freshFolder("record-round-trip");
   writeRegistrationRecord(changed, dir);
   for (const char* file :
@@ -104,6 +113,14 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   EXPECT_EQ(back.truth->targetsCT.size(), record.truth->targetsCT.size());
   EXPECT_EQ(back.truth->camerasCT.size(), record.truth->camerasCT.size());
   EXPECT_EQ(back.frameImages, std::vector<std::string>(3, std::string()));
+  ASSERT_TRUE(back.confidence.has_value());
+  EXPECT_TRUE(back.confidence->failure);
+  EXPECT_DOUBLE_EQ(back.confidence->failureThresholdPx, 6.5);
+  EXPECT_EQ(back.confidence->init, "canonical");
+  EXPECT_EQ(back.confidence->candidates, 120);
+  EXPECT_EQ(back.confidence->winner, 17);
+  EXPECT_EQ(back.versions.at("opencv"), "4.6.0");
+  EXPECT_FALSE(readRegistrationRecord(freshRecordWithoutConfidence()).confidence.has_value());
 }
 
 TEST(RegistrationRecordIO, ReportsFoldersThatAreNotResults)

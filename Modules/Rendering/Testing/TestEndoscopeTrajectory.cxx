@@ -111,3 +111,25 @@ TEST(EndoscopeTrajectory, FailsWhereTheScopeDoesNotFit)
       << e.what();
   }
 }
+
+TEST(EndoscopeTrajectory, UprightScopeKeepsTheImageUpNearSuperior)
+{
+  // The tube runs along z (superior), so the upright scope's up is anterior (-y).
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeTrajectoryOptions o = tubeOptions();
+  o.uprightRollDeg = 10.0;
+  double largest = 0.0;
+  for (std::uint64_t seed : { 1u, 2u, 3u, 4u })
+  {
+    for (const CameraPose& pose : makeEndoscopeTrajectory(model, o, seed))
+    {
+      const Eigen::Vector3d look = pose.viewDirection();
+      Eigen::Vector3d anterior = -Eigen::Vector3d::UnitY();
+      anterior -= anterior.dot(look) * look;
+      largest = std::max(largest, angleDeg(-pose.rotation.col(1), anterior));
+    }
+  }
+  // The roll offset, plus half the view wobble.
+  EXPECT_LT(largest, o.uprightRollDeg + 0.5 * o.viewSwayDeg + 0.5);
+  EXPECT_GT(largest, 1.0);
+}

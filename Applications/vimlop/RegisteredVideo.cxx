@@ -1,0 +1,109 @@
+#include "RegisteredVideo.h"
+
+#include "ContourOverlay.h"
+#include "Error.h"
+#include "PNGImageIO.h"
+#include "SurfaceView.h"
+#include "vtkVIMLOPSilhouetteRenderer.h"
+
+#include <vtkCellArray.h>
+#include <vtkImageData.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
+#include <cstdio>
+#include <filesystem>
+
+namespace vimlop
+{
+
+std::vector<std::string> writeRegisteredVideo(
+  const RegistrationRecord& record, const std::string& folder, double fps)
+{
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(fs::path(folder) / "registered", ec);
+  if (ec)
+  {
+    throw Error("'" + folder + "/registered': cannot create the folder (" + ec.message() + ")");
+  }
+  vtkNew<vtkVIMLOPSilhouetteRenderer> silhouettes;
+  silhouettes->SetMesh(record.model);
+  std::vector<std::string> written;
+  cv::VideoWriter video;
+  const std::string videoName = "registered-video.avi";
+  const size_t count = std::min(record.data.frames.size(), record.result.frames.size());
+  for (size_t j = 0; j < count; ++j)
+  {
+    const VideoFrame& frame = record.data.frames[j];
+    const CameraPose& pose = record.result.frames[j].cameraToCT;
+    const int w = frame.intrinsics.widthPx;
+    const int h = frame.intrinsics.heightPx;
+    vtkSmartPointer<vtkImageData> picture;
+    if (j < record.frameImages.size() && !record.frameImages[j].empty())
+    {
+      picture = readPNG((fs::path(folder) / record.frameImages[j]).string());
+    }
+    const auto overlay = composeContourOverlay(
+      w, h, picture, silhouettes->RenderContours(frame.intrinsics, pose), frame.contour);
+    const auto view = renderSurfaceView(record.model, frame.intrinsics, pose);
+    char name[64];
+    std::snprintf(name, sizeof name, "registered/frame-%04d.png", frame.frameId);
+    const std::string path = (fs::path(folder) / name).string();
+    writePNG(placeSideBySide({ overlay, view }, 4), path);
+    written.push_back(name);
+
+    // The video takes the picture just written (BGR, top row first).
+    const cv::Mat side = cv::imread(path, cv::IMREAD_COLOR);
+    if (!video.isOpened())
+    {
+      video.open((fs::path(folder) / videoName).string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
+        fps, side.size());
+      if (!video.isOpened())
+      {
+        throw Error("'" + (fs::path(folder) / videoName).string() + "': cannot write the video");
+      }
+    }
+    video.write(side);
+  }
+  if (video.isOpened())
+  {
+    video.release();
+    written.push_back(videoName);
+  }
+  return written;
+}
+
+void writeCameraPath(const RegistrationResult& result, const std::string& path)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkIntArray> ids;
+  ids->SetName("FrameId");
+  vtkNew<vtkCellArray> lines;
+  lines->InsertNextCell(static_cast<vtkIdType>(result.frames.size()));
+  for (const FrameResult& f : result.frames)
+  {
+    lines->InsertCellPoint(points->InsertNextPoint(f.cameraToCT.centre.data()));
+    ids->InsertNextValue(f.frameId);
+  }
+  vtkNew<vtkPolyData> path3d;
+  path3d->SetPoints(points);
+  path3d->SetLines(lines);
+  path3d->GetPointData()->AddArray(ids);
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(path3d);
+  if (writer->Write() != 1)
+  {
+    throw Error("'" + path + "': cannot write the camera path");
+  }
+}
+
+} // namespace vimlop

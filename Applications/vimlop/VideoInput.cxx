@@ -1,0 +1,118 @@
+#include "VideoInput.h"
+
+#include "ColmapImport.h"
+#include "Error.h"
+#include "StructureFromMotion.h"
+
+#include <opencv2/calib3d.hpp>
+
+#include <limits>
+#include <ostream>
+
+namespace vimlop
+{
+
+std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCamera& k,
+  const std::string& framesPath, const std::string& intrinsicsPath, std::ostream* log)
+{
+  if (k.widthPx != sequence.widthPx() || k.heightPx != sequence.heightPx())
+  {
+    throw Error("'" + intrinsicsPath + "': the intrinsics are for " + std::to_string(k.widthPx) +
+      "x" + std::to_string(k.heightPx) + " pixels but the frames in '" + framesPath + "' are " +
+      std::to_string(sequence.widthPx()) + "x" + std::to_string(sequence.heightPx()));
+  }
+  // SfM and contours work on ideal pinhole frames: lens distortion is removed first.
+  const bool distorted = k.distortion.size() > 0 && !k.distortion.isZero();
+  cv::Mat matrix;
+  cv::Mat coefficients;
+  if (distorted)
+  {
+    if (log)
+    {
+      *log << "vimlop: note: undistorting the frames with the intrinsics' distortion coefficients\n";
+    }
+    matrix = (cv::Mat_<double>(3, 3) << k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0);
+    coefficients = cv::Mat(1, static_cast<int>(k.distortion.size()), CV_64F);
+    for (int i = 0; i < coefficients.cols; ++i)
+    {
+      coefficients.at<double>(i) = k.distortion[i];
+    }
+  }
+  std::vector<cv::Mat> frames;
+  for (int f = 0; f < sequence.size(); ++f)
+  {
+    cv::Mat frame = sequence.frame(f);
+    if (distorted)
+    {
+      cv::Mat undistorted;
+      cv::undistort(frame, undistorted, matrix, coefficients);
+      frame = undistorted;
+    }
+    frames.push_back(frame);
+  }
+  return frames;
+}
+
+SfmReconstruction reconstructFrames(const std::vector<cv::Mat>& frames,
+  const std::vector<std::string>& names, const PinholeCamera& ideal,
+  const std::string& colmapFolder, std::ostream* log)
+{
+  SfmReconstruction sfm;
+  if (colmapFolder.empty())
+  {
+    sfm = StructureFromMotion().reconstruct(frames, ideal, names, log);
+  }
+  else
+  {
+    std::vector<std::string> warnings;
+    sfm = readColmapModel(colmapFolder, ColmapFormat::Automatic, names, 0.5, &warnings);
+    for (const std::string& w : warnings)
+    {
+      if (log)
+      {
+        *log << "vimlop: warning: " << w << "\n";
+      }
+    }
+  }
+  for (const SfmReconstruction::Frame& f : sfm.frames)
+  {
+    if (!f.registered && log)
+    {
+      *log << "vimlop: warning: frame '" << f.name << "' was not registered; it is dropped\n";
+    }
+  }
+  return sfm;
+}
+
+std::vector<double> frameTimesS(size_t count, double fps, double offsetS)
+{
+  std::vector<double> times;
+  for (size_t f = 0; f < count; ++f)
+  {
+    times.push_back(offsetS + static_cast<double>(f) / fps);
+  }
+  return times;
+}
+
+TrackerScaleResult scaleFromTracker(const TrackerTrajectory& tracker, const SfmReconstruction& sfm,
+  const std::vector<double>& timesS, std::ostream* log)
+{
+  std::vector<Eigen::Vector3d> centres;
+  for (const SfmReconstruction::Frame& f : sfm.frames)
+  {
+    centres.push_back(f.registered
+        ? f.cameraToSfm.centre
+        : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  }
+  const TrackerScaleResult scale = estimateTrackerScale(tracker, timesS, centres);
+  for (const std::string& w : scale.warnings)
+  {
+    if (log)
+    {
+      *log << "vimlop: warning: " << w << "\n";
+    }
+  }
+  return scale;
+}
+
+} // namespace vimlop

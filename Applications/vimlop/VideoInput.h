@@ -1,0 +1,55 @@
+#ifndef vimlop_VideoInput_h
+#define vimlop_VideoInput_h
+
+#include "FrameSequence.h"
+#include "PinholeCamera.h"
+#include "SfmReconstruction.h"
+#include "TrackerScale.h"
+#include "TrackerTrajectory.h"
+
+#include <opencv2/core/mat.hpp>
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+/**
+ * @file VideoInput.h
+ * @brief The video stages `vimlop sfm` and `vimlop register` share: frames
+ * checked against the intrinsics and undistorted, SfM (built in or a COLMAP
+ * model), frame times and the tracker scale (V14).
+ */
+namespace vimlop
+{
+
+/**
+ * @brief The frames as an ideal pinhole camera sees them: undistorted with
+ * the intrinsics' coefficients (a note on `log` when they are not zero).
+ * @throws vimlop::Error when the intrinsics are not for the frames' size.
+ */
+std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCamera& intrinsics,
+  const std::string& framesPath, const std::string& intrinsicsPath, std::ostream* log);
+
+/**
+ * @brief Structure from motion of the frames: VIMLOP's own when
+ * `colmapFolder` is empty, else the COLMAP sparse model in that folder
+ * (frames matched by name). Warnings and unregistered frames go to `log`.
+ */
+SfmReconstruction reconstructFrames(const std::vector<cv::Mat>& frames,
+  const std::vector<std::string>& names, const PinholeCamera& ideal,
+  const std::string& colmapFolder, std::ostream* log);
+
+/// @brief Time of each frame on the tracker's clock: offset + index / fps.
+std::vector<double> frameTimesS(size_t count, double fps, double offsetS);
+
+/**
+ * @brief The initial scale (SfM units to mm) from the tracked trajectory over
+ * the registered frames; warnings go to `log`.
+ * @throws vimlop::Error when the tracker and the frames do not overlap.
+ */
+TrackerScaleResult scaleFromTracker(const TrackerTrajectory& tracker, const SfmReconstruction& sfm,
+  const std::vector<double>& timesS, std::ostream* log);
+
+} // namespace vimlop
+
+#endif
