@@ -28,7 +28,7 @@ test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure --parallel $(JOBS)
 
 demo: build
-	$(BUILD_DIR)/bin/vimlop info $(CT)
+	CMake/run-demo.sh $(BUILD_DIR) $(CT) $(DEMO_DIR)
 
 # Each fuzzer runs FUZZ_SECONDS from its seed corpus (Testing/Fuzzing/corpus).
 fuzz: deps

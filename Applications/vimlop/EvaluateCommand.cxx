@@ -169,6 +169,7 @@ void runPerturbation(const PerturbationCommandOptions& o)
   options.video.simulation.seed = o.seed;
   options.video.simulation.frames = o.frames;
   options.video.threads = o.threads;
+  options.validate();
   requireOffscreenRendering("vimlop evaluate perturbation");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
   std::filesystem::create_directories(o.out);

@@ -14,24 +14,29 @@
 namespace vimlop
 {
 
-nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const PerturbationStudyOptions& o,
-  std::vector<PerturbationRun>& runs, std::ostream* progress)
+void PerturbationStudyOptions::validate() const
 {
-  if (o.offsets.empty() || o.trialsPerOffset < 1)
+  if (this->offsets.empty() || this->trialsPerOffset < 1)
   {
     throw Error("P3: need at least one offset and one trial per offset");
   }
-  for (double offset : o.offsets)
+  for (double offset : this->offsets)
   {
     if (!(offset >= 0.0) || offset > 90.0)
     {
-      throw Error("P3: offsets must lie in [0, 90], got " + std::to_string(offset));
+      throw Error("P3: offsets must lie in [0, 90] (mm and degrees), got " + std::to_string(offset));
     }
   }
-  if (!(o.successMm > 0.0))
+  if (!(this->successMm > 0.0))
   {
     throw Error("P3: the success bound must be positive");
   }
+}
+
+nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const PerturbationStudyOptions& o,
+  std::vector<PerturbationRun>& runs, std::ostream* progress)
+{
+  o.validate();
   const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
   const VideoCase c = prepareVideoCase(model, o.video, progress);
   RegistrationOptions options = videoRegistrationOptions(c.initialScale, o.video, RegistrationMethod::VIMLOP);

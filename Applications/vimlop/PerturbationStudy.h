@@ -24,6 +24,8 @@ struct PerturbationStudyOptions
   int trialsPerOffset = 10;
   /// A run succeeds when its mean camera position error is at most this (default 1 mm).
   double successMm = 1.0;
+  /// @throws vimlop::Error naming the first invalid setting.
+  void validate() const;
 };
 
 /**

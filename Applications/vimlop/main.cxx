@@ -2,6 +2,7 @@
 // registers itself here; errors the user can act on are vimlop::Error and end
 // the program with one line on stderr and exit code 1.
 
+#include "CanonicalCommand.h"
 #include "CommandLine.h"
 #include "ContoursCommand.h"
 #include "Error.h"
@@ -42,6 +43,7 @@ int main(int argc, char** argv)
   vimlop::addSfmCommand(app);
   vimlop::addReportCommand(app);
   vimlop::addRegisterCommand(app);
+  vimlop::addCanonicalCommand(app);
   try
   {
     app.parse(argc, argv);

@@ -1,0 +1,79 @@
+#include "CanonicalCommand.h"
+
+#include "CanonicalPoses.h"
+#include "EmbreeRegistrationModel.h"
+#include "Error.h"
+#include "FramePoseIO.h"
+#include "ModelLoading.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <memory>
+
+namespace vimlop
+{
+
+namespace
+{
+
+struct CanonicalCommandOptions
+{
+  std::string mesh;
+  std::string ct;
+  std::string out;
+  CanonicalPoseOptions poses;
+  std::vector<double> rollsDeg{ 0.0 };
+};
+
+void runCanonical(CanonicalCommandOptions o)
+{
+  if (o.mesh.empty() && o.ct.empty())
+  {
+    throw Error("give --mesh or --ct");
+  }
+  o.poses.rollsDeg = o.rollsDeg;
+  const RegistrationModel model = makeEmbreeRegistrationModel(airwayMeshFrom(o.mesh, o.ct));
+  const std::vector<CameraPose> poses = makeCanonicalPoses(model, o.poses);
+  std::vector<FramePose> numbered;
+  for (size_t i = 0; i < poses.size(); ++i)
+  {
+    numbered.push_back({ static_cast<int>(i), poses[i] });
+  }
+  writeFramePoses(numbered, o.out);
+  std::printf("%zu canonical poses (%.1f mm apart, %d views per position, %zu rolls); wrote '%s'\n",
+    poses.size(), o.poses.spacingMm, o.poses.viewsPerPosition, o.rollsDeg.size(), o.out.c_str());
+}
+
+} // namespace
+
+void addCanonicalCommand(CLI::App& app)
+{
+  auto o = std::make_shared<CanonicalCommandOptions>();
+  CLI::App* c = app.add_subcommand("canonical",
+    "Canonical camera poses along the airway of a template (store them with it; `vimlop warp "
+    "--template-poses` carries them to a patient; `vimlop register --init canonical:FILE` starts "
+    "from them)");
+  CLI::Option* mesh = c->add_option("--mesh", o->mesh, "airway surface (normals into the air)");
+  CLI::Option* ct = c->add_option("--ct", o->ct, "CT volume whose airway is segmented with the defaults");
+  mesh->excludes(ct);
+  c->add_option("--out", o->out, "pose file (FramePose JSON)")->required();
+  c->add_option("--spacing-mm", o->poses.spacingMm, "least distance between positions, mm")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  c->add_option("--clearance-mm", o->poses.minClearanceMm, "least distance to the wall, mm")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  c->add_option("--look-ahead-mm", o->poses.lookAheadMm, "free length needed ahead, mm")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  c->add_option("--views", o->poses.viewsPerPosition, "view directions per position")
+    ->capture_default_str()
+    ->check(CLI::Range(1, 20));
+  c->add_option("--rolls-deg", o->rollsDeg, "rolls about the view axis, degrees (repeatable)")
+    ->delimiter(',')
+    ->capture_default_str();
+  c->callback([o] { runCanonical(*o); });
+}
+
+} // namespace vimlop
