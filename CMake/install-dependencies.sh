@@ -12,6 +12,8 @@ ccache
 libeigen3-dev
 libembree-dev
 libvtk9-dev
+python3-vtk9
+python3-dev
 libinsighttoolkit5-dev
 libgdcm-dev
 libgdcm-tools

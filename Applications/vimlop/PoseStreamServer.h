@@ -36,6 +36,14 @@ struct PoseStreamServerOptions
  * OpenIGTLink protocol the matrices are in RAS (mm): VIMLOP's LPS CT frame is
  * converted (see CoordinateFrames.h), as 3D Slicer's OpenIGTLinkIF expects.
  *
+ * `CTFromSfM` is a similarity, and its matrix carries the scale as it is:
+ * [s R_ras  t_ras; 0 0 0 1], whose upper-left 3 x 3 block is s times a
+ * rotation (each column has length s, its determinant is s³) and whose
+ * translation is in mm. SfM-frame data (points, a mesh) multiplied by it
+ * lands in the CT in mm, e.g. under a linear transform node in 3D Slicer;
+ * a receiver that needs a rigid transform divides the block by s. Camera
+ * poses are rigid (s = 1).
+ *
  * One thread, non-blocking sockets and poll(): a client that sends garbage,
  * disconnects early, never reads, or comes with many others cannot crash or
  * stall the server. What clients send is read and discarded.

@@ -9,7 +9,8 @@ class App;
 namespace vimlop
 {
 
-/// @brief Adds `vimlop serve`: camera poses to navigation software over OpenIGTLink.
+/// @brief Adds `vimlop serve`: the camera poses of a pose file or a result folder to
+/// navigation software over OpenIGTLink (serving itself is in PoseServing.h).
 void addServeCommand(CLI::App& app);
 
 } // namespace vimlop

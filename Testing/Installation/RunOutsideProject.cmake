@@ -1,6 +1,9 @@
 # Installs VIMLOP from BUILD_DIR into WORK_DIR/prefix, then configures, builds
 # and runs Testing/Installation/OutsideProject against that installed tree.
-# Usage: cmake -DBUILD_DIR=... -DWORK_DIR=... -DSOURCE_DIR=... -P RunOutsideProject.cmake
+# With PYTHON (and PYTHON_DESTINATION, the package's place under the prefix)
+# the installed Python package is imported too and checked by PYTHON_TEST.
+# Usage: cmake -DBUILD_DIR=... -DWORK_DIR=... -DSOURCE_DIR=...
+#              [-DPYTHON=... -DPYTHON_DESTINATION=... -DPYTHON_TEST=...] -P RunOutsideProject.cmake
 file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")
 function(run)
@@ -15,3 +18,11 @@ run(${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}/build" -G Ninja -DCMAKE_
   "-DCMAKE_PREFIX_PATH=${prefix}")
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
 run("${WORK_DIR}/build/register-synthetic")
+if(PYTHON)
+  # The installed package, not the build tree's: only the prefix is on the path.
+  set(package "${prefix}/${PYTHON_DESTINATION}")
+  run(${CMAKE_COMMAND} -E env "PYTHONPATH=${package}" "${PYTHON}" -c
+    "import sys, vimlop; print('vimlop from', vimlop.__file__); sys.exit(0 if vimlop.__file__.startswith(sys.argv[1]) else 1)"
+    "${package}")
+  run(${CMAKE_COMMAND} -E env "PYTHONPATH=${package}" "${PYTHON}" "${PYTHON_TEST}")
+endif()

@@ -2,10 +2,12 @@
 // written against the OpenIGTLink library's client side (not VIMLOP's code).
 // It starts the server, harasses it with hostile clients (garbage bytes, early
 // disconnects, more connections than it serves), then receives every pose as
-// a well-behaved client and checks the matrices against the pose file (in RAS,
-// as the protocol wants), and finally stops the server with SIGINT.
+// a well-behaved client and checks the matrices against the pose file or the
+// result folder's result.json (in RAS, as the protocol wants), and finally
+// stops the server with SIGINT.
 //
-// Usage: TestPoseReceiver <vimlop> <poses.json>
+// Usage: TestPoseReceiver <vimlop> --poses <poses.json>
+//        TestPoseReceiver <vimlop> --result <result folder>
 
 #include <igtlClientSocket.h>
 #include <igtlMessageHeader.h>
@@ -14,7 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include <arpa/inet.h>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -65,7 +69,8 @@ void receivePoses(int port, size_t expected, std::map<std::string, std::vector<f
   }
   socket->SetReceiveTimeout(10000);
   const auto start = std::chrono::steady_clock::now();
-  while (got.size() < expected && std::chrono::steady_clock::now() - start < std::chrono::seconds(10))
+  while (
+    got.size() < expected && std::chrono::steady_clock::now() - start < std::chrono::seconds(10))
   {
     igtl::MessageHeader::Pointer header = igtl::MessageHeader::New();
     header->InitPack();
@@ -102,17 +107,73 @@ void receivePoses(int port, size_t expected, std::map<std::string, std::vector<f
   socket->CloseSocket();
 }
 
+using Matrix = std::array<double, 16>;
+
+/// A 4 x 4 matrix from JSON: 16 numbers row-major, or 4 rows of 4.
+Matrix toMatrix(const nlohmann::json& value)
+{
+  Matrix m{};
+  for (int i = 0; i < 16; ++i)
+  {
+    m[static_cast<size_t>(i)] =
+      value.size() == 16 ? value[i].get<double>() : value[i / 4][i % 4].get<double>();
+  }
+  return m;
+}
+
+/// A transform into the LPS CT frame re-expressed into RAS: the first two rows change sign.
+Matrix intoRas(Matrix m)
+{
+  for (size_t i = 0; i < 8; ++i)
+  {
+    m[i] = -m[i];
+  }
+  return m;
+}
+
+double determinant3(const std::vector<float>& m)
+{
+  return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+    m[2] * (m[4] * m[9] - m[5] * m[8]);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
-  if (argc != 3)
+  const std::string mode = argc == 4 ? argv[2] : "";
+  if (mode != "--poses" && mode != "--result")
   {
-    std::fprintf(stderr, "usage: %s <vimlop> <poses.json>\n", argv[0]);
+    std::fprintf(
+      stderr, "usage: %s <vimlop> --poses <poses.json> | --result <result folder>\n", argv[0]);
     return 2;
   }
   std::signal(SIGPIPE, SIG_IGN);
-  const nlohmann::json poses = nlohmann::json::parse(std::ifstream(argv[2]));
+  // What every device must carry, from the files themselves (not VIMLOP's readers).
+  std::map<std::string, Matrix> expected;
+  double expectedScale = 0.0;
+  if (mode == "--poses")
+  {
+    const nlohmann::json poses = nlohmann::json::parse(std::ifstream(argv[3]));
+    for (const auto& pose : poses["poses"])
+    {
+      expected["VideoCamera_" + std::to_string(pose["frame_id"].get<int>())] =
+        intoRas(toMatrix(pose["camera_to_ct"]));
+    }
+  }
+  else
+  {
+    const nlohmann::json result =
+      nlohmann::json::parse(std::ifstream(std::string(argv[3]) + "/result.json"));
+    expected["CTFromSfM"] = intoRas(toMatrix(result["transform"]["matrix"]));
+    expectedScale = result["transform"]["scale"].get<double>();
+    for (const auto& frame : result["frames"])
+    {
+      expected["VideoCamera_" + std::to_string(frame["id"].get<int>())] =
+        intoRas(toMatrix(frame["camera_to_ct"]));
+    }
+  }
+  std::printf("expecting %zu devices\n", expected.size());
 
   int out[2];
   if (pipe(out) != 0)
@@ -124,8 +185,8 @@ int main(int argc, char** argv)
   {
     dup2(out[1], STDOUT_FILENO);
     close(out[0]);
-    execl(argv[1], argv[1], "serve", "--poses", argv[2], "--port", "0", "--max-clients", "4", "--duration-s", "120",
-      static_cast<char*>(nullptr));
+    execl(argv[1], argv[1], "serve", argv[2], argv[3], "--port", "0", "--max-clients", "4",
+      "--duration-s", "120", static_cast<char*>(nullptr));
     _exit(127);
   }
   close(out[1]);
@@ -149,7 +210,8 @@ int main(int argc, char** argv)
   {
     c = static_cast<char>(rng());
   }
-  check(garbage >= 0 && send(garbage, noise.data(), noise.size(), MSG_NOSIGNAL) > 0, "garbage client connected and sent");
+  check(garbage >= 0 && send(garbage, noise.data(), noise.size(), MSG_NOSIGNAL) > 0,
+    "garbage client connected and sent");
 
   // Early disconnects.
   for (int i = 0; i < 20; ++i)
@@ -178,12 +240,12 @@ int main(int argc, char** argv)
 
   // A well-behaved client receives every pose, in RAS.
   std::map<std::string, std::vector<float>> got;
-  receivePoses(port, poses["poses"].size(), got);
-  check(got.size() == poses["poses"].size(), "received " + std::to_string(got.size()) + " of " +
-      std::to_string(poses["poses"].size()) + " poses");
-  for (const auto& pose : poses["poses"])
+  receivePoses(port, expected.size(), got);
+  check(got.size() == expected.size(),
+    "received " + std::to_string(got.size()) + " of " + std::to_string(expected.size()) +
+      " devices");
+  for (const auto& [name, matrix] : expected)
   {
-    const std::string name = "VideoCamera_" + std::to_string(pose["frame_id"].get<int>());
     const auto it = got.find(name);
     if (it == got.end())
     {
@@ -191,13 +253,22 @@ int main(int argc, char** argv)
       continue;
     }
     double worst = 0.0;
-    for (int i = 0; i < 16; ++i)
+    for (size_t i = 0; i < 16; ++i)
     {
-      // LPS to RAS flips the first two rows of a transform into the CT.
-      const double expected = (i < 8 ? -1.0 : 1.0) * pose["camera_to_ct"][i].get<double>();
-      worst = std::max(worst, std::abs(expected - it->second[static_cast<size_t>(i)]));
+      // Floats on the wire: relative to the element's size (translations are up to 10^3 mm).
+      worst =
+        std::max(worst, std::abs(matrix[i] - it->second[i]) / std::max(1.0, std::abs(matrix[i])));
     }
-    check(worst < 1e-4, name + " matches the pose file in RAS (worst element error " + std::to_string(worst) + ")");
+    check(worst < 1e-5,
+      name + " matches in RAS (worst relative element error " + std::to_string(worst) + ")");
+  }
+  if (expectedScale > 0.0 && got.count("CTFromSfM"))
+  {
+    // The similarity keeps its scale in the 3 x 3 block: the cube root of its determinant.
+    const double scale = std::cbrt(determinant3(got["CTFromSfM"]));
+    check(std::abs(scale - expectedScale) < 1e-5 * expectedScale,
+      "CTFromSfM carries the scale " + std::to_string(scale) +
+        " (result.json: " + std::to_string(expectedScale) + ")");
   }
   // The garbage client is still connected and the server still alive.
   check(kill(server, 0) == 0, "server alive after the hostile clients");
@@ -207,18 +278,20 @@ int main(int argc, char** argv)
   }
   // A second well-behaved client is served too.
   std::map<std::string, std::vector<float>> again;
-  receivePoses(port, poses["poses"].size(), again);
+  receivePoses(port, expected.size(), again);
   check(again == got, "a second client receives the same poses");
 
   kill(server, SIGINT);
   int status = 0;
   const auto start = std::chrono::steady_clock::now();
   pid_t done = 0;
-  while ((done = waitpid(server, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() - start < std::chrono::seconds(5))
+  while ((done = waitpid(server, &status, WNOHANG)) == 0 &&
+    std::chrono::steady_clock::now() - start < std::chrono::seconds(5))
   {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  check(done == server && WIFEXITED(status) && WEXITSTATUS(status) == 0, "server stops cleanly on SIGINT");
+  check(done == server && WIFEXITED(status) && WEXITSTATUS(status) == 0,
+    "server stops cleanly on SIGINT");
   if (done != server)
   {
     kill(server, SIGKILL);

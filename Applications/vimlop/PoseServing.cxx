@@ -1,0 +1,84 @@
+#include "PoseServing.h"
+
+#include "RegistrationResult.h"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+
+namespace vimlop
+{
+
+namespace
+{
+
+volatile std::sig_atomic_t stopRequested = 0;
+
+void requestStop(int)
+{
+  stopRequested = 1;
+}
+
+} // namespace
+
+void addPoseServingOptions(CLI::App& command, PoseServingOptions& options)
+{
+  command.add_option("--host", options.server.host, "address to listen on")->capture_default_str();
+  command.add_option("--port", options.server.port, "TCP port (0: any free one)")
+    ->capture_default_str();
+  command.add_flag("--allow-remote", options.server.allowRemote, "allow a non-loopback address");
+  command.add_option("--max-clients", options.server.maxClients, "clients served at once")
+    ->capture_default_str();
+  command
+    .add_option("--duration-s", options.durationS, "stop after this many seconds (0: until Ctrl-C)")
+    ->capture_default_str();
+}
+
+ServedPoses servedPosesOf(const RegistrationResult& result)
+{
+  ServedPoses poses;
+  poses.ctFromSfm = result.sfmToCT;
+  for (const FrameResult& frame : result.frames)
+  {
+    poses.cameraToCT.push_back({ frame.frameId, frame.cameraToCT });
+  }
+  return poses;
+}
+
+void servePoses(const PoseServingOptions& options, const ServedPoses& poses)
+{
+  PoseStreamServer server(options.server);
+  server.publish(poses.ctFromSfm ? &*poses.ctFromSfm : nullptr, poses.cameraToCT);
+  stopRequested = 0;
+  const auto previousInt = std::signal(SIGINT, requestStop);
+  const auto previousTerm = std::signal(SIGTERM, requestStop);
+  std::printf("%s: %zu camera poses%s on %s:%d (OpenIGTLink TRANSFORM, RAS mm); Ctrl-C stops\n",
+    options.label.c_str(), poses.cameraToCT.size(), poses.ctFromSfm ? " and CTFromSfM" : "",
+    options.server.host.c_str(), server.port());
+  std::fflush(stdout);
+  const auto start = std::chrono::steady_clock::now();
+  try
+  {
+    server.serve(
+      [&]
+      {
+        const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return !stopRequested && (options.durationS <= 0.0 || elapsed < options.durationS);
+      });
+  }
+  catch (...)
+  {
+    std::signal(SIGINT, previousInt);
+    std::signal(SIGTERM, previousTerm);
+    throw;
+  }
+  std::signal(SIGINT, previousInt);
+  std::signal(SIGTERM, previousTerm);
+  std::printf("%s: stopped\n", options.label.c_str());
+  std::fflush(stdout);
+}
+
+} // namespace vimlop
