@@ -55,7 +55,8 @@ void addCanonicalCommand(CLI::App& app)
     "--template-poses` carries them to a patient; `vimlop register --init canonical:FILE` starts "
     "from them)");
   CLI::Option* mesh = c->add_option("--mesh", o->mesh, "airway surface (normals into the air)");
-  CLI::Option* ct = c->add_option("--ct", o->ct, "CT volume whose airway is segmented with the defaults");
+  CLI::Option* ct =
+    c->add_option("--ct", o->ct, "CT volume whose airway is segmented with the defaults");
   mesh->excludes(ct);
   c->add_option("--out", o->out, "pose file (FramePose JSON)")->required();
   c->add_option("--spacing-mm", o->poses.spacingMm, "least distance between positions, mm")

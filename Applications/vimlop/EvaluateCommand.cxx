@@ -201,8 +201,8 @@ void runPerturbation(const PerturbationCommandOptions& o)
   {
     std::printf("P3 contour error separates failures from successes: ROC AUC %.3f, best "
                 "threshold %.2f px (%d failures of %d runs)\n",
-      p3["auc"].get<double>(), p3["failure_threshold_px"].get<double>(),
-      p3["failures"].get<int>(), p3["runs_total"].get<int>());
+      p3["auc"].get<double>(), p3["failure_threshold_px"].get<double>(), p3["failures"].get<int>(),
+      p3["runs_total"].get<int>());
   }
 }
 
@@ -210,8 +210,8 @@ void runPerturbation(const PerturbationCommandOptions& o)
 
 CLI::App* addEvaluateCommand(CLI::App& app)
 {
-  CLI::App* evaluate =
-    app.add_subcommand("evaluate", "Run an evaluation protocol (DESIGN section 6); results go to a JSON file");
+  CLI::App* evaluate = app.add_subcommand(
+    "evaluate", "Run an evaluation protocol (DESIGN section 6); results go to a JSON file");
   evaluate->require_subcommand(1);
 
   auto synthetic = std::make_shared<SyntheticCommandOptions>();
@@ -289,7 +289,8 @@ CLI::App* addEvaluateCommand(CLI::App& app)
       "(0: run all fully)")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
-  p2->add_option("--finalists", video->finalists, "with --init canonical: starts run fully, at every scale factor")
+  p2->add_option("--finalists", video->finalists,
+      "with --init canonical: starts run fully, at every scale factor")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
   p2->add_option("--failure-threshold-px", video->failureThresholdPx,
@@ -306,8 +307,8 @@ CLI::App* addEvaluateCommand(CLI::App& app)
     "the Fig. 3 report in OUT/report");
   CLI::Option* p3Mesh =
     p3->add_option("--mesh", perturbation->mesh, "airway surface (CT frame, normals into the air)");
-  CLI::Option* p3Ct =
-    p3->add_option("--ct", perturbation->ct, "CT volume whose airway is segmented with the defaults");
+  CLI::Option* p3Ct = p3->add_option(
+    "--ct", perturbation->ct, "CT volume whose airway is segmented with the defaults");
   p3Mesh->excludes(p3Ct);
   p3->add_option("--out", perturbation->out, "output folder")->required();
   p3->add_option("--offsets-mm", perturbation->offsets,

@@ -24,7 +24,8 @@ void PerturbationStudyOptions::validate() const
   {
     if (!(offset >= 0.0) || offset > 90.0)
     {
-      throw Error("P3: offsets must lie in [0, 90] (mm and degrees), got " + std::to_string(offset));
+      throw Error(
+        "P3: offsets must lie in [0, 90] (mm and degrees), got " + std::to_string(offset));
     }
   }
   if (!(this->successMm > 0.0))
@@ -39,7 +40,8 @@ nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const Perturbation
   o.validate();
   const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
   const VideoCase c = prepareVideoCase(model, o.video, progress);
-  RegistrationOptions options = videoRegistrationOptions(c.initialScale, o.video, RegistrationMethod::VIMLOP);
+  RegistrationOptions options =
+    videoRegistrationOptions(c.initialScale, o.video, RegistrationMethod::VIMLOP);
   options.threads = 1;
 
   // Every start is drawn first, from its own stream, so that the runs do not
@@ -101,7 +103,8 @@ nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const Perturbation
   // Failures are the positives: a high contour error should flag them.
   const double auc = rocAuc(failed, succeeded);
   const double threshold = bestSeparatingThreshold(failed, succeeded);
-  auto numberOrNull = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
+  auto numberOrNull = [](double x)
+  { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
   return { { "protocol", "P3" }, { "seed", o.video.simulation.seed }, { "success_mm", o.successMm },
     { "sfm_points", c.sfm.points.size() }, { "offsets", offsets }, { "runs_total", total },
     { "failures", failed.size() }, { "auc", numberOrNull(auc) },

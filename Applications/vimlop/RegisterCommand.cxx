@@ -10,6 +10,7 @@
 #include "MultiStartRegistration.h"
 #include "OccludingContourDetector.h"
 #include "OffscreenRendering.h"
+#include "PoseServing.h"
 #include "RegisteredVideo.h"
 #include "RegistrationMetrics.h"
 #include "RegistrationRecordIO.h"
@@ -100,6 +101,8 @@ struct RegisterOptions
   bool json = false;
   bool noVideo = false;
   bool noReport = false;
+  bool serve = false;
+  PoseServingOptions serving;
 };
 
 /// Where the user asked the start to come from.
@@ -128,8 +131,8 @@ InitChoice parseInit(const std::string& text)
   }
   else
   {
-    throw Error("--init: expected manual:POSE.json, canonical or canonical:POSES.json, got '" +
-      text + "'");
+    throw Error(
+      "--init: expected manual:POSE.json, canonical or canonical:POSES.json, got '" + text + "'");
   }
   return c;
 }
@@ -220,6 +223,41 @@ void runRegister(const RegisterOptions& o)
   log << "vimlop register: model\n";
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
   const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
+  // Canonical poses before the video work, so that a bad pose file fails fast.
+  std::vector<CameraPose> canonicalPoses;
+  if (init.kind == InitChoice::Kind::Canonical)
+  {
+    if (init.file.empty())
+    {
+      CanonicalPoseOptions generation;
+      generation.spacingMm = o.canonicalSpacingMm;
+      canonicalPoses = makeCanonicalPoses(model, generation);
+    }
+    else
+    {
+      int dropped = 0;
+      for (const FramePose& p : readFramePoses(init.file))
+      {
+        if (model.isInside(p.cameraToWorld.centre))
+        {
+          canonicalPoses.push_back(p.cameraToWorld);
+        }
+        else
+        {
+          ++dropped;
+        }
+      }
+      if (dropped > 0)
+      {
+        warn(std::to_string(dropped) + " canonical poses of '" + init.file +
+          "' lie outside the patient's airway; dropped");
+      }
+      if (canonicalPoses.empty())
+      {
+        throw Error("'" + init.file + "': no canonical pose lies inside the patient's airway");
+      }
+    }
+  }
   checkInterrupted();
 
   log << "vimlop register: contours of " << frames.size() << " frames\n";
@@ -315,42 +353,9 @@ void runRegister(const RegisterOptions& o)
   }
   else
   {
-    std::vector<CameraPose> poses;
-    if (init.file.empty())
-    {
-      poses = makeCanonicalPoses(model, [&] {
-        CanonicalPoseOptions c;
-        c.spacingMm = o.canonicalSpacingMm;
-        return c;
-      }());
-    }
-    else
-    {
-      int dropped = 0;
-      for (const FramePose& p : readFramePoses(init.file))
-      {
-        if (model.isInside(p.cameraToWorld.centre))
-        {
-          poses.push_back(p.cameraToWorld);
-        }
-        else
-        {
-          ++dropped;
-        }
-      }
-      if (dropped > 0)
-      {
-        warn(std::to_string(dropped) + " canonical poses of '" + init.file +
-          "' lie outside the patient's airway; dropped");
-      }
-      if (poses.empty())
-      {
-        throw Error("'" + init.file + "': no canonical pose lies inside the patient's airway");
-      }
-    }
     int anchor = 0;
-    starts = canonicalStarts(data, s0, poses, &anchor);
-    log << "vimlop register: " << poses.size() << " canonical poses, frame " << anchor
+    starts = canonicalStarts(data, s0, canonicalPoses, &anchor);
+    log << "vimlop register: " << canonicalPoses.size() << " canonical poses, frame " << anchor
         << " placed at each\n";
     initName = "canonical";
   }
@@ -367,14 +372,16 @@ void runRegister(const RegisterOptions& o)
     // A single start uses every thread inside the registration instead.
     outcome.candidates.resize(1);
     outcome.candidates[0].initialSfmToCT = starts[0];
-    outcome.best = registerVideo(model, data, starts[0], options, [&](const IterationRecord& r) {
-      if (r.iteration % 10 == 0)
+    outcome.best = registerVideo(model, data, starts[0], options,
+      [&](const IterationRecord& r)
       {
-        log << "vimlop register: iteration " << r.iteration << ", contour error "
-            << r.contourErrorPx << " px\n";
-      }
-      return !interrupted;
-    });
+        if (r.iteration % 10 == 0)
+        {
+          log << "vimlop register: iteration " << r.iteration << ", contour error "
+              << r.contourErrorPx << " px\n";
+        }
+        return !interrupted;
+      });
     outcome.bestCandidate = 0;
     outcome.failureThresholdPx = multi.failureContourErrorPx;
     outcome.failure = !(outcome.best.contourErrorPx <= multi.failureContourErrorPx);
@@ -436,9 +443,8 @@ void runRegister(const RegisterOptions& o)
     }
     record.frameImages.push_back(name);
   }
-  record.confidence = RegistrationRecord::Confidence{ outcome.failure,
-    outcome.failureThresholdPx, initName, static_cast<int>(outcome.candidates.size()),
-    outcome.bestCandidate };
+  record.confidence = RegistrationRecord::Confidence{ outcome.failure, outcome.failureThresholdPx,
+    initName, static_cast<int>(outcome.candidates.size()), outcome.bestCandidate };
   record.versions = { { "vtk", vtkVersion::GetVTKVersion() }, { "opencv", CV_VERSION } };
   if (!truthPoses.empty())
   {
@@ -477,8 +483,8 @@ void runRegister(const RegisterOptions& o)
   if (!o.noReport)
   {
     log << "vimlop register: report\n";
-    RegistrationReport::write(&record, o.out, {}, (fs::path(o.out) / "report").string(),
-      RegistrationReport::Options());
+    RegistrationReport::write(
+      &record, o.out, {}, (fs::path(o.out) / "report").string(), RegistrationReport::Options());
   }
 
   // What the user reads.
@@ -497,7 +503,8 @@ void runRegister(const RegisterOptions& o)
     std::vector<double> angle;
     for (size_t j = 0; j < result.frames.size(); ++j)
     {
-      position.push_back(cameraPositionError(result.frames[j].cameraToCT, record.truth->camerasCT[j]));
+      position.push_back(
+        cameraPositionError(result.frames[j].cameraToCT, record.truth->camerasCT[j]));
       angle.push_back(cameraAngleErrorDeg(result.frames[j].cameraToCT, record.truth->camerasCT[j]));
     }
     const Summary p = summarize(position);
@@ -528,7 +535,17 @@ void runRegister(const RegisterOptions& o)
   }
   if (outcome.failure)
   {
+    if (o.serve)
+    {
+      warn("not serving poses of a result flagged as a failure");
+    }
     throw ExitRequest{ 3 };
+  }
+  if (o.serve)
+  {
+    PoseServingOptions serving = o.serving;
+    serving.label = "vimlop register";
+    servePoses(serving, servedPosesOf(result));
   }
 }
 
@@ -541,38 +558,44 @@ void addRegisterCommand(CLI::App& app)
     "Register an endoscopic video to a CT (V-IMLOP): result folder with result.json, VTK files, "
     "registered video and report. Exit code 3 when the result is flagged as a failure.");
   CLI::Option* ct = c->add_option("--ct", o->ct, "CT volume (its airway is segmented)");
-  CLI::Option* mesh = c->add_option("--mesh", o->mesh, "airway surface (CT frame, normals into the air)");
+  CLI::Option* mesh =
+    c->add_option("--mesh", o->mesh, "airway surface (CT frame, normals into the air)");
   ct->excludes(mesh);
   CLI::Option* frames = c->add_option("--frames", o->frames, "folder of frames");
   CLI::Option* video = c->add_option("--video", o->video, "video file");
   frames->excludes(video);
-  c->add_option("--intrinsics", o->intrinsics, "camera intrinsics (OpenCV YAML/JSON/XML)")->required();
+  c->add_option("--intrinsics", o->intrinsics, "camera intrinsics (OpenCV YAML/JSON/XML)")
+    ->required();
   c->add_option("--sfm", o->sfm, "structure from motion: builtin or colmap:DIR (a sparse model)")
     ->capture_default_str();
-  c->add_option("--tracker", o->tracker, "tracker CSV (time_s,x_mm,y_mm,z_mm): initial scale (V14)");
+  c->add_option(
+    "--tracker", o->tracker, "tracker CSV (time_s,x_mm,y_mm,z_mm): initial scale (V14)");
   c->add_option("--fps", o->fps, "frame rate, for the frame times on the tracker's clock")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
-  c->add_option("--time-offset", o->timeOffsetS, "time of the first frame on the tracker's clock, s")
+  c->add_option(
+     "--time-offset", o->timeOffsetS, "time of the first frame on the tracker's clock, s")
     ->capture_default_str();
   c->add_option("--scale", o->scale, "initial scale, mm per SfM unit (instead of the tracker's)")
     ->check(CLI::PositiveNumber);
   c->add_option("--init", o->init,
-      "start: manual:POSE.json (the camera-to-CT pose of one frame, FramePose JSON), canonical "
-      "(poses generated along the airway) or canonical:POSES.json (e.g. template poses warped "
-      "by `vimlop warp`)")
+     "start: manual:POSE.json (the camera-to-CT pose of one frame, FramePose JSON), canonical "
+     "(poses generated along the airway) or canonical:POSES.json (e.g. template poses warped "
+     "by `vimlop warp`)")
     ->capture_default_str();
   c->add_option("--method", o->method, "vimlop, imlp or trimmed-icp")->capture_default_str();
-  c->add_option("--truth", o->truth, "true camera poses (FramePose JSON, e.g. a simulation's poses.json): errors are reported");
+  c->add_option("--truth", o->truth,
+    "true camera poses (FramePose JSON, e.g. a simulation's poses.json): errors are reported");
   c->add_option("--point-noise-mm", o->registration.pointNoiseFloorMm,
-      "std added to every SfM point's covariance, mm")
+     "std added to every SfM point's covariance, mm")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
   c->add_option("--contour-variance-px2", o->registration.contourVariancePx2,
-      "contour position noise Σ2d, px² (paper: 1 for video)")
+     "contour position noise Σ2d, px² (paper: 1 for video)")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
-  c->add_option("--kappa", o->registration.kappa, "contour orientation concentration κ (paper: 200)")
+  c->add_option(
+     "--kappa", o->registration.kappa, "contour orientation concentration κ (paper: 200)")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
   c->add_option("--trim", o->trimFraction, "initial trim ratio p_t of 3-D pairs")
@@ -582,7 +605,7 @@ void addRegisterCommand(CLI::App& app)
     ->capture_default_str()
     ->check(CLI::Range(0.5, 0.99999));
   c->add_option("--scale-bound", o->registration.scaleBoundFactor,
-      "scale bounds: the initial scale divided and multiplied by this")
+     "scale bounds: the initial scale divided and multiplied by this")
     ->capture_default_str()
     ->check(CLI::Range(1.0001, 10.0));
   c->add_option("--max-iterations", o->registration.maxIterations, "iteration cap per start")
@@ -591,21 +614,23 @@ void addRegisterCommand(CLI::App& app)
   c->add_option("--threads", o->registration.threads, "threads, 0 for all cores")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
-  c->add_option("--scale-factors", o->scaleFactors, "canonical: variations of the initial scale per start")
+  c->add_option(
+     "--scale-factors", o->scaleFactors, "canonical: variations of the initial scale per start")
     ->capture_default_str();
   c->add_option("--screen-iterations", o->registration.multiStart.screeningIterations,
-      "canonical: iterations of every start before the finalists are chosen (0: all run fully)")
+     "canonical: iterations of every start before the finalists are chosen (0: all run fully)")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
-  c->add_option("--finalists", o->registration.multiStart.finalists, "canonical: starts run fully, at every scale factor")
+  c->add_option("--finalists", o->registration.multiStart.finalists,
+     "canonical: starts run fully, at every scale factor")
     ->capture_default_str()
     ->check(CLI::Range(1, 100000));
   c->add_option("--canonical-spacing-mm", o->canonicalSpacingMm,
-      "canonical: distance between generated canonical positions, mm")
+     "canonical: distance between generated canonical positions, mm")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
   c->add_option("--failure-threshold-px", o->registration.multiStart.failureContourErrorPx,
-      "contour error above which the result is flagged as a failure, px (calibrated on P3)")
+     "contour error above which the result is flagged as a failure, px (calibrated on P3)")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
   c->add_option("--max-frames", o->maxFrames, "read at most this many frames")
@@ -616,13 +641,19 @@ void addRegisterCommand(CLI::App& app)
   c->add_flag("--json", o->json, "print only a JSON summary on stdout");
   c->add_flag("--no-video", o->noVideo, "skip the registered video");
   c->add_flag("--no-report", o->noReport, "skip the report");
-  c->callback([o] {
-    if (o->frames.empty() && o->video.empty())
+  c->add_flag("--serve", o->serve,
+    "then serve the poses over OpenIGTLink (CTFromSfM and VideoCamera_<frame>, RAS) until Ctrl-C; "
+    "never a result flagged as a failure");
+  addPoseServingOptions(*c, o->serving);
+  c->callback(
+    [o]
     {
-      throw Error("give --frames DIR or --video FILE");
-    }
-    runRegister(*o);
-  });
+      if (o->frames.empty() && o->video.empty())
+      {
+        throw Error("give --frames DIR or --video FILE");
+      }
+      runRegister(*o);
+    });
 }
 
 } // namespace vimlop

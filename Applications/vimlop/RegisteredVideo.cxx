@@ -64,8 +64,8 @@ std::vector<std::string> writeRegisteredVideo(
     const cv::Mat side = cv::imread(path, cv::IMREAD_COLOR);
     if (!video.isOpened())
     {
-      video.open((fs::path(folder) / videoName).string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
-        fps, side.size());
+      video.open((fs::path(folder) / videoName).string(),
+        cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps, side.size());
       if (!video.isOpened())
       {
         throw Error("'" + (fs::path(folder) / videoName).string() + "': cannot write the video");

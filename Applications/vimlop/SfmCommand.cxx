@@ -66,9 +66,11 @@ void runSfm(const SfmOptions& o)
     const FrameSequence sequence = FrameSequence::load(o.frames);
     if (tracker)
     {
-      checkTrackerOverlap(*tracker, frameTimesS(static_cast<size_t>(sequence.size()), o.fps, o.timeOffset));
+      checkTrackerOverlap(
+        *tracker, frameTimesS(static_cast<size_t>(sequence.size()), o.fps, o.timeOffset));
     }
-    const std::vector<cv::Mat> frames = idealFrames(sequence, k, o.frames, o.intrinsics, &std::cerr);
+    const std::vector<cv::Mat> frames =
+      idealFrames(sequence, k, o.frames, o.intrinsics, &std::cerr);
     std::vector<std::string> names;
     for (int f = 0; f < sequence.size(); ++f)
     {

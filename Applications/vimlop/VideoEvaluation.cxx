@@ -283,11 +283,12 @@ SimilarityTransform perturbedStart(const VideoCase& c, const RegistrationModel& 
   SimilarityTransform scaled = c.truth;
   // Keep the centroid of the points where the truth puts it, at the new scale.
   scaled.scale = s0;
-  scaled.translation = c.centroidCT - s0 * c.truth.rotation * (c.truth.inverse().apply(c.centroidCT));
+  scaled.translation =
+    c.centroidCT - s0 * c.truth.rotation * (c.truth.inverse().apply(c.centroidCT));
   for (int draw = 0; draw < 500; ++draw)
   {
-    const Eigen::Matrix3d rotation = rotationFromVector(
-      (minDeg + unit(rng) * (maxDeg - minDeg)) * Degree * randomDirection(rng));
+    const Eigen::Matrix3d rotation =
+      rotationFromVector((minDeg + unit(rng) * (maxDeg - minDeg)) * Degree * randomDirection(rng));
     const Eigen::Vector3d shift = (minMm + unit(rng) * (maxMm - minMm)) * randomDirection(rng);
     SimilarityTransform initial;
     initial.scale = s0;
@@ -322,8 +323,8 @@ RegistrationOptions videoRegistrationOptions(
   return options;
 }
 
-std::vector<SimilarityTransform> canonicalStarts(const RegistrationData& data,
-  double initialScale, const std::vector<CameraPose>& posesCT, int* anchorFrame)
+std::vector<SimilarityTransform> canonicalStarts(const RegistrationData& data, double initialScale,
+  const std::vector<CameraPose>& posesCT, int* anchorFrame)
 {
   // The middle registered frame stands at each canonical pose: the sequence
   // then reaches both ways from it, as the scope moves through the region.

@@ -29,7 +29,8 @@ std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCam
   {
     if (log)
     {
-      *log << "vimlop: note: undistorting the frames with the intrinsics' distortion coefficients\n";
+      *log
+        << "vimlop: note: undistorting the frames with the intrinsics' distortion coefficients\n";
     }
     matrix = (cv::Mat_<double>(3, 3) << k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0);
     coefficients = cv::Mat(1, static_cast<int>(k.distortion.size()), CV_64F);

@@ -2,10 +2,10 @@
 
 #include "Error.h"
 
-#include <Eigen/Geometry>
 #include "MeshTree.h"
 #include "Rotation.h"
 #include "SurfaceLocator.h"
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>

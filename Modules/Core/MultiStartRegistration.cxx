@@ -26,10 +26,11 @@ void MultiStartOptions::validate() const
       throw Error("multi-start: scale factors must be positive, got " + std::to_string(f));
     }
   }
-  if (this->screeningIterations < 0 || this->finalists < 1 || this->threads < 0)
+  if (this->screeningIterations < 0 || this->finalists < 1 || this->threads < 0 ||
+    this->screeningStride < 1)
   {
-    throw Error("multi-start: screening iterations and threads must be non-negative and "
-                "finalists at least 1");
+    throw Error("multi-start: screening iterations and threads must be non-negative, and "
+                "finalists and the screening stride at least 1");
   }
   if (!(this->failureContourErrorPx > 0.0))
   {
@@ -70,8 +71,7 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
       c.start = static_cast<int>(s);
       c.scaleFactor = factor;
       c.initialSfmToCT = starts[s];
-      c.initialSfmToCT.scale =
-        std::clamp(starts[s].scale * factor, base.minScale, base.maxScale);
+      c.initialSfmToCT.scale = std::clamp(starts[s].scale * factor, base.minScale, base.maxScale);
       if (!c.initialSfmToCT.isValid())
       {
         c.skipped = "not a valid similarity";
@@ -112,8 +112,27 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
   std::atomic<bool> cancelled{ false };
   std::mutex progressMutex;
   std::vector<RegistrationResult> results(out.candidates.size());
+  // The screening's subsample: every stride-th frame (at least two) and point.
+  RegistrationData screeningData;
+  const size_t stride = static_cast<size_t>(options.screeningStride);
+  const size_t frameStride = data.frames.size() >= 2 * stride ? stride : 1;
+  for (size_t j = frameStride / 2; j < data.frames.size(); j += frameStride)
+  {
+    screeningData.frames.push_back(data.frames[j]);
+  }
+  for (size_t i = 0; i < data.points.size(); i += stride)
+  {
+    screeningData.points.push_back(data.points[i]);
+    screeningData.pointCovariances.push_back(data.pointCovariances[i]);
+  }
+  if (screeningData.points.size() < 10 ||
+    (base.method == RegistrationMethod::VIMLOP && screeningData.numberOfContourPoints() == 0))
+  {
+    screeningData = data;
+  }
   auto runPhase = [&](const char* phase, const std::vector<int>& which, int maxIterations)
   {
+    const RegistrationData& phaseData = maxIterations < base.maxIterations ? screeningData : data;
     int done = 0;
     if (progress && !progress(phase, 0, static_cast<int>(which.size())))
     {
@@ -130,8 +149,8 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
         RegistrationOptions o = base;
         o.threads = 1;
         o.maxIterations = maxIterations;
-        results[which[k]] = registerVideo(
-          model, data, c.initialSfmToCT, o, [&](const IterationRecord&) { return !cancelled; });
+        results[which[k]] = registerVideo(model, phaseData, c.initialSfmToCT, o,
+          [&](const IterationRecord&) { return !cancelled; });
         const RegistrationResult& r = results[which[k]];
         c.contourErrorPx = r.contourErrorPx;
         c.residualErrorMm = r.residualErrorMm;
@@ -166,9 +185,9 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
     // Screening: each start once, at the scale factor closest to 1; the
     // starts whose screening ends with the least contour error go on, at
     // every scale factor.
-    const auto nearestToOne = std::min_element(options.scaleFactors.begin(),
-      options.scaleFactors.end(),
-      [](double a, double b) { return std::abs(std::log(a)) < std::abs(std::log(b)); });
+    const auto nearestToOne =
+      std::min_element(options.scaleFactors.begin(), options.scaleFactors.end(),
+        [](double a, double b) { return std::abs(std::log(a)) < std::abs(std::log(b)); });
     const double screeningFactor = *nearestToOne;
     std::vector<int> screened;
     for (int i : runnable)

@@ -26,15 +26,19 @@ struct MultiStartOptions
   /// bounds is clamped into them.
   std::vector<double> scaleFactors{ 0.9, 1.0, 1.1 };
   /// Screening (default 10 iterations): every start first runs this many
-  /// iterations at the scale factor closest to 1, and only the `finalists`
+  /// iterations at the scale factor closest to 1, on a subsample of the data
+  /// (`screeningStride`), and only the `finalists`
   /// starts with the least contour error then run to convergence, at every
   /// scale factor. 0 runs every candidate to convergence. Half the
   /// iterations register points alone (V-IMLOP's first stage), the other
   /// half add the contours, so the contour error that ranks the starts has
   /// begun to fall where a start is good.
   int screeningIterations = 10;
-  /// Starts kept after screening (default 4).
-  int finalists = 4;
+  /// Screening registers every `screeningStride`-th frame and SfM point
+  /// (default 3): the ranking needs the gist of the data, not all of it.
+  int screeningStride = 3;
+  /// Starts kept after screening (default 3).
+  int finalists = 3;
   /// Threads over candidates, 0 for all cores. The result does not depend on it.
   int threads = 0;
   /// Mean contour error (px) above which the winner is flagged as a failure
@@ -63,8 +67,8 @@ struct MultiStartCandidate
 /// @brief The outcome of a multi-start registration.
 struct MultiStartResult
 {
-  RegistrationResult best;   ///< the winner's full result
-  int bestCandidate = -1;    ///< index into `candidates`
+  RegistrationResult best; ///< the winner's full result
+  int bestCandidate = -1;  ///< index into `candidates`
   std::vector<MultiStartCandidate> candidates;
   /// True when the winner's contour error exceeds the failure threshold.
   bool failure = false;

@@ -551,7 +551,8 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
   bool contoursOn = registrar.usesContours() && !options.pointsFirst;
   auto trimming = [&] { return icp || !refining; };
   // A new stage starts its own convergence, stall and acceleration tracking.
-  auto startRefinement = [&] {
+  auto startRefinement = [&]
+  {
     refining = true;
     contoursOn = registrar.usesContours();
     havePreviousStep = false;

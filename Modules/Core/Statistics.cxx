@@ -75,11 +75,11 @@ double bestSeparatingThreshold(
   double bestJ = -2.0;
   for (double t : candidates)
   {
-    const double tpr = static_cast<double>(std::count_if(positives.begin(), positives.end(),
-                         [t](double p) { return p > t; })) /
+    const double tpr = static_cast<double>(std::count_if(
+                         positives.begin(), positives.end(), [t](double p) { return p > t; })) /
       static_cast<double>(positives.size());
-    const double fpr = static_cast<double>(std::count_if(negatives.begin(), negatives.end(),
-                         [t](double n) { return n > t; })) /
+    const double fpr = static_cast<double>(std::count_if(
+                         negatives.begin(), negatives.end(), [t](double n) { return n > t; })) /
       static_cast<double>(negatives.size());
     if (tpr - fpr > bestJ)
     {

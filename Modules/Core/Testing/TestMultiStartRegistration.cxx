@@ -139,7 +139,8 @@ TEST(MultiStartRegistration, FlagsFailureSkipsOutsideStartsAndCancels)
   o = options();
   std::vector<std::string> phases;
   EXPECT_THROW(registerMultiStart(cavityModel(), t.data, { t.initialSfmToCT, t.initialSfmToCT }, o,
-                 [&](const char* phase, int done, int) {
+                 [&](const char* phase, int done, int)
+                 {
                    phases.emplace_back(phase);
                    return done < 2;
                  }),

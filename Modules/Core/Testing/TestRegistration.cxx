@@ -54,7 +54,8 @@ TEST(Registration, RecoversTheSyntheticMisalignment)
     const double treImlp =
       targetRegistrationError(imlp.sfmToCT, trial.truthSfmToCT, trial.targetsCT);
     EXPECT_LT(treVimlop, 0.5) << "seed " << seed << ", TRE before " << before;
-    EXPECT_TRUE(vimlop.termination == TerminationReason::Converged || vimlop.termination == TerminationReason::Stalled)
+    EXPECT_TRUE(vimlop.termination == TerminationReason::Converged ||
+      vimlop.termination == TerminationReason::Stalled)
       << toString(vimlop.termination) << " after " << vimlop.iterations << " iterations, TRE "
       << treVimlop << " IMLP " << treImlp << " time " << vimlop.runtimeSeconds;
 
@@ -130,8 +131,8 @@ TEST(Registration, CallbackSeesTheIterationsThatEndAStage)
   options.stallIterations = 2;
   options.stallRelativeDecrease = 0.5; // every stage stalls after two iterations
   int calls = 0;
-  const RegistrationResult result = registerVideo(model, trial.data, trial.initialSfmToCT,
-    options, [&](const IterationRecord&) { return ++calls > 0; });
+  const RegistrationResult result = registerVideo(model, trial.data, trial.initialSfmToCT, options,
+    [&](const IterationRecord&) { return ++calls > 0; });
   EXPECT_EQ(result.termination, TerminationReason::Stalled);
   EXPECT_EQ(calls, result.iterations);
 }
