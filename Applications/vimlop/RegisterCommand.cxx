@@ -170,10 +170,6 @@ void runRegister(const RegisterOptions& o)
   auto warn = [&](const std::string& text) { std::cerr << "vimlop: warning: " << text << "\n"; };
 
   // Everything that can be checked before the work is checked first.
-  if (o.out.empty())
-  {
-    throw Error("--out is required");
-  }
   if (fs::exists(o.out) && !o.force)
   {
     throw Error("'" + o.out + "': exists; choose another --out or add --force to replace it");
