@@ -2,11 +2,13 @@
 
 #include "EmbreeRegistrationModel.h"
 #include "Error.h"
+#include "MultiStartRegistration.h"
 #include "Registration.h"
 #include "Statistics.h"
 #include "TaskPool.h"
 
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <ostream>
@@ -56,6 +58,10 @@ nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const Perturbation
     starts[i] = perturbedStart(c, model, rng, offset, offset, offset, offset);
   }
   runs.assign(total, PerturbationRun());
+  // The flag's score: the contour error, or infinity for a pose that matches
+  // too few video contour points (its mean error over no matches says nothing).
+  const MultiStartOptions flag;
+  std::vector<double> scores(total);
   std::mutex progressMutex;
   int done = 0;
   TaskPool(o.video.threads)
@@ -70,6 +76,9 @@ nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const Perturbation
           std::accumulate(errors.begin(), errors.end(), 0.0) / static_cast<double>(errors.size());
         run.contourErrorPx = r.contourErrorPx;
         run.success = run.finalErrorMm <= o.successMm;
+        scores[i] = matchedContourFraction(r) >= flag.minMatchedFraction
+          ? r.contourErrorPx
+          : std::numeric_limits<double>::infinity();
         if (progress)
         {
           std::lock_guard<std::mutex> lock(progressMutex);
@@ -93,7 +102,7 @@ nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const Perturbation
       position.push_back(run.finalErrorMm);
       contour.push_back(run.contourErrorPx);
       successes += run.success;
-      (run.success ? succeeded : failed).push_back(run.contourErrorPx);
+      (run.success ? succeeded : failed).push_back(scores[k * perOffset + t]);
     }
     offsets.push_back({ { "offset_mm", o.offsets[k] }, { "offset_deg", o.offsets[k] },
       { "trials", perOffset }, { "success_rate", static_cast<double>(successes) / perOffset },

@@ -37,9 +37,10 @@ struct PerturbationStudyOptions
  * The report holds "protocol", "seed", "success_mm", per offset "offset_mm",
  * "offset_deg", "trials", "success_rate", "camera_position_mm_median",
  * "contour_error_px_median"; "auc" (how well contour error separates the
- * failures from the successes, ROC area; null when all runs succeed or all
- * fail) and "failure_threshold_px" (the contour error that separates them
- * best, Youden's J; null likewise).
+ * failures from the successes, ROC area, a run matching fewer than half its
+ * video contour points counting as an infinite error; null when all runs
+ * succeed or all fail) and "failure_threshold_px" (the contour error that
+ * separates them best, Youden's J; null likewise).
  * @throws vimlop::Error for invalid options or when the sequence cannot be prepared.
  */
 nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const PerturbationStudyOptions& o,

@@ -380,7 +380,7 @@ void runRegister(const RegisterOptions& o)
       });
     outcome.bestCandidate = 0;
     outcome.failureThresholdPx = multi.failureContourErrorPx;
-    outcome.failure = !(outcome.best.contourErrorPx <= multi.failureContourErrorPx);
+    outcome.failure = isFlaggedAsFailure(outcome.best, multi);
   }
   else
   {

@@ -423,6 +423,7 @@ nlohmann::json runVideoEvaluation(
         skipped += !candidate.skipped.empty();
       }
       extra = { { "failure_flag", ms.failure }, { "contour_error_px", ms.best.contourErrorPx },
+        { "matched_fraction", matchedContourFraction(ms.best) },
         { "failure_threshold_px", ms.failureThresholdPx }, { "winner", ms.bestCandidate },
         { "skipped_candidates", skipped } };
     }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <numeric>
 
@@ -36,6 +37,28 @@ void MultiStartOptions::validate() const
   {
     throw Error("multi-start: the failure threshold must be positive");
   }
+  if (!(this->minMatchedFraction >= 0.0 && this->minMatchedFraction <= 1.0))
+  {
+    throw Error("multi-start: the least matched fraction must lie in [0, 1]");
+  }
+}
+
+double matchedContourFraction(const RegistrationResult& result)
+{
+  long long matched = 0;
+  long long points = 0;
+  for (const FrameResult& f : result.frames)
+  {
+    matched += f.matched;
+    points += f.contourPoints;
+  }
+  return points > 0 ? static_cast<double>(matched) / static_cast<double>(points) : 0.0;
+}
+
+bool isFlaggedAsFailure(const RegistrationResult& result, const MultiStartOptions& options)
+{
+  return !(matchedContourFraction(result) >= options.minMatchedFraction &&
+    result.contourErrorPx <= options.failureContourErrorPx);
 }
 
 SimilarityTransform startFromCameraPose(
@@ -153,6 +176,7 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
           [&](const IterationRecord&) { return !cancelled; });
         const RegistrationResult& r = results[which[k]];
         c.contourErrorPx = r.contourErrorPx;
+        c.matchedFraction = matchedContourFraction(r);
         c.residualErrorMm = r.residualErrorMm;
         c.iterations += r.iterations;
         c.termination = r.termination;
@@ -173,10 +197,18 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
 
   // The least contour error first; the candidate index breaks ties, so the
   // order never depends on which thread finished first.
+  // A candidate that matches too few contour points ranks after every other.
+  auto score = [&](int i)
+  {
+    const MultiStartCandidate& c = out.candidates[i];
+    return c.matchedFraction >= options.minMatchedFraction
+      ? c.contourErrorPx
+      : std::numeric_limits<double>::infinity();
+  };
   auto byContourError = [&](int a, int b)
   {
-    const double ea = out.candidates[a].contourErrorPx;
-    const double eb = out.candidates[b].contourErrorPx;
+    const double ea = score(a);
+    const double eb = score(b);
     return ea != eb ? ea < eb : a < b;
   };
   std::vector<int> finalists = runnable;
@@ -229,7 +261,7 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
 
   out.bestCandidate = *std::min_element(finalists.begin(), finalists.end(), byContourError);
   out.best = std::move(results[out.bestCandidate]);
-  out.failure = !(out.best.contourErrorPx <= options.failureContourErrorPx);
+  out.failure = isFlaggedAsFailure(out.best, options);
   return out;
 }
 

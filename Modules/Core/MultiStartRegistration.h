@@ -44,6 +44,12 @@ struct MultiStartOptions
   /// Mean contour error (px) above which the winner is flagged as a failure
   /// (default 6 px; calibrated on P3, see Documentation/Algorithm.md).
   double failureContourErrorPx = 6.0;
+  /// Least fraction of the video contour points matched to a model contour
+  /// at the end (default 0.5). A pose that sees no model contour (a camera
+  /// facing a wall, or outside) has no matches and a mean error of zero over
+  /// them: it must neither win nor pass as a success. Correct poses match
+  /// nearly every video contour point.
+  double minMatchedFraction = 0.5;
   /// @throws vimlop::Error naming the first invalid field.
   void validate() const;
 };
@@ -59,6 +65,7 @@ struct MultiStartCandidate
   double screeningContourErrorPx = 0.0; ///< after screening (when screening ran)
   bool finalist = false;                ///< ran to convergence
   double contourErrorPx = 0.0;          ///< at its end
+  double matchedFraction = 0.0;         ///< of the video contour points, at its end
   double residualErrorMm = 0.0;         ///< at its end
   int iterations = 0;                   ///< screening and final runs together
   TerminationReason termination = TerminationReason::MaxIterations;
@@ -86,10 +93,21 @@ using MultiStartProgress = std::function<bool(const char* phase, int done, int t
 SimilarityTransform startFromCameraPose(
   const CameraPose& cameraToCT, const CameraPose& cameraToSfm, double scale);
 
+/// @brief Matched video contour points over all video contour points of a result (0 when none).
+double matchedContourFraction(const RegistrationResult& result);
+
+/**
+ * @brief The failure flag of V13 for one result: a mean contour error above
+ * the options' threshold, or too few video contour points matched.
+ */
+bool isFlaggedAsFailure(const RegistrationResult& result, const MultiStartOptions& options);
+
 /**
  * @brief Registers from every start in `startsSfmToCT` (times each scale
- * factor) and keeps the solution with the least mean contour error (ties: the
- * lower candidate index), flagging it as a failure above the threshold.
+ * factor) and keeps the solution with the least mean contour error among
+ * those that match at least `minMatchedFraction` of the video contour points
+ * (ties: the lower candidate index), flagging it as a failure above the
+ * threshold or below that fraction.
  * Candidates whose cameras do not all start inside the airway are skipped
  * with the reason. Results do not depend on the number of threads.
  *

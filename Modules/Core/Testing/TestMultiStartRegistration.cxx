@@ -148,3 +148,26 @@ TEST(MultiStartRegistration, FlagsFailureSkipsOutsideStartsAndCancels)
   ASSERT_FALSE(phases.empty());
   EXPECT_EQ(phases.front(), "screening");
 }
+
+TEST(MultiStartRegistration, APoseThatMatchesNoContourIsAFailureNotAPerfectFit)
+{
+  // A camera facing a wall sees no model contour: nothing is matched and the
+  // mean error over the matches is 0 px, which must not read as a success.
+  RegistrationResult blind;
+  blind.frames.resize(2);
+  blind.frames[0].contourPoints = 100;
+  blind.frames[1].contourPoints = 50;
+  blind.contourErrorPx = 0.0;
+  EXPECT_DOUBLE_EQ(matchedContourFraction(blind), 0.0);
+  EXPECT_TRUE(isFlaggedAsFailure(blind, MultiStartOptions()));
+
+  RegistrationResult good = blind;
+  good.frames[0].matched = 98;
+  good.frames[1].matched = 49;
+  good.contourErrorPx = 1.5;
+  EXPECT_DOUBLE_EQ(matchedContourFraction(good), 147.0 / 150.0);
+  EXPECT_FALSE(isFlaggedAsFailure(good, MultiStartOptions()));
+  good.contourErrorPx = 7.0; // above the 6 px threshold
+  EXPECT_TRUE(isFlaggedAsFailure(good, MultiStartOptions()));
+  EXPECT_DOUBLE_EQ(matchedContourFraction(RegistrationResult()), 0.0);
+}
