@@ -153,9 +153,9 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
   {
     screeningData = data;
   }
-  auto runPhase = [&](const char* phase, const std::vector<int>& which, int maxIterations)
+  auto runPhase = [&](const char* phase, const RegistrationData& phaseData,
+                    const std::vector<int>& which, int maxIterations)
   {
-    const RegistrationData& phaseData = maxIterations < base.maxIterations ? screeningData : data;
     int done = 0;
     if (progress && !progress(phase, 0, static_cast<int>(which.size())))
     {
@@ -195,9 +195,9 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
     }
   };
 
-  // The least contour error first; the candidate index breaks ties, so the
-  // order never depends on which thread finished first.
-  // A candidate that matches too few contour points ranks after every other.
+  // The least contour error first, after every candidate that matches too few
+  // contour points; the candidate index breaks ties, so the order never
+  // depends on which thread finished first.
   auto score = [&](int i)
   {
     const MultiStartCandidate& c = out.candidates[i];
@@ -231,7 +231,7 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
     }
     if (static_cast<int>(screened.size()) > options.finalists)
     {
-      runPhase("screening", screened, options.screeningIterations);
+      runPhase("screening", screeningData, screened, options.screeningIterations);
       for (int i : screened)
       {
         out.candidates[i].screeningContourErrorPx = out.candidates[i].contourErrorPx;
@@ -257,7 +257,7 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
   {
     out.candidates[i].finalist = true;
   }
-  runPhase("final", finalists, base.maxIterations);
+  runPhase("final", data, finalists, base.maxIterations);
 
   out.bestCandidate = *std::min_element(finalists.begin(), finalists.end(), byContourError);
   out.best = std::move(results[out.bestCandidate]);
