@@ -133,10 +133,13 @@ public:
   bool usesContours() const { return this->UseContours; }
 
   /// Matches at T; contours only when `withContours` (and the method uses
-  /// them); 3-D trimming only when `trim`.
-  MatchState match(const SimilarityTransform& T, bool withContours, bool trim)
+  /// them, or `measureContours` asks for the contour metrics of any method);
+  /// 3-D trimming only when `trim`.
+  MatchState match(
+    const SimilarityTransform& T, bool withContours, bool trim, bool measureContours = false)
   {
-    withContours = withContours && this->UseContours;
+    withContours = (withContours && this->UseContours) ||
+      (measureContours && this->Data.numberOfContourPoints() > 0);
     MatchState state;
     const int n = static_cast<int>(this->Data.points.size());
     state.model.resize(n);
@@ -203,7 +206,7 @@ public:
     state.pointInliers = rejectPointOutliers(state.residuals, this->Covariances, T.rotation,
       state.costs, trim ? this->Options.trimFraction : 0.0,
       icp ? std::numeric_limits<double>::infinity() : this->ChiSquare3);
-    if (this->UseContours)
+    if (withContours)
     {
       double sumDistance2 = 0.0;
       double sumAngle2 = 0.0;
@@ -677,7 +680,9 @@ RegistrationResult registerVideo(const RegistrationModel& model, const Registrat
     }
   }
 
-  RegistrationResult result = registrar.finish(T, registrar.match(T, true, trimming()));
+  // The contour metrics of the result (V12) are measured for every method,
+  // so that baselines can be compared and a multi-start can rank them.
+  RegistrationResult result = registrar.finish(T, registrar.match(T, true, trimming(), true));
   result.history = std::move(history);
   result.termination = termination;
   result.iterations = static_cast<int>(result.history.size());

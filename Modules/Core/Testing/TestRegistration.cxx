@@ -71,6 +71,9 @@ TEST(Registration, RecoversTheSyntheticMisalignment)
     EXPECT_LT(vimlop.residualErrorMm, 1.0);
     EXPECT_GT(vimlop.contourErrorPx, 0.0);
     EXPECT_LE(vimlop.contourErrorInliersPx, vimlop.contourErrorPx);
+    // The baseline's contours are measured too (for comparisons and multi-starts).
+    EXPECT_GT(imlp.contourErrorPx, 0.0);
+    EXPECT_GT(imlp.frames[0].matched, 0);
   }
   EXPECT_GE(vimlopBetter, 2);
 }
