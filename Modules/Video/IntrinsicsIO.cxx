@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 namespace vimlop
 {
@@ -39,7 +42,8 @@ double readNumber(const cv::FileNode& root, const char* key, const std::string& 
 
 /// Checks an OpenCV matrix node's declared size before OpenCV allocates it
 /// (a file can declare billions of rows).
-void checkMatrixNode(const cv::FileNode& node, const char* key, int maxRows, int maxCols, const std::string& path)
+void checkMatrixNode(
+  const cv::FileNode& node, const char* key, int maxRows, int maxCols, const std::string& path)
 {
   if (!node.isMap() || node["rows"].empty() || node["cols"].empty() || !node["rows"].isInt() ||
     !node["cols"].isInt())
@@ -50,11 +54,18 @@ void checkMatrixNode(const cv::FileNode& node, const char* key, int maxRows, int
   const int cols = static_cast<int>(node["cols"]);
   if (rows < 1 || cols < 1 || rows > maxRows || cols > maxCols)
   {
-    fail(path, std::string("'") + key + "' has an invalid size " + std::to_string(rows) + "x" +
+    fail(path,
+      std::string("'") + key + "' has an invalid size " + std::to_string(rows) + "x" +
         std::to_string(cols));
   }
 }
 
+} // namespace
+
+namespace
+{
+/// Intrinsics files hold a few numbers; anything this large is something else.
+constexpr std::uintmax_t maxIntrinsicsFileBytes = 1 << 20;
 } // namespace
 
 bool isIntrinsicsPath(const std::string& path)
@@ -73,6 +84,22 @@ PinholeCamera readIntrinsics(const std::string& path)
   if (!isIntrinsicsPath(path))
   {
     fail(path, "unsupported intrinsics file type (expected .yaml, .yml, .json or .xml)");
+  }
+  {
+    // OpenCV's parsers loop forever on some text holding a NUL byte (found by
+    // fuzzing); intrinsics files are short text, so check before parsing.
+    if (std::filesystem::file_size(path, ec) > maxIntrinsicsFileBytes)
+    {
+      fail(path,
+        "not a valid intrinsics file (larger than " + std::to_string(maxIntrinsicsFileBytes) +
+          " bytes)");
+    }
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.find('\0') != std::string::npos)
+    {
+      fail(path, "not a valid intrinsics file (it holds a NUL byte; intrinsics files are text)");
+    }
   }
   PinholeCamera camera;
   try

@@ -6,6 +6,8 @@
 #include "FuzzTemporaryFile.h"
 #include "RegistrationRecordIO.h"
 
+#include <vtkObject.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -66,6 +68,7 @@ std::string folder;
 
 extern "C" int LLVMFuzzerInitialize(int*, char***)
 {
+  vtkObject::GlobalWarningDisplayOff(); // the reader reports errors itself
   folder = vimlop::fuzzing::temporaryFolder("result");
   vimlop::writeRegistrationRecord(makeRecord(), folder);
   if (const char* seed = std::getenv("VIMLOP_FUZZ_WRITE_SEED"))
