@@ -69,7 +69,8 @@ void expectFinite(const RegistrationResult& r)
 /// vimlop::Error with a message, a result must be finite. Returns the result
 /// or nothing when refused.
 std::optional<RegistrationResult> runOrRefuse(const RegistrationModel& model,
-  const RegistrationData& data, const SimilarityTransform& initial, const RegistrationOptions& o)
+  const RegistrationData& data, const SimilarityTransform& initial, const RegistrationOptions& o,
+  std::string* refusal = nullptr)
 {
   try
   {
@@ -81,6 +82,10 @@ std::optional<RegistrationResult> runOrRefuse(const RegistrationModel& model,
   catch (const Error& e)
   {
     EXPECT_GT(std::string(e.what()).size(), 10u);
+    if (refusal)
+    {
+      *refusal = e.what();
+    }
     return std::nullopt;
   }
 }
@@ -217,11 +222,16 @@ TEST(NumericalRobustness, CameraOnTheSurface)
   data.frames.push_back(frame);
   RegistrationOptions options = optionsFor(RegistrationMethod::IMLP);
   options.minScale = options.maxScale = 1.0;
-  const auto r = runOrRefuse(model, data, SimilarityTransform(), options);
+  std::string refusal;
+  const auto r = runOrRefuse(model, data, SimilarityTransform(), options, &refusal);
   if (r)
   {
     // Kept inside (or on) the cavity by the anatomical constraint.
     EXPECT_LE(r->frames[0].cameraToCT.centre.z(), 10.0 + 1e-9);
+  }
+  else
+  {
+    EXPECT_EQ(refusal.rfind("registration: the camera of frame ", 0), 0u) << refusal;
   }
 }
 
