@@ -149,7 +149,9 @@ SfmReconstruction readSfmReconstruction(const std::string& path)
   {
     throw Error("'" + path + "': not a JSON file");
   }
-  if (!document.is_object() || document.value("format", std::string()) != "vimlop-sfm")
+  // value() would throw for a "format" that is no string (found by fuzzing).
+  const auto format = document.is_object() ? document.find("format") : document.end();
+  if (format == document.end() || !format->is_string() || *format != "vimlop-sfm")
   {
     throw Error("'" + path + "': not a VIMLOP SfM file (no \"format\": \"vimlop-sfm\")");
   }
