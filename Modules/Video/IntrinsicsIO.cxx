@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 
 namespace vimlop
 {
@@ -99,6 +100,26 @@ PinholeCamera readIntrinsics(const std::string& path)
     if (text.find('\0') != std::string::npos)
     {
       fail(path, "not a valid intrinsics file (it holds a NUL byte; intrinsics files are text)");
+    }
+    // OpenCV's YAML parser also loops forever on an indented document marker
+    // ("  --- a: 0" followed by a less indented line; found by fuzzing). YAML
+    // allows "---" and "..." only at the start of a line.
+    const std::string ext = extensionOf(path);
+    if (ext == ".yaml" || ext == ".yml")
+    {
+      std::istringstream lines(text);
+      std::string line;
+      for (int number = 1; std::getline(lines, line); ++number)
+      {
+        const size_t first = line.find_first_not_of(" \t");
+        if (first != std::string::npos && first > 0 &&
+          (line.compare(first, 3, "---") == 0 || line.compare(first, 3, "...") == 0))
+        {
+          fail(path,
+            "not a valid intrinsics file (line " + std::to_string(number) +
+              ": a YAML document marker must start its line)");
+        }
+      }
     }
   }
   PinholeCamera camera;
