@@ -1,6 +1,7 @@
 #!/bin/sh
 # Installs the Debian 12 packages VIMLOP needs to build, test and run its demo.
 # Only missing packages are requested; apt runs as root or through sudo.
+# Extra package names as arguments are installed too (make fuzz: clang).
 set -eu
 
 packages="
@@ -31,6 +32,7 @@ xauth
 libgl1-mesa-dri
 colmap
 invesalius-examples
+$*
 "
 
 missing=""

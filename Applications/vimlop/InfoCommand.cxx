@@ -65,7 +65,15 @@ void printMesh(const std::string& path)
     b[3], b[4], b[5]);
   if (polyData->GetNumberOfPolys() > 0)
   {
-    const TriangleMesh mesh = toTriangleMesh(polyData);
+    TriangleMesh mesh;
+    try
+    {
+      mesh = toTriangleMesh(polyData);
+    }
+    catch (const Error& e)
+    {
+      throw Error("'" + path + "': " + e.what());
+    }
     std::printf("triangles:   %d\n", mesh.numberOfFaces());
     std::printf("area:        %.1f mm^2\n", mesh.totalArea());
     std::printf("open edges:  %d\n", mesh.numberOfBoundaryEdges());

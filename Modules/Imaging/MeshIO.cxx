@@ -56,6 +56,88 @@ vtkSmartPointer<vtkPolyData> runReader(Reader* reader, const std::string& path)
   return mesh;
 }
 
+/// VIMLOP's surfaces have 10^4 to 10^6 triangles; a file that promises more
+/// points or cells than this is corrupt or not meant for VIMLOP, and VTK's
+/// readers would allocate what it promises before noticing.
+constexpr std::uint64_t maxMeshElements = 20000000;
+
+void checkPromise(const std::string& path, std::uint64_t count, const std::string& what)
+{
+  if (count > maxMeshElements)
+  {
+    fail(path,
+      "the file promises " + std::to_string(count) + " " + what + "; meshes with more than " +
+        std::to_string(maxMeshElements) + " are refused");
+  }
+}
+
+/// Legacy VTK: the counts after POINTS, POLYGONS and the like, wherever they
+/// are in the file (ASCII or binary data between them).
+void checkLegacyVtk(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  while (std::getline(in, line))
+  {
+    std::istringstream words(line);
+    std::string keyword;
+    std::uint64_t count = 0;
+    if (!(words >> keyword) || keyword.empty() ||
+      !std::isupper(static_cast<unsigned char>(keyword[0])))
+    {
+      continue;
+    }
+    if (keyword == "POINTS" && (words >> count))
+    {
+      checkPromise(path, count, "points");
+    }
+    else if ((keyword == "VERTICES" || keyword == "LINES" || keyword == "POLYGONS" ||
+               keyword == "TRIANGLE_STRIPS") &&
+      (words >> count))
+    {
+      checkPromise(path, count, "cells");
+      std::uint64_t size = 0;
+      if (words >> size)
+      {
+        // Every cell lists at least one point id, besides its size or offset.
+        checkPromise(path, size / 4, "cells (" + std::to_string(size) + " cell ids)");
+      }
+    }
+    else if ((keyword == "POINT_DATA" || keyword == "CELL_DATA") && (words >> count))
+    {
+      checkPromise(path, count, "data values");
+    }
+  }
+}
+
+/// VTK XML: the counts in the attributes of the Piece elements.
+void checkXmlPolyData(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1 << 16, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  for (const char* attribute : { "NumberOfPoints=\"", "NumberOfVerts=\"", "NumberOfLines=\"",
+         "NumberOfStrips=\"", "NumberOfPolys=\"" })
+  {
+    for (size_t at = head.find(attribute); at != std::string::npos;
+         at = head.find(attribute, at + 1))
+    {
+      const size_t digits = at + std::strlen(attribute);
+      std::uint64_t count = 0;
+      size_t i = digits;
+      for (;
+           i < head.size() && i < digits + 19 && std::isdigit(static_cast<unsigned char>(head[i]));
+           ++i)
+      {
+        count = count * 10 + static_cast<std::uint64_t>(head[i] - '0');
+      }
+      const std::string name(attribute + 8, std::strlen(attribute) - 10);
+      checkPromise(path, count, name == "Points" ? "points" : "cells (" + name + ")");
+    }
+  }
+}
+
 /// VTK's STL reader accepts a binary file shorter than its triangle count
 /// says; check the count against the size first (binary STL: an 80-byte
 /// header, a 4-byte count, 50 bytes per triangle).
@@ -84,7 +166,8 @@ void checkStl(const std::string& path)
   {
     return; // a consistent binary file, or ASCII
   }
-  fail(path, "truncated or corrupt binary STL (" + std::to_string(count) + " triangles need " +
+  fail(path,
+    "truncated or corrupt binary STL (" + std::to_string(count) + " triangles need " +
       std::to_string(binarySize) + " bytes, the file has " + std::to_string(size) + ")");
 }
 
@@ -108,7 +191,8 @@ void checkPly(const std::string& path)
     std::uint64_t count = 0;
     if ((words >> keyword >> name >> count) && keyword == "element" && count > size)
     {
-      fail(path, "the PLY header promises " + std::to_string(count) + " " + name + " elements in a " +
+      fail(path,
+        "the PLY header promises " + std::to_string(count) + " " + name + " elements in a " +
           std::to_string(size) + "-byte file");
     }
   }
@@ -146,6 +230,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
     {
       fail(path, "not a VTK XML polydata file");
     }
+    checkXmlPolyData(path);
     return runReader(reader.Get(), path);
   }
   if (ext == ".vtk")
@@ -156,6 +241,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
     {
       fail(path, "not a legacy VTK polydata file");
     }
+    checkLegacyVtk(path);
     return runReader(reader.Get(), path);
   }
   if (ext == ".stl")

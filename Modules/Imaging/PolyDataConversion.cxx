@@ -32,9 +32,25 @@ TriangleMesh toTriangleMesh(vtkPolyData* polyData)
     vtkIdType n = 0;
     const vtkIdType* ids = nullptr;
     it->GetCurrentCell(n, ids);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      // Checked here, in vtkIdType: ids beyond int would wrap in the cast below.
+      if (ids[k] < 0 || ids[k] >= polyData->GetNumberOfPoints())
+      {
+        throw Error("polygon " + std::to_string(it->GetCurrentCellId()) + " refers to point " +
+          std::to_string(ids[k]) + " but the surface has " +
+          std::to_string(polyData->GetNumberOfPoints()) + " points");
+      }
+    }
     // A fan keeps the polygon's orientation; airway surfaces are triangles anyway.
     for (vtkIdType k = 1; k + 1 < n; ++k)
     {
+      // A triangle naming one point twice (left by decimation or point
+      // merging in other tools) covers no surface: dropped, not an error.
+      if (ids[0] == ids[k] || ids[k] == ids[k + 1] || ids[0] == ids[k + 1])
+      {
+        continue;
+      }
       faces.emplace_back(
         static_cast<int>(ids[0]), static_cast<int>(ids[k]), static_cast<int>(ids[k + 1]));
     }

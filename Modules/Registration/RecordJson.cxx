@@ -31,6 +31,22 @@ double boundFrom(const json& j, const char* key, double infinity)
 
 } // namespace
 
+int intValue(const json& j, const char* key, int fallback)
+{
+  if (!j.is_object() || !j.contains(key))
+  {
+    return fallback;
+  }
+  const json& v = j.at(key);
+  const double x = v.is_number() ? v.get<double>() : 0.5;
+  if (x != std::floor(x) || x < std::numeric_limits<int>::min() ||
+    x > std::numeric_limits<int>::max())
+  {
+    throw Error(std::string("\"") + key + "\" is not a whole number in range");
+  }
+  return static_cast<int>(x);
+}
+
 json matrixJson(const Eigen::MatrixXd& m)
 {
   json rows = json::array();
@@ -127,20 +143,21 @@ RegistrationOptions optionsFrom(const json& j)
     j.value("max_contour_outlier_fraction", o.maxContourOutlierFraction);
   o.equalInfluence = j.value("equal_influence", o.equalInfluence);
   o.anatomicalConstraint = j.value("anatomical_constraint", o.anatomicalConstraint);
-  o.maxBackoffSteps = j.value("max_backoff_steps", o.maxBackoffSteps);
-  o.maxIterations = j.value("max_iterations", o.maxIterations);
+  o.maxBackoffSteps = intValue(j, "max_backoff_steps", o.maxBackoffSteps);
+  o.maxIterations = intValue(j, "max_iterations", o.maxIterations);
   o.convergenceTranslationMm = j.value("convergence_translation_mm", o.convergenceTranslationMm);
   o.convergenceRotationDeg = j.value("convergence_rotation_deg", o.convergenceRotationDeg);
   o.convergenceScaleRelative = j.value("convergence_scale_relative", o.convergenceScaleRelative);
   o.accelerate = j.value("accelerate", o.accelerate);
   o.maxAcceleration = j.value("max_acceleration", o.maxAcceleration);
   o.stallRelativeDecrease = j.value("stall_relative_decrease", o.stallRelativeDecrease);
-  o.stallIterations = j.value("stall_iterations", o.stallIterations);
+  o.stallIterations = intValue(j, "stall_iterations", o.stallIterations);
   o.pointsFirst = j.value("points_first", o.pointsFirst);
-  o.poseUpdate.maxIterations = j.value("pose_update_max_iterations", o.poseUpdate.maxIterations);
+  o.poseUpdate.maxIterations =
+    intValue(j, "pose_update_max_iterations", o.poseUpdate.maxIterations);
   o.poseUpdate.relativeTolerance =
     j.value("pose_update_relative_tolerance", o.poseUpdate.relativeTolerance);
-  o.threads = j.value("threads", o.threads);
+  o.threads = intValue(j, "threads", o.threads);
   return o;
 }
 

@@ -27,6 +27,12 @@ json transformJson(const SimilarityTransform& t);
 SimilarityTransform transformFrom(const json& j, const std::string& what);
 /// Every option, in the units the names say (mm, px, deg); infinite bounds as null.
 json optionsJson(const RegistrationOptions& o);
+/**
+ * The int under `key`, or `fallback` when absent. A number outside int's
+ * range or with a fraction is an error (converting it would be undefined
+ * behaviour). @throws vimlop::Error naming the key.
+ */
+int intValue(const json& j, const char* key, int fallback);
 /// Options from optionsJson(); keys not given keep their defaults.
 RegistrationOptions optionsFrom(const json& j);
 

@@ -80,7 +80,8 @@ std::vector<IterationRecord> historyFrom(const json& records)
   for (const json& j : records)
   {
     IterationRecord r;
-    r.iteration = j.at("iteration").get<int>();
+    j.at("iteration"); // required
+    r.iteration = intValue(j, "iteration", 0);
     r.withContours = j.value("with_contours", false);
     const std::string what = "history, iteration " + std::to_string(r.iteration);
     r.transform = SimilarityTransform::fromMatrix(
@@ -90,12 +91,12 @@ std::vector<IterationRecord> historyFrom(const json& records)
     r.cost = j.value("cost", 0.0);
     r.cost3d = j.value("cost_3d", 0.0);
     r.cost2d = j.value("cost_2d", 0.0);
-    r.pointInliers = j.value("point_inliers", 0);
-    r.contourMatches = j.value("contour_matches", 0);
-    r.contourInliers = j.value("contour_inliers", 0);
+    r.pointInliers = intValue(j, "point_inliers", 0);
+    r.contourMatches = intValue(j, "contour_matches", 0);
+    r.contourInliers = intValue(j, "contour_inliers", 0);
     r.residualErrorMm = j.value("residual_error_mm", 0.0);
     r.contourErrorPx = j.value("contour_error_px", 0.0);
-    r.backoffSteps = j.value("backoff_steps", 0);
+    r.backoffSteps = intValue(j, "backoff_steps", 0);
     r.acceleration = j.value("acceleration", 0.0);
     r.extrapolationUndone = j.value("extrapolation_undone", false);
     if (j.contains("times_ms"))
@@ -368,16 +369,26 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
       throw Error("'" + jsonPath.string() + "': not valid JSON (" + e.what() + ")");
     }
   }
-  if (j.value("format", std::string()) != resultFormatName())
+  // value() throws on anything but an object, and "format" may be no string.
+  const json* format = j.is_object() && j.contains("format") ? &j.at("format") : nullptr;
+  if (!format || !format->is_string() || format->get<std::string>() != resultFormatName())
   {
     throw Error("'" + jsonPath.string() + "': not a VIMLOP result (format is not '" +
       resultFormatName() + "')");
   }
-  if (j.value("version", 0) > resultFormatVersion())
+  int version = 0;
+  try
   {
-    throw Error("'" + jsonPath.string() + "': format version " +
-      std::to_string(j.value("version", 0)) + " is newer than this program reads (" +
-      std::to_string(resultFormatVersion()) + ")");
+    version = intValue(j, "version", 0);
+  }
+  catch (const Error& e)
+  {
+    throw Error("'" + jsonPath.string() + "': " + e.what());
+  }
+  if (version > resultFormatVersion())
+  {
+    throw Error("'" + jsonPath.string() + "': format version " + std::to_string(version) +
+      " is newer than this program reads (" + std::to_string(resultFormatVersion()) + ")");
   }
 
   RegistrationRecord record;
@@ -394,7 +405,7 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
     RegistrationResult& result = record.result;
     result.sfmToCT = transformFrom(j.at("transform"), "transform");
     result.termination = terminationFrom(j.at("termination").get<std::string>());
-    result.iterations = j.value("iterations", 0);
+    result.iterations = intValue(j, "iterations", 0);
     result.runtimeSeconds = j.value("runtime_s", 0.0);
     result.residualErrorMm = j.value("residual_error_mm", 0.0);
     result.contourErrorPx = j.value("contour_error_px", 0.0);
@@ -418,15 +429,16 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
         continue;
       }
       FrameResult r;
-      r.frameId = fj.at("id").get<int>();
+      fj.at("id"); // required
+      r.frameId = intValue(fj, "id", 0);
       r.cameraToCT = CameraPose::fromMatrix(
         Eigen::Matrix4d(matrixFrom(fj.at("camera_to_ct"), 4, "camera_to_ct")));
-      r.contourPoints = fj.value("contour_points", 0);
-      r.matched = fj.value("matched", 0);
-      r.inliers = fj.value("inliers", 0);
+      r.contourPoints = intValue(fj, "contour_points", 0);
+      r.matched = intValue(fj, "matched", 0);
+      r.inliers = intValue(fj, "inliers", 0);
       r.contourErrorPx = fj.value("contour_error_px", 0.0);
       r.contourErrorInliersPx = fj.value("contour_error_inliers_px", 0.0);
-      r.visibleModelSamples = fj.value("visible_model_samples", 0);
+      r.visibleModelSamples = intValue(fj, "visible_model_samples", 0);
       result.frames.push_back(std::move(r));
     }
     readRegisteredPoints(readPolyData((dir / "registered-points.vtp").string()),

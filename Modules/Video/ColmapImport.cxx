@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -113,13 +114,36 @@ const ModelInfo& modelById(const std::string& path, int id)
     "unknown camera model id " + std::to_string(id) + " (supported: " + supportedList() + ")");
 }
 
+/// Images larger than this on a side are not endoscope frames; such sizes
+/// come from corrupt files (and would overflow pixel counts downstream).
+constexpr std::int64_t maxImageSidePx = 1 << 16;
+
 /// COLMAP parameters to VIMLOP intrinsics: pixel centres move from 0.5 to 0.
-PinholeCamera intrinsicsOf(
-  const ModelInfo& model, const std::vector<double>& p, int width, int height)
+/// Refuses sizes and parameters that no camera has (NaN, zero focal length).
+PinholeCamera intrinsicsOf(const std::string& path, std::uint64_t cameraId, const ModelInfo& model,
+  const std::vector<double>& p, std::int64_t width, std::int64_t height)
 {
+  const std::string camera = "camera " + std::to_string(cameraId);
+  if (width < 1 || height < 1 || width > maxImageSidePx || height > maxImageSidePx)
+  {
+    fail(path,
+      camera + " has an image size of " + std::to_string(width) + " x " + std::to_string(height) +
+        " px (expected 1 to " + std::to_string(maxImageSidePx) + " per side)");
+  }
+  for (const double v : p)
+  {
+    if (!std::isfinite(v))
+    {
+      fail(path, camera + " has a non-finite parameter");
+    }
+  }
+  if (!(p[0] > 0.0) || ((model.id == 1 || model.id == 4) && !(p[1] > 0.0)))
+  {
+    fail(path, camera + " has a focal length that is not positive");
+  }
   PinholeCamera k;
-  k.widthPx = width;
-  k.heightPx = height;
+  k.widthPx = static_cast<int>(width);
+  k.heightPx = static_cast<int>(height);
   const bool single = model.id == 0 || model.id == 2 || model.id == 3;
   k.fx = p[0];
   k.fy = single ? p[0] : p[1];
@@ -143,6 +167,34 @@ PinholeCamera intrinsicsOf(
 }
 
 // ---------------------------------------------------------------- text files
+
+/// A world-to-camera pose must be finite with a non-zero quaternion (it is
+/// normalised on use); a point position must be finite.
+void checkPose(const std::string& path, std::uint64_t imageId, const ColmapImage& image)
+{
+  if (!image.rotation.coeffs().allFinite() || !image.translation.allFinite() ||
+    !(image.rotation.norm() > 1e-12))
+  {
+    fail(path,
+      "image " + std::to_string(imageId) +
+        " has a non-finite pose or a zero quaternion (expected QW QX QY QZ of a rotation)");
+  }
+  for (const Eigen::Vector2d& x : image.points2D)
+  {
+    if (!x.allFinite())
+    {
+      fail(path, "image " + std::to_string(imageId) + " has a non-finite 2-D point");
+    }
+  }
+}
+
+void checkPoint(const std::string& path, std::uint64_t pointId, const ColmapPoint& point)
+{
+  if (!point.position.allFinite())
+  {
+    fail(path, "point " + std::to_string(pointId) + " has a non-finite position");
+  }
+}
 
 /// The data lines of a COLMAP text file (comments and blank lines skipped),
 /// with their line numbers. images.txt keeps blank lines: an image without
@@ -197,14 +249,14 @@ void readCamerasText(const std::string& path, ColmapModel& model)
     const auto id = parseField<std::uint32_t>(in, path, line, "a camera id");
     const auto name = parseField<std::string>(in, path, line, "a camera model");
     const ModelInfo& info = modelByName(path, name);
-    const int width = parseField<int>(in, path, line, "the image width");
-    const int height = parseField<int>(in, path, line, "the image height");
+    const auto width = parseField<std::int64_t>(in, path, line, "the image width");
+    const auto height = parseField<std::int64_t>(in, path, line, "the image height");
     std::vector<double> p(static_cast<size_t>(info.parameters));
     for (double& v : p)
     {
       v = parseField<double>(in, path, line, "a camera parameter");
     }
-    model.cameras[id].intrinsics = intrinsicsOf(info, p, width, height);
+    model.cameras[id].intrinsics = intrinsicsOf(path, id, info, p, width, height);
   }
 }
 
@@ -251,6 +303,7 @@ void readImagesText(const std::string& path, ColmapModel& model)
       }
       ++i;
     }
+    checkPose(path, id, image);
     model.images[id] = std::move(image);
   }
 }
@@ -277,6 +330,7 @@ void readPointsText(const std::string& path, ColmapModel& model)
     {
       point.track.emplace_back(image, index);
     }
+    checkPoint(path, id, point);
     model.points[id] = std::move(point);
   }
 }
@@ -363,8 +417,10 @@ void readCamerasBinary(const std::string& path, ColmapModel& model)
     {
       v = in.read<double>();
     }
-    model.cameras[id].intrinsics =
-      intrinsicsOf(info, p, static_cast<int>(width), static_cast<int>(height));
+    // Sizes beyond int64 are as absurd as negative ones; clamp for the check.
+    const auto side = [](std::uint64_t v)
+    { return static_cast<std::int64_t>(std::min<std::uint64_t>(v, maxImageSidePx + 1)); };
+    model.cameras[id].intrinsics = intrinsicsOf(path, id, info, p, side(width), side(height));
   }
 }
 
@@ -397,6 +453,7 @@ void readImagesBinary(const std::string& path, ColmapModel& model)
       in.read<std::uint64_t>(); // the 3-D point id; the tracks in points3D say the same
       image.points2D.emplace_back(x, y);
     }
+    checkPose(path, id, image);
     model.images[id] = std::move(image);
   }
 }
@@ -425,6 +482,7 @@ void readPointsBinary(const std::string& path, ColmapModel& model)
       const auto index = in.read<std::uint32_t>();
       point.track.emplace_back(image, index);
     }
+    checkPoint(path, id, point);
     model.points[id] = std::move(point);
   }
 }

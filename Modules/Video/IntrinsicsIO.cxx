@@ -6,7 +6,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 
 namespace vimlop
 {
@@ -39,7 +43,8 @@ double readNumber(const cv::FileNode& root, const char* key, const std::string& 
 
 /// Checks an OpenCV matrix node's declared size before OpenCV allocates it
 /// (a file can declare billions of rows).
-void checkMatrixNode(const cv::FileNode& node, const char* key, int maxRows, int maxCols, const std::string& path)
+void checkMatrixNode(
+  const cv::FileNode& node, const char* key, int maxRows, int maxCols, const std::string& path)
 {
   if (!node.isMap() || node["rows"].empty() || node["cols"].empty() || !node["rows"].isInt() ||
     !node["cols"].isInt())
@@ -50,11 +55,18 @@ void checkMatrixNode(const cv::FileNode& node, const char* key, int maxRows, int
   const int cols = static_cast<int>(node["cols"]);
   if (rows < 1 || cols < 1 || rows > maxRows || cols > maxCols)
   {
-    fail(path, std::string("'") + key + "' has an invalid size " + std::to_string(rows) + "x" +
+    fail(path,
+      std::string("'") + key + "' has an invalid size " + std::to_string(rows) + "x" +
         std::to_string(cols));
   }
 }
 
+} // namespace
+
+namespace
+{
+/// Intrinsics files hold a few numbers; anything this large is something else.
+constexpr std::uintmax_t maxIntrinsicsFileBytes = 1 << 20;
 } // namespace
 
 bool isIntrinsicsPath(const std::string& path)
@@ -73,6 +85,42 @@ PinholeCamera readIntrinsics(const std::string& path)
   if (!isIntrinsicsPath(path))
   {
     fail(path, "unsupported intrinsics file type (expected .yaml, .yml, .json or .xml)");
+  }
+  {
+    // OpenCV's parsers loop forever on some text holding a NUL byte (found by
+    // fuzzing); intrinsics files are short text, so check before parsing.
+    if (std::filesystem::file_size(path, ec) > maxIntrinsicsFileBytes)
+    {
+      fail(path,
+        "not a valid intrinsics file (larger than " + std::to_string(maxIntrinsicsFileBytes) +
+          " bytes)");
+    }
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.find('\0') != std::string::npos)
+    {
+      fail(path, "not a valid intrinsics file (it holds a NUL byte; intrinsics files are text)");
+    }
+    // OpenCV's YAML parser also loops forever on an indented document marker
+    // ("  --- a: 0" followed by a less indented line; found by fuzzing). YAML
+    // allows "---" and "..." only at the start of a line.
+    const std::string ext = extensionOf(path);
+    if (ext == ".yaml" || ext == ".yml")
+    {
+      std::istringstream lines(text);
+      std::string line;
+      for (int number = 1; std::getline(lines, line); ++number)
+      {
+        const size_t first = line.find_first_not_of(" \t");
+        if (first != std::string::npos && first > 0 &&
+          (line.compare(first, 3, "---") == 0 || line.compare(first, 3, "...") == 0))
+        {
+          fail(path,
+            "not a valid intrinsics file (line " + std::to_string(number) +
+              ": a YAML document marker must start its line)");
+        }
+      }
+    }
   }
   PinholeCamera camera;
   try

@@ -4,9 +4,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 namespace vimlop
 {
@@ -25,6 +27,19 @@ json intrinsicsJson(const PinholeCamera& k)
   return j;
 }
 
+/// An int from JSON: a whole number in int's range (a float such as 1e300
+/// cast to int would be undefined behaviour, not an error).
+int intFrom(const json& j, const char* what)
+{
+  const double v = j.is_number() ? j.get<double>() : 0.5;
+  if (!j.is_number() || v != std::floor(v) || v < std::numeric_limits<int>::min() ||
+    v > std::numeric_limits<int>::max())
+  {
+    throw Error(std::string("expected a whole number for ") + what);
+  }
+  return static_cast<int>(v);
+}
+
 PinholeCamera intrinsicsFrom(const json& j)
 {
   PinholeCamera k;
@@ -32,8 +47,8 @@ PinholeCamera intrinsicsFrom(const json& j)
   k.fy = j.at("fy").get<double>();
   k.cx = j.at("cx").get<double>();
   k.cy = j.at("cy").get<double>();
-  k.widthPx = j.at("width").get<int>();
-  k.heightPx = j.at("height").get<int>();
+  k.widthPx = intFrom(j.at("width"), "width");
+  k.heightPx = intFrom(j.at("height"), "height");
   const std::vector<double> d = j.value("distortion", std::vector<double>());
   k.distortion = Eigen::Map<const Eigen::VectorXd>(d.data(), static_cast<Eigen::Index>(d.size()));
   return k;
@@ -134,7 +149,9 @@ SfmReconstruction readSfmReconstruction(const std::string& path)
   {
     throw Error("'" + path + "': not a JSON file");
   }
-  if (!document.is_object() || document.value("format", std::string()) != "vimlop-sfm")
+  // value() would throw for a "format" that is no string (found by fuzzing).
+  const auto format = document.is_object() ? document.find("format") : document.end();
+  if (format == document.end() || !format->is_string() || *format != "vimlop-sfm")
   {
     throw Error("'" + path + "': not a VIMLOP SfM file (no \"format\": \"vimlop-sfm\")");
   }
@@ -168,13 +185,21 @@ SfmReconstruction readSfmReconstruction(const std::string& path)
       point.covariance << c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5];
       if (p.contains("colour"))
       {
-        point.colour = vectorFrom<3>(p.at("colour")).cast<int>();
+        const json& colour = p.at("colour");
+        if (!colour.is_array() || colour.size() != 3)
+        {
+          throw Error("expected an array of 3 numbers");
+        }
+        for (int a = 0; a < 3; ++a)
+        {
+          point.colour[a] = intFrom(colour[static_cast<size_t>(a)], "a colour");
+        }
       }
       point.reprojectionErrorPx = p.value("error_px", 0.0);
       for (const json& o : p.at("observations"))
       {
         const Eigen::Vector3d v = vectorFrom<3>(o);
-        point.observations.push_back({ static_cast<int>(v[0]), v.tail<2>() });
+        point.observations.push_back({ intFrom(o[0], "a frame index"), v.tail<2>() });
       }
       r.points.push_back(std::move(point));
     }

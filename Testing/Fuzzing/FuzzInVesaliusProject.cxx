@@ -5,6 +5,16 @@
 #include "FuzzTemporaryFile.h"
 #include "InVesaliusProjectReader.h"
 
+#include <vtkObject.h>
+
+extern "C" int LLVMFuzzerInitialize(int*, char***)
+{
+  // VTK's XML parser reports every malformed plist on stderr; the reader turns
+  // those into vimlop::Error anyway, and the messages would slow the fuzzer.
+  vtkObject::GlobalWarningDisplayOff();
+  return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
   const std::string path = vimlop::fuzzing::writeInput(data, size, ".inv3");

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <vtkCellArray.h>
 #include <vtkPolyData.h>
 
 #include <fstream>
@@ -47,6 +48,20 @@ TEST(MeshIO, ConversionTriangulatesPolygons)
   EXPECT_EQ(toTriangleMesh(quad).numberOfFaces(), 12);
   vtkNew<vtkPolyData> empty;
   EXPECT_THROW(toTriangleMesh(empty), Error);
+}
+
+TEST(MeshIO, ConversionDropsTrianglesThatRepeatAPoint)
+{
+  // Decimation and point merging in other tools leave triangles such as
+  // (a, a, b); they cover no surface and must not make the mesh unusable.
+  auto box = toPolyData(fixtures::makeBox({ 0, 0, 0 }, { 1, 1, 1 }));
+  const vtkIdType degenerate[3][3] = { { 0, 0, 1 }, { 2, 3, 3 }, { 4, 5, 4 } };
+  for (const auto& ids : degenerate)
+  {
+    box->GetPolys()->InsertNextCell(3, ids);
+  }
+  ASSERT_EQ(box->GetNumberOfPolys(), 15);
+  EXPECT_EQ(toTriangleMesh(box).numberOfFaces(), 12);
 }
 
 TEST(MeshIO, ErrorsNameTheFileAndTheProblem)

@@ -133,6 +133,19 @@ TEST(SfmReconstruction, BadFilesAreNamedWithTheProblem)
   std::ofstream(other) << R"({"format": "something-else"})";
   EXPECT_EQ(
     readMessage(other), "'" + other + "': not a VIMLOP SfM file (no \"format\": \"vimlop-sfm\")");
+  // Found by fuzzing: a "format" that is no string threw a JSON type error.
+  const std::string listFormat = out + "/sfm-list-format.json";
+  std::ofstream(listFormat) << R"({"format": ["vimlop-sfm"]})";
+  EXPECT_EQ(readMessage(listFormat),
+    "'" + listFormat + "': not a VIMLOP SfM file (no \"format\": \"vimlop-sfm\")");
+  // A frame index beyond int (casting it would be undefined behaviour).
+  const std::string hugeIndex = out + "/sfm-huge-index.json";
+  std::ofstream(hugeIndex)
+    << R"({"format": "vimlop-sfm", "frames": [], "points": [{"position": [0, 0, 1],
+          "covariance": [1, 0, 0, 1, 0, 1], "observations": [[1e300, 5, 5]]}]})";
+  EXPECT_NE(
+    readMessage(hugeIndex).find("expected a whole number for a frame index"), std::string::npos)
+    << readMessage(hugeIndex);
   // A point observed by a frame that does not exist.
   SfmReconstruction r = twoViews(1.0);
   r.points[0].observations[1].frame = 5;

@@ -1,0 +1,26 @@
+// Fuzzes the JSON pose file reader (template poses, warped poses).
+#include "Error.h"
+#include "FramePoseIO.h"
+#include "FuzzTemporaryFile.h"
+
+#include <cstdlib>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  const std::string path = vimlop::fuzzing::writeInput(data, size, ".json");
+  try
+  {
+    for (const vimlop::FramePose& pose : vimlop::readFramePoses(path))
+    {
+      // An accepted pose is a finite rigid transform.
+      if (!pose.cameraToWorld.matrix().allFinite())
+      {
+        std::abort();
+      }
+    }
+  }
+  catch (const vimlop::Error&)
+  {
+  }
+  return 0;
+}

@@ -1,0 +1,17 @@
+// Fuzzes the reader of perturbation-study runs (the input of report plots).
+#include "Error.h"
+#include "FuzzTemporaryFile.h"
+#include "PerturbationRuns.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  const std::string path = vimlop::fuzzing::writeInput(data, size, ".json");
+  try
+  {
+    vimlop::readPerturbationRuns(path);
+  }
+  catch (const vimlop::Error&)
+  {
+  }
+  return 0;
+}

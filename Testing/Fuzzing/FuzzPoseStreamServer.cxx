@@ -1,0 +1,132 @@
+// Fuzzes what `vimlop serve` does with the bytes a client sends: a client
+// connects over loopback, sends the input (garbage, partial or well-formed
+// OpenIGTLink messages such as GET_TRANSFORM), closes its sending side and
+// reads. The server must neither crash nor stall, must close the connection,
+// and must have sent exactly the published TRANSFORM messages, each with a
+// valid OpenIGTLink header and CRC.
+#include "Error.h"
+#include "PoseStreamServer.h"
+
+#include <igtlMessageHeader.h>
+#include <igtlTransformMessage.h>
+#include <igtl_header.h>
+
+#include <arpa/inet.h>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <memory>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+namespace
+{
+
+std::unique_ptr<vimlop::PoseStreamServer> server;
+constexpr int publishedMessages = 3;
+
+/// Counts the messages in `bytes` whose header and body unpack with a valid CRC.
+int validTransforms(const std::string& bytes)
+{
+  int count = 0;
+  size_t at = 0;
+  while (at + IGTL_HEADER_SIZE <= bytes.size())
+  {
+    igtl::MessageHeader::Pointer header = igtl::MessageHeader::New();
+    header->InitPack();
+    std::memcpy(header->GetPackPointer(), bytes.data() + at, IGTL_HEADER_SIZE);
+    header->Unpack();
+    const size_t body = header->GetBodySizeToRead();
+    if (std::strcmp(header->GetDeviceType(), "TRANSFORM") != 0 ||
+      at + IGTL_HEADER_SIZE + body > bytes.size())
+    {
+      return -1;
+    }
+    igtl::TransformMessage::Pointer message = igtl::TransformMessage::New();
+    message->SetMessageHeader(header);
+    message->AllocatePack();
+    std::memcpy(message->GetPackBodyPointer(), bytes.data() + at + IGTL_HEADER_SIZE, body);
+    if (!(message->Unpack(1) & igtl::MessageHeader::UNPACK_BODY))
+    {
+      return -1;
+    }
+    ++count;
+    at += IGTL_HEADER_SIZE + body;
+  }
+  return at == bytes.size() ? count : -1;
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***)
+{
+  vimlop::PoseStreamServerOptions options;
+  options.port = 0;
+  server = std::make_unique<vimlop::PoseStreamServer>(options);
+  vimlop::SimilarityTransform ctFromSfm;
+  ctFromSfm.scale = 2.0;
+  ctFromSfm.translation = Eigen::Vector3d(1.0, 2.0, 3.0);
+  std::vector<vimlop::FramePose> poses(2);
+  poses[1].frameId = 12;
+  poses[1].cameraToWorld.centre = Eigen::Vector3d(-4.0, 5.0, 6.0);
+  server->publish(&ctFromSfm, poses);
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  if (size > 65536)
+  {
+    return 0; // more than the loopback socket buffers hold before the server reads
+  }
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(server->port()));
+  inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
+  if (fd < 0 || connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0)
+  {
+    std::abort();
+  }
+  size_t sent = 0;
+  while (sent < size)
+  {
+    const ssize_t n = send(fd, data + sent, size - sent, MSG_NOSIGNAL);
+    if (n <= 0)
+    {
+      std::abort();
+    }
+    sent += static_cast<size_t>(n);
+  }
+  shutdown(fd, SHUT_WR);
+
+  // Serve until the server has accepted the client and closed it again.
+  bool accepted = false;
+  int rounds = 0;
+  server->serve(
+    [&]
+    {
+      accepted = accepted || server->clientCount() > 0;
+      return ++rounds < 200 && !(accepted && server->clientCount() == 0);
+    });
+  if (!accepted || server->clientCount() != 0)
+  {
+    std::abort(); // the server stalled on this input or kept a finished client
+  }
+  std::string received;
+  char buffer[4096];
+  ssize_t got = 0;
+  while ((got = recv(fd, buffer, sizeof(buffer), 0)) > 0)
+  {
+    received.append(buffer, static_cast<size_t>(got));
+  }
+  close(fd);
+  if (validTransforms(received) != publishedMessages)
+  {
+    std::abort();
+  }
+  return 0;
+}
