@@ -194,9 +194,10 @@ PinholeCamera readIntrinsics(const std::string& path)
     }
     // OpenCV's YAML parser also loops forever on some malformed YAML (found
     // by fuzzing: an indented "---", lines starting "-r:"), so YAML must be
-    // the subset calibration tools write before OpenCV sees it.
-    const std::string ext = extensionOf(path);
-    if (ext == ".yaml" || ext == ".yml")
+    // the subset calibration tools write before OpenCV sees it. OpenCV picks
+    // the parser by the content, whatever the extension: YAML starts with
+    // %YAML (after an optional UTF-8 byte order mark).
+    if (text.rfind("%YAML", 0) == 0 || text.rfind("\xEF\xBB\xBF%YAML", 0) == 0)
     {
       if (const int line = firstUnsupportedYamlLine(text))
       {
