@@ -71,15 +71,17 @@ constexpr std::uintmax_t maxIntrinsicsFileBytes = 1 << 20;
 /**
  * The first line (from 1) of YAML text outside the subset that OpenCV and
  * calibration tools write, 0 when every line is in it: the %YAML directive
- * and document markers at the start of a line, comments, `key: value` with
- * a plain key, block items `- value`, and any line inside an open flow
- * list or map ([ ... ], { ... }). Control characters are refused anywhere.
+ * and document markers at the start of a line (after a document end only a
+ * directive or a new document), comments, `key: value` with a plain key,
+ * block items `- value`, and any line inside an open flow list or map
+ * ([ ... ], { ... }). Control characters are refused anywhere.
  */
 int firstUnsupportedYamlLine(const std::string& text)
 {
   std::istringstream lines(text);
   std::string line;
-  int depth = 0; // open brackets of flow collections
+  int depth = 0;      // open brackets of flow collections
+  bool ended = false; // after a document end marker
   for (int number = 1; std::getline(lines, line); ++number)
   {
     if (!line.empty() && line.back() == '\r')
@@ -99,11 +101,25 @@ int firstUnsupportedYamlLine(const std::string& text)
       continue;
     }
     const std::string rest = line.substr(first);
+    if (ended)
+    {
+      // After a document end ("..."), YAML allows only directives and a new
+      // document; OpenCV's parser hangs on an item there (found by fuzzing).
+      if (first != 0 || (rest[0] != '%' && rest != "---" && rest.rfind("--- ", 0) != 0))
+      {
+        return number;
+      }
+      ended = false;
+    }
+    if (first == 0 && rest == "...")
+    {
+      ended = true;
+      continue;
+    }
     bool supported = depth > 0;
     if (!supported && first == 0)
     {
-      supported =
-        rest.rfind("%YAML", 0) == 0 || rest == "---" || rest.rfind("--- ", 0) == 0 || rest == "...";
+      supported = rest.rfind("%YAML", 0) == 0 || rest == "---" || rest.rfind("--- ", 0) == 0;
     }
     if (!supported)
     {
