@@ -67,6 +67,113 @@ namespace
 {
 /// Intrinsics files hold a few numbers; anything this large is something else.
 constexpr std::uintmax_t maxIntrinsicsFileBytes = 1 << 20;
+
+/**
+ * The first line (from 1) of YAML text outside the subset that OpenCV and
+ * calibration tools write, 0 when every line is in it: the %YAML directive
+ * and document markers at the start of a line (after a document end only a
+ * directive or a new document), comments, `key: value` with a plain key,
+ * block items `- value`, and any line inside an open flow list or map
+ * ([ ... ], { ... }). Control characters are refused anywhere.
+ */
+int firstUnsupportedYamlLine(const std::string& text)
+{
+  std::istringstream lines(text);
+  std::string line;
+  int depth = 0;      // open brackets of flow collections
+  bool ended = false; // after a document end marker
+  for (int number = 1; std::getline(lines, line); ++number)
+  {
+    if (!line.empty() && line.back() == '\r')
+    {
+      line.pop_back();
+    }
+    for (const unsigned char c : line)
+    {
+      if ((c < 0x20 && c != '\t') || c == 0x7f)
+      {
+        return number;
+      }
+    }
+    const size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#')
+    {
+      continue;
+    }
+    const std::string rest = line.substr(first);
+    if (ended)
+    {
+      // After a document end ("..."), YAML allows only directives and a new
+      // document; OpenCV's parser hangs on an item there (found by fuzzing).
+      if (first != 0 || (rest[0] != '%' && rest != "---" && rest.rfind("--- ", 0) != 0))
+      {
+        return number;
+      }
+      ended = false;
+    }
+    if (first == 0 && rest == "...")
+    {
+      ended = true;
+      continue;
+    }
+    bool supported = depth > 0;
+    if (!supported && first == 0)
+    {
+      supported = rest.rfind("%YAML", 0) == 0 || rest == "---" || rest.rfind("--- ", 0) == 0;
+    }
+    if (!supported)
+    {
+      supported = rest == "-" || rest.rfind("- ", 0) == 0;
+    }
+    if (!supported && (std::isalpha(static_cast<unsigned char>(rest[0])) || rest[0] == '_'))
+    {
+      size_t i = 1;
+      while (i < rest.size() &&
+        (std::isalnum(static_cast<unsigned char>(rest[i])) || rest[i] == '_' || rest[i] == '-'))
+      {
+        ++i;
+      }
+      while (i < rest.size() && rest[i] == ' ')
+      {
+        ++i;
+      }
+      supported = i < rest.size() && rest[i] == ':' && (i + 1 == rest.size() || rest[i + 1] == ' ');
+    }
+    if (!supported)
+    {
+      return number;
+    }
+    char quote = 0;
+    for (const char c : rest)
+    {
+      if (quote)
+      {
+        quote = c == quote ? 0 : quote;
+      }
+      else if (c == '"' || c == '\'')
+      {
+        quote = c;
+      }
+      else if (c == '#')
+      {
+        break;
+      }
+      else if (c == '[' || c == '{')
+      {
+        ++depth;
+      }
+      else if (c == ']' || c == '}')
+      {
+        --depth;
+      }
+    }
+    if (depth < 0)
+    {
+      return number;
+    }
+  }
+  return 0;
+}
 } // namespace
 
 bool isIntrinsicsPath(const std::string& path)
@@ -101,24 +208,18 @@ PinholeCamera readIntrinsics(const std::string& path)
     {
       fail(path, "not a valid intrinsics file (it holds a NUL byte; intrinsics files are text)");
     }
-    // OpenCV's YAML parser also loops forever on an indented document marker
-    // ("  --- a: 0" followed by a less indented line; found by fuzzing). YAML
-    // allows "---" and "..." only at the start of a line.
-    const std::string ext = extensionOf(path);
-    if (ext == ".yaml" || ext == ".yml")
+    // OpenCV's YAML parser also loops forever on some malformed YAML (found
+    // by fuzzing: an indented "---", lines starting "-r:"), so YAML must be
+    // the subset calibration tools write before OpenCV sees it. OpenCV picks
+    // the parser by the content, whatever the extension: YAML starts with
+    // %YAML (after an optional UTF-8 byte order mark).
+    if (text.rfind("%YAML", 0) == 0 || text.rfind("\xEF\xBB\xBF%YAML", 0) == 0)
     {
-      std::istringstream lines(text);
-      std::string line;
-      for (int number = 1; std::getline(lines, line); ++number)
+      if (const int line = firstUnsupportedYamlLine(text))
       {
-        const size_t first = line.find_first_not_of(" \t");
-        if (first != std::string::npos && first > 0 &&
-          (line.compare(first, 3, "---") == 0 || line.compare(first, 3, "...") == 0))
-        {
-          fail(path,
-            "not a valid intrinsics file (line " + std::to_string(number) +
-              ": a YAML document marker must start its line)");
-        }
+        fail(path,
+          "not a valid intrinsics file (line " + std::to_string(line) +
+            ": expected 'key: value', '- item', a comment or a continued [ ... ] list)");
       }
     }
   }

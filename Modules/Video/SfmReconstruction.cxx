@@ -27,6 +27,13 @@ double SfmReconstruction::rmsReprojectionErrorPx() const
   {
     for (const Observation& o : p.observations)
     {
+      // A reconstruction that fails validate() (a dangling frame index) may
+      // still be written, e.g. to show a problem; its error must not read
+      // past the frames (found by AddressSanitizer).
+      if (o.frame < 0 || o.frame >= static_cast<int>(this->frames.size()))
+      {
+        continue;
+      }
       const Frame& f = this->frames[static_cast<size_t>(o.frame)];
       const Eigen::Vector3d x = f.cameraToSfm.worldToCamera(p.position);
       if (x.z() <= 0.0)
