@@ -13,28 +13,53 @@ if ! command -v Xvfb >/dev/null 2>&1; then
   exit 1
 fi
 dir=$(mktemp -d "${TMPDIR:-/tmp}/vimlop-display.XXXXXX") || exit 1
-Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$dir/display" 2>"$dir/xvfb.log" &
-server=$!
+server=
 cleanup() {
-  kill "$server" 2>/dev/null
-  wait "$server" 2>/dev/null
-  rm -rf "$dir"
+  [ -n "$server" ] && kill "$server" 2>/dev/null && wait "$server" 2>/dev/null
+  server=
 }
-trap 'cleanup; exit 130' INT TERM
-# Xvfb writes the display number and a newline once it accepts connections.
-tries=0
-until grep -q '^[0-9][0-9]*$' "$dir/display" 2>/dev/null; do
-  tries=$((tries + 1))
-  if [ "$tries" -gt 200 ] || ! kill -0 "$server" 2>/dev/null; then
-    echo "run-with-display.sh: Xvfb did not start:" >&2
-    cat "$dir/xvfb.log" >&2
+trap 'cleanup; rm -rf "$dir"; exit 130' INT TERM
+
+# Starts a private Xvfb and waits until it accepts connections (a few tries:
+# many servers starting at once, as parallel tests do, can race for a display).
+start_server() {
+  for attempt in 1 2 3 4 5; do
+    rm -f "$dir/display"
+    Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$dir/display" 2>"$dir/xvfb.log" &
+    server=$!
+    tries=0
+    # Xvfb writes the display number and a newline once it accepts connections.
+    until grep -q '^[0-9][0-9]*$' "$dir/display" 2>/dev/null; do
+      tries=$((tries + 1))
+      if [ "$tries" -gt 200 ] || ! kill -0 "$server" 2>/dev/null; then
+        break
+      fi
+      sleep 0.05
+    done
+    if grep -q '^[0-9][0-9]*$' "$dir/display" 2>/dev/null && kill -0 "$server" 2>/dev/null; then
+      return 0
+    fi
     cleanup
-    exit 1
-  fi
-  sleep 0.05
-done
+  done
+  echo "run-with-display.sh: Xvfb did not start:" >&2
+  cat "$dir/xvfb.log" >&2
+  return 1
+}
+
+start_server || { rm -rf "$dir"; exit 1; }
 DISPLAY=":$(cat "$dir/display")" "$@"
 status=$?
+if [ "$status" -eq 134 ]; then
+  # VTK aborts when it loses its X connection (another server taking the
+  # display): once, on a fresh server, the command runs again.
+  echo "run-with-display.sh: the command aborted on display :$(cat "$dir/display"); Xvfb said:" >&2
+  cat "$dir/xvfb.log" >&2
+  echo "run-with-display.sh: running it again on a new display" >&2
+  cleanup
+  start_server || { rm -rf "$dir"; exit 1; }
+  DISPLAY=":$(cat "$dir/display")" "$@"
+  status=$?
+fi
 if [ "$status" -ge 128 ]; then
   # A crash may be the display's: say what the server said.
   echo "run-with-display.sh: the command ended with status $status on display :$(cat "$dir/display"); Xvfb said:" >&2
@@ -42,4 +67,5 @@ if [ "$status" -ge 128 ]; then
   kill -0 "$server" 2>/dev/null || echo "run-with-display.sh: Xvfb is gone" >&2
 fi
 cleanup
+rm -rf "$dir"
 exit $status
