@@ -12,15 +12,32 @@ namespace vimlop
 namespace
 {
 
-/// Regularised lower incomplete gamma P(a, x): series for x < a + 1,
-/// continued fraction (modified Lentz) otherwise; both to double precision.
-double regularizedGammaP(double a, double x)
+/// log Gamma(k / 2) by the recurrence Gamma(a + 1) = a Gamma(a) from
+/// Gamma(1) = 1 and Gamma(1/2) = sqrt(pi). std::lgamma would do, but glibc's
+/// writes the global `signgam`, a data race when registrations run in
+/// parallel threads; half-integers are all a chi-square CDF needs.
+double logGammaOfHalf(int k)
+{
+  double a = (k % 2 == 0) ? 1.0 : 0.5;
+  double logGamma = (k % 2 == 0) ? 0.0 : 0.5 * std::log(3.14159265358979323846);
+  for (; 2.0 * a < k; a += 1.0)
+  {
+    logGamma += std::log(a);
+  }
+  return logGamma;
+}
+
+/// Regularised lower incomplete gamma P(a, x) with a = k / 2: series for
+/// x < a + 1, continued fraction (modified Lentz) otherwise; both to double
+/// precision.
+double regularizedGammaP(int k, double x)
 {
   if (x <= 0.0)
   {
     return 0.0;
   }
-  const double logPrefactor = a * std::log(x) - x - std::lgamma(a);
+  const double a = 0.5 * k;
+  const double logPrefactor = a * std::log(x) - x - logGammaOfHalf(k);
   if (x < a + 1.0)
   {
     double term = 1.0 / a;
@@ -64,7 +81,7 @@ double regularizedGammaP(double a, double x)
 
 double chiSquareCdf(double x, int degreesOfFreedom)
 {
-  return regularizedGammaP(0.5 * degreesOfFreedom, 0.5 * x);
+  return regularizedGammaP(degreesOfFreedom, 0.5 * x);
 }
 
 double chiSquareQuantile(double p, int degreesOfFreedom)
