@@ -13,6 +13,7 @@ ccache
 libeigen3-dev
 libembree-dev
 libvtk9-dev
+libx11-dev
 python3-vtk9
 python3-dev
 libinsighttoolkit5-dev

@@ -4,7 +4,9 @@
 #
 # Xvfb picks its own free display number (-displayfd), which is atomic;
 # `xvfb-run -a` guesses a free number first, and tests started in parallel
-# by ctest could pick the same one and lose their display.
+# by ctest could pick the same one and lose their display. -noreset: an X
+# server resets when its last client leaves, and VTK aborts when it opens a
+# window during the reset (a test of library code may open and close many).
 if [ -n "${DISPLAY:-}" ]; then
   exec "$@"
 fi
@@ -25,7 +27,7 @@ trap 'cleanup; rm -rf "$dir"; exit 130' INT TERM
 start_server() {
   for attempt in 1 2 3 4 5; do
     rm -f "$dir/display"
-    Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$dir/display" 2>"$dir/xvfb.log" &
+    Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp -noreset 3>"$dir/display" 2>"$dir/xvfb.log" &
     server=$!
     tries=0
     # Xvfb writes the display number and a newline once it accepts connections.
@@ -49,17 +51,6 @@ start_server() {
 start_server || { rm -rf "$dir"; exit 1; }
 DISPLAY=":$(cat "$dir/display")" "$@"
 status=$?
-if [ "$status" -eq 134 ]; then
-  # VTK aborts when it loses its X connection (another server taking the
-  # display): once, on a fresh server, the command runs again.
-  echo "run-with-display.sh: the command aborted on display :$(cat "$dir/display"); Xvfb said:" >&2
-  cat "$dir/xvfb.log" >&2
-  echo "run-with-display.sh: running it again on a new display" >&2
-  cleanup
-  start_server || { rm -rf "$dir"; exit 1; }
-  DISPLAY=":$(cat "$dir/display")" "$@"
-  status=$?
-fi
 if [ "$status" -ge 128 ]; then
   # A crash may be the display's: say what the server said.
   echo "run-with-display.sh: the command ended with status $status on display :$(cat "$dir/display"); Xvfb said:" >&2

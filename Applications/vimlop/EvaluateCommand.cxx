@@ -9,14 +9,13 @@
 #include "SyntheticEvaluation.h"
 #include "VideoEvaluation.h"
 
-#include <stdexcept>
-
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 
 namespace vimlop
 {
@@ -120,6 +119,7 @@ void runVideo(const VideoCommandOptions& o)
   {
     throw Error("--sfm: expected 'builtin' or 'colmap', got '" + o.sfm + "'");
   }
+  requireOffscreenRendering("vimlop evaluate video");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
   const nlohmann::json report = runVideoEvaluation(mesh, options, &std::cerr);
   writeJsonFile(report, o.out);

@@ -3,6 +3,7 @@
 #include "EmbreeRegistrationModel.h"
 #include "Error.h"
 #include "ModelLoading.h"
+#include "OffscreenRendering.h"
 #include "VideoSimulation.h"
 
 #include <CLI/CLI.hpp>
@@ -39,6 +40,7 @@ void runSimulate(SimulateOptions o)
   k.cx = 0.5 * (o.width - 1);
   k.cy = 0.5 * (o.height - 1);
   k.validate();
+  requireOffscreenRendering("vimlop simulate");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
   const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
   const SimulatedVideo video = simulateVideo(model, o.simulation, &std::cerr);

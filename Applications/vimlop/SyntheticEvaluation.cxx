@@ -6,6 +6,7 @@
 #include "Registration.h"
 #include "RegistrationMetrics.h"
 #include "Statistics.h"
+#include "TerminalProgress.h"
 #include "TrialSaving.h"
 
 #include <algorithm>
@@ -99,7 +100,8 @@ nlohmann::json runSyntheticEvaluation(
   std::map<std::string, MethodRecord> records;
   for (int trialIndex = 0; trialIndex < options.trials; ++trialIndex)
   {
-    const std::uint64_t trialSeed = options.seed * 1000003ull + static_cast<std::uint64_t>(trialIndex);
+    const std::uint64_t trialSeed =
+      options.seed * 1000003ull + static_cast<std::uint64_t>(trialIndex);
     const SyntheticTrial trial = makeSyntheticTrial(model, options.synthetic, trialSeed);
     for (const std::string& method : options.methods)
     {
@@ -138,7 +140,8 @@ nlohmann::json runSyntheticEvaluation(
           };
         }
       }
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (saved)
       {
         saved(); // outside the timed part: it renders the frames' pictures
@@ -156,18 +159,12 @@ nlohmann::json runSyntheticEvaluation(
         r.cameraAngle.push_back(cameraAngleErrorDeg(camera, trial.trueCamerasCT[c]));
       }
     }
-    if (progress)
-    {
-      *progress << "\rP1: trial " << trialIndex + 1 << "/" << options.trials << std::flush;
-    }
-  }
-  if (progress)
-  {
-    *progress << "\n";
+    printCount(progress, "P1: trial", trialIndex + 1, options.trials);
   }
 
-  nlohmann::json report = { { "protocol", "P1" }, { "trials", options.trials }, { "seed", options.seed },
-    { "mesh_triangles", mesh.numberOfFaces() }, { "success_threshold_mm", options.successThresholdMm } };
+  nlohmann::json report = { { "protocol", "P1" }, { "trials", options.trials },
+    { "seed", options.seed }, { "mesh_triangles", mesh.numberOfFaces() },
+    { "success_threshold_mm", options.successThresholdMm } };
   nlohmann::json methods = nlohmann::json::object();
   for (const std::string& method : options.methods)
   {

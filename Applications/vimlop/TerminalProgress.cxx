@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <memory>
 
 namespace vimlop
@@ -40,6 +41,27 @@ ProgressCallback terminalProgress(const std::string& command)
     }
     std::fflush(stderr);
   };
+}
+
+void printCount(std::ostream* out, const std::string& label, int done, int total)
+{
+  if (!out)
+  {
+    return;
+  }
+  const bool terminal =
+    (out == &std::cerr && isatty(fileno(stderr))) || (out == &std::cout && isatty(fileno(stdout)));
+  if (terminal)
+  {
+    *out << "\r" << label << " " << done << "/" << total << (done >= total ? "\n" : "")
+         << std::flush;
+    return;
+  }
+  const int step = std::max(1, total / 10);
+  if (done % step == 0 || done >= total)
+  {
+    *out << label << " " << done << "/" << total << "\n" << std::flush;
+  }
 }
 
 } // namespace vimlop

@@ -3,6 +3,7 @@
 
 #include "ProgressCallback.h"
 
+#include <iosfwd>
 #include <string>
 
 namespace vimlop
@@ -14,6 +15,14 @@ namespace vimlop
  * (logs and test output stay clean). The line is ended at 100 %.
  */
 ProgressCallback terminalProgress(const std::string& command);
+
+/**
+ * @brief Reports `done` of `total` steps as "<label> <done>/<total>" on
+ * `out` (nothing when null): one line rewritten in place when `out` is
+ * std::cerr or std::cout on a terminal, ended at the last step; otherwise a
+ * line at every tenth of the way, so that a log keeps a readable trace.
+ */
+void printCount(std::ostream* out, const std::string& label, int done, int total);
 
 } // namespace vimlop
 

@@ -3,6 +3,7 @@
 #include "Error.h"
 #include "IntrinsicsIO.h"
 #include "MucosaTexture.h"
+#include "TerminalProgress.h"
 #include "vtkVIMLOPVirtualEndoscope.h"
 
 #include <vtkNew.h>
@@ -72,14 +73,7 @@ SimulatedVideo simulateVideo(
     video.frames.push_back(bgr);
     video.depth.push_back(image.depth);
     video.frameTimesS.push_back(f / o.framesPerSecond);
-    if (progress)
-    {
-      *progress << "\rsimulate: frame " << f + 1 << "/" << o.frames << std::flush;
-    }
-  }
-  if (progress)
-  {
-    *progress << "\n";
+    printCount(progress, "simulate: frame", f + 1, o.frames);
   }
 
   // The tracker follows the tip (linear between frames, extrapolated at
