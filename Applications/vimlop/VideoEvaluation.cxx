@@ -8,6 +8,7 @@
 #include "Error.h"
 #include "MultiStartRegistration.h"
 #include "OccludingContours.h"
+#include "RandomDirection.h"
 #include "Registration.h"
 #include "RegistrationMetrics.h"
 #include "Rotation.h"
@@ -33,17 +34,6 @@ namespace
 {
 
 constexpr double Degree = M_PI / 180.0;
-
-Eigen::Vector3d randomDirection(std::mt19937_64& rng)
-{
-  std::normal_distribution<double> normal;
-  Eigen::Vector3d v;
-  do
-  {
-    v = Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
-  } while (v.norm() < 1e-9);
-  return v.normalized();
-}
 
 } // namespace
 

@@ -2,6 +2,7 @@
 
 #include "Error.h"
 #include "OccludingContours.h"
+#include "RandomDirection.h"
 #include "Rotation.h"
 
 #include <Eigen/Geometry>
@@ -19,17 +20,6 @@ namespace
 {
 
 constexpr double Degree = M_PI / 180.0;
-
-Eigen::Vector3d randomDirection(std::mt19937_64& rng)
-{
-  std::normal_distribution<double> normal;
-  Eigen::Vector3d v;
-  do
-  {
-    v = Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
-  } while (v.norm() < 1e-9);
-  return v.normalized();
-}
 
 /// Free length of the ray from `p` along unit `d`, up to `limit` mm, in 0.5 mm steps.
 double freeLength(
