@@ -13,6 +13,7 @@
 
 #include <arpa/inet.h>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
@@ -59,6 +60,57 @@ int validTransforms(const std::string& bytes)
   return at == bytes.size() ? count : -1;
 }
 
+/// Fails the input with what went wrong on the harness's side of the socket.
+[[noreturn]] void harnessFailure(const char* what, int error)
+{
+  std::fprintf(stderr, "fuzz server harness: %s: %s\n", what, std::strerror(error));
+  std::abort();
+}
+
+/// A loopback client of the server. libFuzzer's timers interrupt system
+/// calls (EINTR): an interrupted connect() goes on in the background and is
+/// awaited. At over ten thousand inputs a second the client's closed
+/// connections wait in TIME_WAIT and can use up the loopback port pairs
+/// (EADDRNOTAVAIL): a limit of the harness, retried for a while. Any other
+/// failure to connect (the server's listening socket gone) is a finding.
+int connectToServer()
+{
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(server->port()));
+  inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
+  for (int attempt = 0; attempt < 1000; ++attempt)
+  {
+    const int fd = socket(AF_INET, SOCK_STREAM, 0);
+    if (fd < 0)
+    {
+      harnessFailure("socket", errno);
+    }
+    int error =
+      connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0 ? 0 : errno;
+    if (error == EINTR)
+    {
+      pollfd pending{ fd, POLLOUT, 0 };
+      while (poll(&pending, 1, -1) < 0 && errno == EINTR)
+      {
+      }
+      socklen_t length = sizeof(error);
+      getsockopt(fd, SOL_SOCKET, SO_ERROR, &error, &length);
+    }
+    if (error == 0)
+    {
+      return fd;
+    }
+    close(fd);
+    if (error != EADDRNOTAVAIL)
+    {
+      harnessFailure("connect to the server", error);
+    }
+    usleep(10000);
+  }
+  harnessFailure("connect to the server", EADDRNOTAVAIL);
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***)
@@ -82,22 +134,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     return 0; // more than the loopback socket buffers hold before the server reads
   }
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<uint16_t>(server->port()));
-  inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
-  if (fd < 0 || connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0)
-  {
-    std::abort();
-  }
+  const int fd = connectToServer();
   size_t sent = 0;
   while (sent < size)
   {
     const ssize_t n = send(fd, data + sent, size - sent, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR)
+    {
+      continue;
+    }
     if (n <= 0)
     {
-      std::abort();
+      harnessFailure("send", errno);
     }
     sent += static_cast<size_t>(n);
   }
@@ -118,9 +166,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   std::string received;
   char buffer[4096];
-  ssize_t got = 0;
-  while ((got = recv(fd, buffer, sizeof(buffer), 0)) > 0)
+  for (;;)
   {
+    const ssize_t got = recv(fd, buffer, sizeof(buffer), 0);
+    if (got < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (got <= 0)
+    {
+      break;
+    }
     received.append(buffer, static_cast<size_t>(got));
   }
   close(fd);
