@@ -22,6 +22,12 @@ namespace vimlop
 namespace
 {
 
+/// The start of every error of this check, for `what` the caller names.
+std::string needsDisplay(const std::string& what)
+{
+  return what + " renders offscreen with VTK, which needs an X display here; ";
+}
+
 #ifdef VIMLOP_HAVE_X11
 /// Opens one connection to the X display, once, and keeps it until the
 /// process ends. An X server resets when its last client disconnects (the
@@ -42,8 +48,7 @@ void holdDisplayConnection(const std::string& what, const char* display)
   connection = XOpenDisplay(nullptr);
   if (!connection)
   {
-    throw Error(what + " renders offscreen with VTK, which needs an X display here; DISPLAY is '" +
-      display + "' but no X server answers there");
+    throw Error(needsDisplay(what) + "DISPLAY is '" + display + "' but no X server answers there");
   }
 }
 #endif
@@ -61,9 +66,8 @@ void requireOffscreenRendering(const std::string& what)
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
   {
-    throw Error(what +
-      " renders offscreen with VTK, which needs an X display here; none is set "
-      "(on a server, run the command under xvfb-run -a)");
+    throw Error(
+      needsDisplay(what) + "none is set (on a server, run the command under xvfb-run -a)");
   }
 #ifdef VIMLOP_HAVE_X11
   holdDisplayConnection(what, display);
