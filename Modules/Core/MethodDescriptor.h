@@ -55,6 +55,7 @@ struct MethodDescriptor
 /// @brief The stages of `method`: V-IMLOP uses everything; IMLP leaves the
 /// contours out; trimmed ICP matches closest points, trims throughout without
 /// the chi-square test, has no anatomical constraint and estimates in closed form.
+/// @throws vimlop::Error for a value outside the enum.
 MethodDescriptor describeMethod(RegistrationMethod method);
 
 /// @brief True when a registration with `options` keeps the cameras inside
