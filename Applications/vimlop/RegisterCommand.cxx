@@ -10,7 +10,7 @@
 #include "MultiStartRegistration.h"
 #include "OccludingContourDetector.h"
 #include "OffscreenRendering.h"
-#include "PoseServing.h"
+#include "PoseServingFlags.h"
 #include "RegisteredVideo.h"
 #include "RegistrationMetrics.h"
 #include "RegistrationRecordIO.h"
