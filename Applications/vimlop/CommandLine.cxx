@@ -1,11 +1,9 @@
 #include "CommandLine.h"
 
+#include "AtomicFile.h"
 #include "Error.h"
 
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -52,29 +50,7 @@ std::vector<std::string> parseList(const std::string& text, const std::string& w
 
 void writeJsonFile(const nlohmann::json& json, const std::string& path)
 {
-  const std::filesystem::path target(path);
-  if (target.has_parent_path())
-  {
-    std::error_code ec;
-    std::filesystem::create_directories(target.parent_path(), ec);
-  }
-  const std::string temporary = path + ".part";
-  {
-    std::ofstream out(temporary);
-    out << json.dump(2) << "\n";
-    if (!out)
-    {
-      std::remove(temporary.c_str());
-      throw Error("'" + path + "': cannot write the file");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, target, ec);
-  if (ec)
-  {
-    std::remove(temporary.c_str());
-    throw Error("'" + path + "': cannot write the file (" + ec.message() + ")");
-  }
+  writeFileAtomically(path, json.dump(2) + "\n");
 }
 
 std::vector<double> parseNumbers(const std::string& text, const std::string& what)

@@ -7,6 +7,7 @@
 #include "OffscreenRendering.h"
 #include "PipelineFlags.h"
 #include "PoseServing.h"
+#include "PoseServingFlags.h"
 #include "RegistrationOutputs.h"
 #include "RegistrationRecordIO.h"
 #include "TrackerScale.h"

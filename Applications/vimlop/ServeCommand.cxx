@@ -2,7 +2,7 @@
 
 #include "Error.h"
 #include "FramePoseIO.h"
-#include "PoseServing.h"
+#include "PoseServingFlags.h"
 #include "RegistrationRecordIO.h"
 
 #include <CLI/CLI.hpp>

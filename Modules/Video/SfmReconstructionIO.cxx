@@ -1,12 +1,11 @@
 #include "SfmReconstructionIO.h"
 
+#include "AtomicFile.h"
 #include "Error.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 
@@ -107,30 +106,7 @@ void writeSfmReconstruction(const SfmReconstruction& r, const std::string& path)
     { "rms_reprojection_error_px", r.rmsReprojectionErrorPx() },
     { "tracker_scale_mm_per_unit", r.trackerScale }, { "frames", frames }, { "points", points } };
 
-  const std::filesystem::path target(path);
-  if (target.has_parent_path())
-  {
-    std::error_code ec;
-    std::filesystem::create_directories(target.parent_path(), ec);
-  }
-  // Through a temporary file, so that an interrupted run leaves no half file.
-  const std::string temporary = path + ".part";
-  {
-    std::ofstream out(temporary);
-    out << document.dump(1) << "\n";
-    if (!out)
-    {
-      std::remove(temporary.c_str());
-      throw Error("'" + path + "': cannot write the file");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, target, ec);
-  if (ec)
-  {
-    std::remove(temporary.c_str());
-    throw Error("'" + path + "': cannot write the file (" + ec.message() + ")");
-  }
+  writeFileAtomically(path, document.dump(1) + "\n");
 }
 
 SfmReconstruction readSfmReconstruction(const std::string& path)

@@ -1,5 +1,6 @@
 #include "RegistrationRecordIO.h"
 
+#include "AtomicFile.h"
 #include "Error.h"
 #include "MeshIO.h"
 #include "PolyDataConversion.h"
@@ -22,7 +23,6 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -185,27 +185,6 @@ vtkSmartPointer<vtkPolyData> readPossiblyEmpty(const fs::path& path)
   return polyData;
 }
 
-void writeTextAtomically(const std::string& text, const fs::path& path)
-{
-  const fs::path temporary = path.string() + ".part";
-  {
-    std::ofstream out(temporary);
-    out << text;
-    if (!out)
-    {
-      std::remove(temporary.string().c_str());
-      throw Error("'" + path.string() + "': cannot write the file");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temporary, path, ec);
-  if (ec)
-  {
-    std::remove(temporary.string().c_str());
-    throw Error("'" + path.string() + "': cannot write the file (" + ec.message() + ")");
-  }
-}
-
 } // namespace
 
 const char* resultFormatName()
@@ -338,7 +317,7 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
   }
   summary["versions"] = versions;
   summary["files"] = files;
-  writeTextAtomically(summary.dump(2) + "\n", dir / "result.json");
+  writeFileAtomically((dir / "result.json").string(), summary.dump(2) + "\n");
 }
 
 RegistrationRecord readRegistrationRecord(const std::string& folder)

@@ -80,7 +80,8 @@ PoseStreamServer::PoseStreamServer(const PoseStreamServerOptions& options)
   {
     const std::string reason = std::strerror(errno);
     close(this->Listener);
-    throw Error("cannot listen on " + options.host + ":" + std::to_string(options.port) + ": " + reason);
+    throw Error(
+      "cannot listen on " + options.host + ":" + std::to_string(options.port) + ": " + reason);
   }
   socklen_t length = sizeof(bound);
   getsockname(this->Listener, reinterpret_cast<sockaddr*>(&bound), &length);
@@ -100,9 +101,11 @@ PoseStreamServer::~PoseStreamServer()
   }
 }
 
-void PoseStreamServer::publish(const SimilarityTransform* ctFromSfm, const std::vector<FramePose>& cameraToCT)
+void PoseStreamServer::publish(
+  const SimilarityTransform* ctFromSfm, const std::vector<FramePose>& cameraToCT)
 {
-  std::string messages = ctFromSfm ? packTransform("CTFromSfM", intoRas(ctFromSfm->matrix())) : std::string();
+  std::string messages =
+    ctFromSfm ? packTransform("CTFromSfM", intoRas(ctFromSfm->matrix())) : std::string();
   for (const FramePose& pose : cameraToCT)
   {
     char name[32];
@@ -153,7 +156,8 @@ bool PoseStreamServer::flush(Client& client)
 {
   while (!client.pending.empty())
   {
-    const ssize_t sent = send(client.fd, client.pending.data(), client.pending.size(), MSG_NOSIGNAL);
+    const ssize_t sent =
+      send(client.fd, client.pending.data(), client.pending.size(), MSG_NOSIGNAL);
     if (sent < 0)
     {
       if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)
@@ -199,7 +203,8 @@ void PoseStreamServer::serve(const std::function<bool()>& keepRunning)
     fds.push_back({ this->Listener, POLLIN, 0 });
     for (const Client& client : this->Clients)
     {
-      fds.push_back({ client.fd, static_cast<short>(POLLIN | (client.pending.empty() ? 0 : POLLOUT)), 0 });
+      fds.push_back(
+        { client.fd, static_cast<short>(POLLIN | (client.pending.empty() ? 0 : POLLOUT)), 0 });
     }
     if (poll(fds.data(), fds.size(), 100) < 0 && errno != EINTR)
     {

@@ -3,6 +3,8 @@
 
 #include "RegistrationRecord.h"
 
+#include "VIMLOPReportModule.h"
+
 #include <string>
 #include <vector>
 
@@ -19,7 +21,7 @@ namespace vimlop
  * @return the files written, relative to `folder`.
  * @throws vimlop::Error if a file cannot be written.
  */
-std::vector<std::string> writeRegisteredVideo(
+VIMLOPREPORT_EXPORT std::vector<std::string> writeRegisteredVideo(
   const RegistrationRecord& record, const std::string& folder, double fps);
 
 /**
@@ -27,7 +29,7 @@ std::vector<std::string> writeRegisteredVideo(
  * centres, CT frame, mm, with a "FrameId" point array) as `path` (.vtp).
  * @throws vimlop::Error if the file cannot be written.
  */
-void writeCameraPath(const RegistrationResult& result, const std::string& path);
+VIMLOPREPORT_EXPORT void writeCameraPath(const RegistrationResult& result, const std::string& path);
 
 } // namespace vimlop
 

@@ -4,7 +4,7 @@
 #include "PerturbationRuns.h"
 #include "RegistrationRecord.h"
 
-#include "VIMLOPRegistrationModule.h"
+#include "VIMLOPReportModule.h"
 
 #include <optional>
 #include <string>
@@ -36,7 +36,7 @@ namespace vimlop
  * the mean distance from each video contour point to its V5 match among the
  * model's visible contour samples (Embree visibility), pixels.
  */
-class VIMLOPREGISTRATION_EXPORT RegistrationReport
+class VIMLOPREPORT_EXPORT RegistrationReport
 {
 public:
   /// @brief Picture sizes, pixels.

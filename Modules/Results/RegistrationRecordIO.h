@@ -3,8 +3,6 @@
 
 #include "RegistrationRecord.h"
 
-#include "VIMLOPRegistrationModule.h"
-
 #include <string>
 
 /**
@@ -53,10 +51,10 @@ namespace vimlop
 {
 
 /// @brief The "format" value of result.json.
-VIMLOPREGISTRATION_EXPORT const char* resultFormatName();
+const char* resultFormatName();
 
 /// @brief The "version" value of result.json this build writes and reads.
-VIMLOPREGISTRATION_EXPORT int resultFormatVersion();
+int resultFormatVersion();
 
 /**
  * @brief Writes `record` into the folder `folder` (created if needed; files
@@ -66,8 +64,7 @@ VIMLOPREGISTRATION_EXPORT int resultFormatVersion();
  * complete.
  * @throws vimlop::Error if a file cannot be written.
  */
-VIMLOPREGISTRATION_EXPORT void writeRegistrationRecord(
-  const RegistrationRecord& record, const std::string& folder);
+void writeRegistrationRecord(const RegistrationRecord& record, const std::string& folder);
 
 /**
  * @brief Reads a result folder written by writeRegistrationRecord().
@@ -75,10 +72,10 @@ VIMLOPREGISTRATION_EXPORT void writeRegistrationRecord(
  * without result.json ("not a VIMLOP result folder"), a result.json of
  * another format or a newer version, or a missing or malformed file.
  */
-VIMLOPREGISTRATION_EXPORT RegistrationRecord readRegistrationRecord(const std::string& folder);
+RegistrationRecord readRegistrationRecord(const std::string& folder);
 
 /// @brief "vimlop", "imlp" or "trimmed-icp" as a method. @throws vimlop::Error for others.
-VIMLOPREGISTRATION_EXPORT RegistrationMethod registrationMethodFromString(const std::string& name);
+RegistrationMethod registrationMethodFromString(const std::string& name);
 
 } // namespace vimlop
 

@@ -9,11 +9,6 @@
 #include <string>
 #include <vector>
 
-namespace CLI
-{
-class App;
-}
-
 namespace vimlop
 {
 
@@ -44,12 +39,6 @@ struct ServedPoses
   /// Camera-to-CT pose of every frame, each sent as `VideoCamera_<frame id>`.
   std::vector<FramePose> cameraToCT;
 };
-
-/**
- * @brief Adds --host, --port, --allow-remote, --max-clients and --duration-s
- * to `command`, stored into `options` (which must outlive the parse).
- */
-void addPoseServingOptions(CLI::App& command, PoseServingOptions& options);
 
 /// @brief T and every frame's camera-to-CT pose of a registration result.
 ServedPoses servedPosesOf(const RegistrationResult& result);

@@ -2,7 +2,8 @@
 #define vimlop_RecordJson_h
 
 // JSON forms shared by the result folder (RegistrationRecordIO) and the
-// report (RegistrationReport); private to the Registration module.
+// report (RegistrationReport, in the Report module): not installed, so they
+// stay free to change with result.json.
 
 #include "RegistrationOptions.h"
 #include "SimilarityTransform.h"

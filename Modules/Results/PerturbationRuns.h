@@ -1,8 +1,6 @@
 #ifndef vimlop_PerturbationRuns_h
 #define vimlop_PerturbationRuns_h
 
-#include "VIMLOPRegistrationModule.h"
-
 #include <string>
 #include <vector>
 
@@ -31,16 +29,14 @@ struct PerturbationRun
  * @throws vimlop::Error naming the file for a missing or unreadable file, no
  * "runs" list, or a run without offset_mm, final_error_mm or contour_error_px.
  */
-VIMLOPREGISTRATION_EXPORT std::vector<PerturbationRun> readPerturbationRuns(
-  const std::string& path);
+std::vector<PerturbationRun> readPerturbationRuns(const std::string& path);
 
 /**
  * @brief Writes `runs` as {"runs": [...]} (for tests and for studies that keep
  * only the runs).
  * @throws vimlop::Error if the file cannot be written.
  */
-VIMLOPREGISTRATION_EXPORT void writePerturbationRuns(
-  const std::vector<PerturbationRun>& runs, const std::string& path);
+void writePerturbationRuns(const std::vector<PerturbationRun>& runs, const std::string& path);
 
 } // namespace vimlop
 

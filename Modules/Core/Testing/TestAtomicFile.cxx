@@ -1,0 +1,90 @@
+#include "AtomicFile.h"
+#include "Error.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace vimlop;
+
+namespace
+{
+
+namespace fs = std::filesystem;
+
+fs::path freshFolder(const std::string& name)
+{
+  const fs::path dir = fs::path(VIMLOP_TEST_OUTPUT_DIR) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string contentsOf(const fs::path& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string messageOf(const std::string& path, const std::string& contents)
+{
+  try
+  {
+    writeFileAtomically(path, contents);
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "no error";
+}
+
+} // namespace
+
+TEST(AtomicFile, WritesTheContentsAndLeavesNoTemporaryFile)
+{
+  const fs::path file = freshFolder("atomic-write") / "result.json";
+  const std::string contents = "{\n  \"a\": 1\n}\n";
+  writeFileAtomically(file.string(), contents);
+  EXPECT_EQ(contentsOf(file), contents);
+  EXPECT_FALSE(fs::exists(file.string() + ".part"));
+}
+
+TEST(AtomicFile, ReplacesAnExistingFileWhole)
+{
+  const fs::path file = freshFolder("atomic-replace") / "notes.txt";
+  std::ofstream(file) << "an older and much longer text than the new one\n";
+  writeFileAtomically(file.string(), "new\n");
+  EXPECT_EQ(contentsOf(file), "new\n");
+}
+
+TEST(AtomicFile, CreatesMissingParentFolders)
+{
+  const fs::path file = freshFolder("atomic-parents") / "a" / "b" / "c.txt";
+  writeFileAtomically(file.string(), "x");
+  EXPECT_EQ(contentsOf(file), "x");
+}
+
+TEST(AtomicFile, APathUnderARegularFileNamesThePath)
+{
+  const fs::path blocker = freshFolder("atomic-blocked") / "not-a-folder";
+  std::ofstream(blocker) << "a file where a folder would have to be\n";
+  const std::string path = (blocker / "out.json").string();
+  EXPECT_EQ(messageOf(path, "{}"), "'" + path + "': cannot write the file");
+  EXPECT_FALSE(fs::exists(path + ".part"));
+}
+
+TEST(AtomicFile, AFolderInTheWayGivesTheReasonAndKeepsTheFolder)
+{
+  const fs::path target = freshFolder("atomic-folder-in-the-way") / "out.json";
+  fs::create_directories(target / "inside");
+  const std::string message = messageOf(target.string(), "{}");
+  EXPECT_EQ(message.rfind("'" + target.string() + "': cannot write the file (", 0), 0u) << message;
+  EXPECT_EQ(message.back(), ')') << message;
+  EXPECT_TRUE(fs::is_directory(target / "inside"));
+  EXPECT_FALSE(fs::exists(target.string() + ".part"));
+}
