@@ -1,5 +1,6 @@
 #include "vtkVIMLOPRegistration.h"
 
+#include "CanonicalStarts.h"
 #include "EmbreeRegistrationModel.h"
 #include "Error.h"
 #include "MethodDescriptor.h"
@@ -20,6 +21,7 @@
 #include <vtkPolyData.h>
 #include <vtkTable.h>
 #include <vtkTransform.h>
+#include <vtkTransformCollection.h>
 
 #include <cmath>
 #include <exception>
@@ -38,6 +40,8 @@ const char* backendName(vtkVIMLOPRegistration::VisibilityBackend backend)
 
 vtkVIMLOPRegistration::vtkVIMLOPRegistration()
 {
+  // Options, MultiStart and Canonical keep Core's defaults: the main job's,
+  // which vimlop::VideoRegistrationOptions holds for `vimlop register` and Python.
   this->SetNumberOfInputPorts(4);
   this->SetNumberOfOutputPorts(3);
 }
@@ -160,7 +164,79 @@ vtkMTimeType vtkVIMLOPRegistration::GetMTime()
   {
     time = std::max(time, this->InitialTransform->GetMTime());
   }
+  if (this->Starts)
+  {
+    time = std::max(time, this->Starts->GetMTime());
+  }
   return time;
+}
+
+void vtkVIMLOPRegistration::SetStarts(vtkTransformCollection* starts)
+{
+  if (this->Starts != starts)
+  {
+    this->Starts = starts;
+    this->Modified();
+  }
+}
+
+vtkTransformCollection* vtkVIMLOPRegistration::GetStarts()
+{
+  return this->Starts;
+}
+
+void vtkVIMLOPRegistration::SetFailureThresholdPx(double threshold)
+{
+  this->SetOption(this->MultiStart.failureContourErrorPx, threshold);
+}
+
+namespace
+{
+
+/// A VTK transform as a similarity; `what` names it in the error.
+vimlop::SimilarityTransform similarityOf(vtkLinearTransform* transform, const std::string& what)
+{
+  Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m;
+  vtkMatrix4x4* matrix = transform->GetMatrix();
+  std::copy(&matrix->Element[0][0], &matrix->Element[0][0] + 16, m.data());
+  try
+  {
+    return vimlop::SimilarityTransform::fromMatrix(m, 1e-6);
+  }
+  catch (const vimlop::Error& e)
+  {
+    throw vimlop::Error(what + " is not a similarity: " + e.what());
+  }
+}
+
+} // namespace
+
+std::vector<vimlop::SimilarityTransform> vtkVIMLOPRegistration::StartsFor(
+  const vimlop::RegistrationModel& model) const
+{
+  std::vector<vimlop::SimilarityTransform> starts;
+  if (this->StartFromCanonicalPoses)
+  {
+    if (!(this->InitialScale > 0.0))
+    {
+      throw vimlop::Error("canonical starts need InitialScale (mm per SfM unit)");
+    }
+    return vimlop::canonicalStarts(
+      this->Data, this->InitialScale, vimlop::makeCanonicalPoses(model, this->Canonical));
+  }
+  if (this->Starts && this->Starts->GetNumberOfItems() > 0)
+  {
+    this->Starts->InitTraversal();
+    for (int i = 0; i < this->Starts->GetNumberOfItems(); ++i)
+    {
+      starts.push_back(similarityOf(this->Starts->GetNextItem(), "start " + std::to_string(i)));
+    }
+    return starts;
+  }
+  starts.push_back(this->InitialTransform
+      ? similarityOf(this->InitialTransform, "the initial transform")
+      : vimlop::SimilarityTransform());
+  return starts;
 }
 
 void vtkVIMLOPRegistration::SetMethod(vimlop::RegistrationMethod method)
@@ -368,37 +444,48 @@ int vtkVIMLOPRegistration::RequestData(
 
   try
   {
-    vimlop::SimilarityTransform initial;
-    if (this->InitialTransform)
-    {
-      Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m;
-      vtkMatrix4x4* matrix = this->InitialTransform->GetMatrix();
-      std::copy(&matrix->Element[0][0], &matrix->Element[0][0] + 16, m.data());
-      try
-      {
-        initial = vimlop::SimilarityTransform::fromMatrix(m, 1e-6);
-      }
-      catch (const vimlop::Error& e)
-      {
-        throw vimlop::Error(std::string("the initial transform is not a similarity: ") + e.what());
-      }
-    }
     this->Data = vimlop::toRegistrationData(points, frames, contours, this->DefaultPointSigmaMm);
     const vimlop::RegistrationModel& model = this->ModelFor(surface);
-
-    const double maxIterations = std::max(this->Options.maxIterations, 1);
-    auto callback = [this, maxIterations](const vimlop::IterationRecord& record)
+    const std::vector<vimlop::SimilarityTransform> starts = this->StartsFor(model);
+    if (starts.size() == 1 && !this->StartFromCanonicalPoses)
     {
-      this->UpdateProgress(std::min(1.0, record.iteration / maxIterations));
-      this->InvokeEvent(IterationEvent, const_cast<vimlop::IterationRecord*>(&record));
-      return !this->GetAbortExecute();
-    };
-    this->Result = vimlop::registerVideo(model, this->Data, initial, this->Options, callback);
+      const double maxIterations = std::max(this->Options.maxIterations, 1);
+      auto callback = [this, maxIterations](const vimlop::IterationRecord& record)
+      {
+        this->UpdateProgress(std::min(1.0, record.iteration / maxIterations));
+        this->InvokeEvent(IterationEvent, const_cast<vimlop::IterationRecord*>(&record));
+        return !this->GetAbortExecute();
+      };
+      this->Result =
+        vimlop::registerVideo(model, this->Data, starts.front(), this->Options, callback);
+      this->Outcome = vimlop::MultiStartResult();
+      this->Outcome.candidates.resize(1);
+      this->Outcome.candidates[0].initialSfmToCT = starts.front();
+      this->Outcome.bestCandidate = 0;
+      this->Outcome.failureThresholdPx = this->MultiStart.failureContourErrorPx;
+      this->Outcome.failure = vimlop::isFlaggedAsFailure(this->Result, this->MultiStart);
+      this->Outcome.best = this->Result;
+    }
+    else
+    {
+      vimlop::MultiStartOptions multi = this->MultiStart;
+      multi.registration = this->Options;
+      multi.threads = this->Options.threads;
+      // Candidates run in parallel: one progress event per finished candidate.
+      this->Outcome = vimlop::registerMultiStart(model, this->Data, starts, multi,
+        [this](const char*, int done, int total)
+        {
+          this->UpdateProgress(static_cast<double>(done) / std::max(total, 1));
+          return !this->GetAbortExecute();
+        });
+      this->Result = this->Outcome.best;
+    }
   }
   catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     this->Result = vimlop::RegistrationResult();
+    this->Outcome = vimlop::MultiStartResult();
     return 0;
   }
 
@@ -447,8 +534,14 @@ void vtkVIMLOPRegistration::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PoseUpdateRelativeTolerance: " << o.poseUpdate.relativeTolerance << "\n";
   os << indent << "NumberOfThreads: " << o.threads << "\n";
   os << indent << "InitialTransform: " << this->InitialTransform.Get() << "\n";
+  os << indent << "Starts: " << (this->Starts ? this->Starts->GetNumberOfItems() : 0) << "\n";
+  os << indent << "StartFromCanonicalPoses: " << (this->StartFromCanonicalPoses ? "On" : "Off")
+     << "\n";
+  os << indent << "InitialScale: " << this->InitialScale << "\n";
+  os << indent << "FailureThresholdPx: " << this->MultiStart.failureContourErrorPx << "\n";
   os << indent << "Transform: " << this->Transform.Get() << "\n";
   os << indent << "Result: " << vimlop::toString(this->Result.termination) << " after "
      << this->Result.iterations << " iterations, residual " << this->Result.residualErrorMm
-     << " mm, contour error " << this->Result.contourErrorPx << " px\n";
+     << " mm, contour error " << this->Result.contourErrorPx << " px"
+     << (this->Outcome.failure ? ", FLAGGED AS A FAILURE" : "") << "\n";
 }

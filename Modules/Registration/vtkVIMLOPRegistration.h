@@ -1,6 +1,8 @@
 #ifndef vtkVIMLOPRegistration_h
 #define vtkVIMLOPRegistration_h
 
+#include "CanonicalPoses.h"
+#include "MultiStartRegistration.h"
 #include "RegistrationData.h"
 #include "RegistrationOptions.h"
 #include "RegistrationResult.h"
@@ -19,6 +21,7 @@ class vtkLinearTransform;
 class vtkPolyData;
 class vtkTable;
 class vtkTransform;
+class vtkTransformCollection;
 class vtkVIMLOPDepthVisibility;
 
 namespace vimlop
@@ -68,6 +71,16 @@ class RegistrationModel;
  * filter's: changing it re-executes the filter. Do not pass GetTransform()
  * itself (that would make the filter always out of date); copy its matrix
  * into a vtkTransform of your own to restart from a result.
+ *
+ * Several starts make a multi-start (V13): SetStarts() with a collection of
+ * similarities, or SetStartFromCanonicalPoses() with the frames' middle
+ * camera placed at canonical poses along the model's airway (at
+ * InitialScale). Each start runs (times each scale factor, candidates in
+ * parallel), the least contour error wins, and GetFlaggedAsFailure() says
+ * whether the winner's contour error exceeds FailureThresholdPx (a single
+ * start is flagged the same way). The defaults of every option are Core's,
+ * the main job's (vimlop::VideoRegistrationOptions holds the same ones for
+ * `vimlop register` and Python's `vimlop.register_video`).
  *
  * Events: after every iteration that updates the estimate (vimlop's
  * iteration callback; the iterations that stop on a stall return to an
@@ -146,6 +159,37 @@ public:
   /// scale, rotation, translation in mm). Default none: identity.
   void SetInitialTransform(vtkLinearTransform* transform);
   vtkLinearTransform* GetInitialTransform();
+  ///@}
+
+  ///@{
+  /// Several starts, each a similarity from the SfM frame to the CT frame: a
+  /// multi-start (see the class description) that replaces the initial
+  /// transform when the collection is not empty. Default none. Modifying the
+  /// collection's transforms does not re-execute the filter: call Modified().
+  void SetStarts(vtkTransformCollection* starts);
+  vtkTransformCollection* GetStarts();
+  ///@}
+
+  ///@{
+  /// Start from canonical poses (V13 b): the middle frame placed at every
+  /// pose vimlop::makeCanonicalPoses finds along the model's airway (default
+  /// off). Needs the frame table and InitialScale.
+  vtkSetMacro(StartFromCanonicalPoses, bool);
+  vtkGetMacro(StartFromCanonicalPoses, bool);
+  vtkBooleanMacro(StartFromCanonicalPoses, bool);
+  ///@}
+
+  ///@{
+  /// Scale of the canonical starts, mm per SfM unit (e.g. from a tracker,
+  /// V14; default 0: unset).
+  vtkSetClampMacro(InitialScale, double, 0.0, 1e12);
+  vtkGetMacro(InitialScale, double);
+  ///@}
+
+  ///@{
+  /// V13: mean contour error above which a result is flagged as a failure, px (default 6).
+  void SetFailureThresholdPx(double threshold);
+  double GetFailureThresholdPx() const { return this->MultiStart.failureContourErrorPx; }
   ///@}
 
   ///@{
@@ -313,6 +357,14 @@ public:
   int GetNumberOfIterations() const { return this->Result.iterations; }
   double GetResidualErrorMm() const { return this->Result.residualErrorMm; }
   double GetContourErrorPx() const { return this->Result.contourErrorPx; }
+  /// V13: true when the result's contour error exceeds FailureThresholdPx (or
+  /// too few video contour points matched): do not navigate with it.
+  bool GetFlaggedAsFailure() const { return this->Outcome.failure; }
+  /// Candidates of the last execution (1 for a single start) and the winner's index.
+  int GetNumberOfCandidates() const { return static_cast<int>(this->Outcome.candidates.size()); }
+  int GetWinningCandidate() const { return this->Outcome.bestCandidate; }
+  /// The multi-start's outcome (every candidate's start, errors and iterations).
+  const vimlop::MultiStartResult& GetMultiStartResult() const { return this->Outcome; }
   ///@}
 
   vtkMTimeType GetMTime() override;
@@ -339,7 +391,15 @@ private:
   template <typename T>
   void SetOption(T& field, T value);
 
+  /// The starts of the execution: the given ones, canonical ones, or the initial transform.
+  std::vector<vimlop::SimilarityTransform> StartsFor(const vimlop::RegistrationModel& model) const;
+
   vimlop::RegistrationOptions Options;
+  vimlop::MultiStartOptions MultiStart;
+  vimlop::CanonicalPoseOptions Canonical;
+  vtkSmartPointer<vtkTransformCollection> Starts;
+  bool StartFromCanonicalPoses = false;
+  double InitialScale = 0.0;
   VisibilityBackend Backend = VisibilityBackend::Embree;
   double DefaultPointSigmaMm = 0.5;
   vtkSmartPointer<vtkLinearTransform> InitialTransform;
@@ -353,6 +413,7 @@ private:
 
   vimlop::RegistrationData Data;
   vimlop::RegistrationResult Result;
+  vimlop::MultiStartResult Outcome;
 };
 
 #endif

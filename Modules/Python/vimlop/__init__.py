@@ -22,7 +22,7 @@ from vtkmodules import vtkCommonExecutionModel, vtkCommonTransforms  # noqa: F40
 
 from .VIMLOPImaging import vtkVIMLOPCTReader  # noqa: F401
 from .VIMLOPRegistration import vtkVIMLOPRegistration  # noqa: F401
-from .VIMLOPRegistration import vtkVIMLOPVideoRegistration  # noqa: F401
+from .VIMLOPPipeline import vtkVIMLOPVideoRegistration  # noqa: F401
 
 __all__ = ["vtkVIMLOPCTReader", "vtkVIMLOPRegistration", "vtkVIMLOPVideoRegistration",
            "register_video"]

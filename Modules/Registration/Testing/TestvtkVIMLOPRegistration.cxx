@@ -456,9 +456,12 @@ TEST(vtkVIMLOPRegistration, OptionsDefaultToCoreAndArePrinted)
   EXPECT_DOUBLE_EQ(registration->GetContourKappa(), 200.0);
   double covariance[3];
   registration->GetContourPositionCovariancePx2(covariance);
-  EXPECT_DOUBLE_EQ(covariance[0], 9.0);
+  // Σ2d of contours detected in video (the main job's default, 1 px²).
+  EXPECT_DOUBLE_EQ(covariance[0], 1.0);
   EXPECT_DOUBLE_EQ(covariance[1], 0.0);
-  EXPECT_DOUBLE_EQ(covariance[2], 9.0);
+  EXPECT_DOUBLE_EQ(covariance[2], 1.0);
+  EXPECT_FALSE(registration->GetStartFromCanonicalPoses());
+  EXPECT_DOUBLE_EQ(registration->GetFailureThresholdPx(), MultiStartOptions().failureContourErrorPx);
   EXPECT_EQ(registration->GetVisibilityBackend(), vtkVIMLOPRegistration::VisibilityBackend::Embree);
 
   const vtkMTimeType before = registration->GetMTime();

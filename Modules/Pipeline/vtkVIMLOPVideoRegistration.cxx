@@ -1,0 +1,239 @@
+#include "vtkVIMLOPVideoRegistration.h"
+
+#include "Error.h"
+#include "FramePoseIO.h"
+#include "IntrinsicsIO.h"
+#include "RegistrationOutputConversion.h"
+#include "RegistrationOutputs.h"
+#include "VideoRegistrationPipeline.h"
+
+#include <vtkDemandDrivenPipeline.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+#include <vtkTable.h>
+#include <vtkTransform.h>
+
+#include <exception>
+#include <optional>
+
+vtkStandardNewMacro(vtkVIMLOPVideoRegistration);
+
+vtkVIMLOPVideoRegistration::vtkVIMLOPVideoRegistration()
+  : Options(std::make_unique<vimlop::VideoRegistrationOptions>())
+{
+  this->SetNumberOfInputPorts(0);
+  this->SetNumberOfOutputPorts(2);
+}
+
+vtkVIMLOPVideoRegistration::~vtkVIMLOPVideoRegistration() = default;
+
+int vtkVIMLOPVideoRegistration::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkTable" : "vtkPolyData");
+  return 1;
+}
+
+vtkTypeBool vtkVIMLOPVideoRegistration::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    return this->RequestData(request, inputs, outputs);
+  }
+  return this->Superclass::ProcessRequest(request, inputs, outputs);
+}
+
+void vtkVIMLOPVideoRegistration::SetNumberOfThreads(int threads)
+{
+  if (threads >= 0 && threads != this->Options->threads)
+  {
+    this->Options->threads = threads;
+    this->Modified();
+  }
+}
+
+int vtkVIMLOPVideoRegistration::GetNumberOfThreads() const
+{
+  return this->Options->threads;
+}
+
+void vtkVIMLOPVideoRegistration::SetFailureThresholdPx(double threshold)
+{
+  if (threshold > 0.0 && threshold != this->Options->multiStart.failureContourErrorPx)
+  {
+    this->Options->multiStart.failureContourErrorPx = threshold;
+    this->Modified();
+  }
+}
+
+double vtkVIMLOPVideoRegistration::GetFailureThresholdPx() const
+{
+  return this->Options->multiStart.failureContourErrorPx;
+}
+
+vimlop::VideoRegistrationOptions& vtkVIMLOPVideoRegistration::GetOptions()
+{
+  this->Modified();
+  return *this->Options;
+}
+
+std::string vtkVIMLOPVideoRegistration::GetOptionsAsJSON() const
+{
+  return vimlop::registrationOptionsJson(*this->Options).dump(2);
+}
+
+vtkTable* vtkVIMLOPVideoRegistration::GetCameraPoses()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(0));
+}
+
+vtkPolyData* vtkVIMLOPVideoRegistration::GetRegisteredPoints()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+vtkLinearTransform* vtkVIMLOPVideoRegistration::GetTransform()
+{
+  return this->Transform;
+}
+
+bool vtkVIMLOPVideoRegistration::GetFlaggedAsFailure() const
+{
+  return this->Pipeline && this->Pipeline->flaggedAsFailure();
+}
+
+double vtkVIMLOPVideoRegistration::GetContourErrorPx() const
+{
+  return this->Pipeline ? this->Pipeline->result().contourErrorPx : 0.0;
+}
+
+double vtkVIMLOPVideoRegistration::GetResidualErrorMm() const
+{
+  return this->Pipeline ? this->Pipeline->result().residualErrorMm : 0.0;
+}
+
+int vtkVIMLOPVideoRegistration::GetNumberOfCandidates() const
+{
+  return this->Pipeline ? static_cast<int>(this->Pipeline->outcome().candidates.size()) : 0;
+}
+
+int vtkVIMLOPVideoRegistration::GetNumberOfRegisteredFrames() const
+{
+  return this->Pipeline ? static_cast<int>(this->Pipeline->result().frames.size()) : 0;
+}
+
+int vtkVIMLOPVideoRegistration::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputs)
+{
+  this->Pipeline.reset();
+  auto pipeline = std::make_unique<vimlop::VideoRegistrationPipeline>(*this->Options);
+  pipeline->setWarningHandler([this](const std::string& text) { vtkWarningMacro(<< text); });
+  // The stages in their order, with a share of the progress each.
+  const char* stages[] = { "frames", "model", "contours", "sfm", "registration" };
+  pipeline->setProgress(
+    [this, &stages](const std::string& stage, double fraction)
+    {
+      for (int i = 0; i < 5; ++i)
+      {
+        if (stage.rfind(stages[i], 0) == 0)
+        {
+          this->UpdateProgress((i + fraction) / 5.0);
+        }
+      }
+      return !this->GetAbortExecute();
+    });
+  try
+  {
+    if (this->FramesPath.empty() || this->IntrinsicsFileName.empty())
+    {
+      throw vimlop::Error("set FramesPath and IntrinsicsFileName");
+    }
+    std::optional<vimlop::TrackerTrajectory> tracker;
+    if (!this->TrackerFileName.empty())
+    {
+      std::vector<std::string> warnings;
+      tracker = vimlop::TrackerTrajectory::readCsv(this->TrackerFileName, &warnings);
+      for (const std::string& w : warnings)
+      {
+        vtkWarningMacro(<< w);
+      }
+    }
+    const std::vector<vimlop::FramePose> startPoses = this->StartPosesFileName.empty()
+      ? std::vector<vimlop::FramePose>()
+      : vimlop::readFramePoses(this->StartPosesFileName);
+    if (this->StartFromManualPose && startPoses.empty())
+    {
+      throw vimlop::Error("StartFromManualPose needs a StartPosesFileName holding a pose");
+    }
+    pipeline->loadFrames(this->FramesPath, vimlop::readIntrinsics(this->IntrinsicsFileName),
+      this->MaxFrames, this->IntrinsicsFileName);
+    pipeline->loadModel(this->MeshFileName, this->MeshFileName.empty() ? this->CTFileName : "");
+    pipeline->detectContours();
+    pipeline->reconstruct(this->ColmapFolder);
+    pipeline->estimateInitialScale(
+      tracker ? &*tracker : nullptr, this->FramesPerSecond, this->TimeOffset, this->InitialScale);
+    pipeline->makeData();
+    if (this->StartFromManualPose)
+    {
+      pipeline->makeManualStart(startPoses.front());
+    }
+    else if (startPoses.empty())
+    {
+      pipeline->makeCanonicalStarts();
+    }
+    else
+    {
+      std::vector<vimlop::CameraPose> poses;
+      for (const vimlop::FramePose& p : startPoses)
+      {
+        poses.push_back(p.cameraToWorld);
+      }
+      pipeline->makeCanonicalStarts(&poses, this->StartPosesFileName);
+    }
+    pipeline->run();
+  }
+  catch (const vimlop::PipelineCancelled&)
+  {
+    vtkErrorMacro(<< "cancelled (AbortExecute)");
+    return 0;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  const vimlop::RegistrationResult& result = pipeline->result();
+  this->Transform->SetMatrix(
+    Eigen::Matrix<double, 4, 4, Eigen::RowMajor>(result.sfmToCT.matrix()).data());
+  vtkTable::GetData(outputs, 0)->ShallowCopy(vimlop::makeFrameResultTable(result));
+  vtkPolyData::GetData(outputs, 1)
+    ->ShallowCopy(vimlop::makeRegisteredPointPolyData(pipeline->data(), result));
+  this->Pipeline = std::move(pipeline);
+  return 1;
+}
+
+void vtkVIMLOPVideoRegistration::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "MeshFileName: " << this->MeshFileName << "\n";
+  os << indent << "CTFileName: " << this->CTFileName << "\n";
+  os << indent << "FramesPath: " << this->FramesPath << "\n";
+  os << indent << "IntrinsicsFileName: " << this->IntrinsicsFileName << "\n";
+  os << indent << "TrackerFileName: " << this->TrackerFileName << "\n";
+  os << indent << "InitialScale: " << this->InitialScale << "\n";
+  os << indent << "FramesPerSecond: " << this->FramesPerSecond << "\n";
+  os << indent << "TimeOffset: " << this->TimeOffset << "\n";
+  os << indent << "ColmapFolder: " << this->ColmapFolder << "\n";
+  os << indent << "StartPosesFileName: " << this->StartPosesFileName << "\n";
+  os << indent << "StartFromManualPose: " << (this->StartFromManualPose ? "On" : "Off") << "\n";
+  os << indent << "MaxFrames: " << this->MaxFrames << "\n";
+  os << indent << "Options: " << vimlop::registrationOptionsJson(*this->Options).dump() << "\n";
+  if (this->Pipeline)
+  {
+    os << indent << "Result: " << this->GetNumberOfRegisteredFrames() << " frames, contour error "
+       << this->GetContourErrorPx() << " px"
+       << (this->GetFlaggedAsFailure() ? ", FLAGGED AS A FAILURE" : "") << "\n";
+  }
+}
