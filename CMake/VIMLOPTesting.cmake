@@ -1,6 +1,6 @@
 # Test helpers.
 #
-#   vimlop_add_gtest(<name> SOURCES <file>... LIBRARIES <lib>... [RENDERING])
+#   vimlop_add_gtest(<name> SOURCES <file>... LIBRARIES <lib>... [RENDERING] [FIXTURES <f>...])
 #
 # builds one GoogleTest executable into bin/ and registers each of its tests
 # with CTest. RENDERING tests need an X display (VTK 9.1 here is built for X11):
@@ -14,7 +14,7 @@ file(MAKE_DIRECTORY "${VIMLOP_TEST_OUTPUT_DIR}")
 set(VIMLOP_DISPLAY_LAUNCHER "${PROJECT_SOURCE_DIR}/CMake/run-with-display.sh")
 
 function(vimlop_add_gtest name)
-  cmake_parse_arguments(arg "RENDERING" "" "SOURCES;LIBRARIES" ${ARGN})
+  cmake_parse_arguments(arg "RENDERING" "" "SOURCES;LIBRARIES;FIXTURES" ${ARGN})
   add_executable(${name} ${arg_SOURCES})
   target_link_libraries(${name} PRIVATE ${arg_LIBRARIES} GTest::gtest GTest::gtest_main
                                         VIMLOP::BuildSettings)
@@ -28,12 +28,19 @@ function(vimlop_add_gtest name)
     set_target_properties(${name} PROPERTIES CROSSCOMPILING_EMULATOR "${VIMLOP_DISPLAY_LAUNCHER}")
   endif()
   # PROPERTIES is a flat key-value list: a list value needs its ';' escaped.
+  # (CMake 3.25's discovery script flattens it once more, so a list value
+  # must come last: only its first item is kept.)
   string(REPLACE ";" "\\;" labels "${labels}")
+  set(properties)
+  if(arg_FIXTURES)
+    # Tests that read what a CLI test (a fixture) wrote first require it.
+    list(APPEND properties FIXTURES_REQUIRED "${arg_FIXTURES}")
+  endif()
   # Discovery at test time keeps configuring fast and lists every TEST in ctest.
   gtest_discover_tests(${name}
     DISCOVERY_MODE PRE_TEST
     DISCOVERY_TIMEOUT 60
-    PROPERTIES LABELS "${labels}")
+    PROPERTIES ${properties} LABELS "${labels}")
 endfunction()
 
 #   vimlop_add_cli_test(<name> COMMAND <args>... [PASS_REGEX <re>] [EXPECT_ERROR <re>]

@@ -15,6 +15,7 @@ libembree-dev
 libvtk9-dev
 libx11-dev
 python3-vtk9
+python3-numpy
 python3-dev
 libinsighttoolkit5-dev
 libgdcm-dev

@@ -19,6 +19,7 @@
 #include <vtkPolyData.h>
 #include <vtkTable.h>
 #include <vtkTransform.h>
+#include <vtkTransformCollection.h>
 #include <vtkTransformPolyDataFilter.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
@@ -478,4 +479,67 @@ TEST(vtkVIMLOPRegistration, OptionsDefaultToCoreAndArePrinted)
   EXPECT_NE(printed.str().find("TrimFraction: 0.2"), std::string::npos);
   EXPECT_NE(printed.str().find("Method: vimlop"), std::string::npos);
   EXPECT_NE(printed.str().find("MaxContourNormalAngleDeg: 30"), std::string::npos);
+}
+
+TEST(vtkVIMLOPRegistration, AMultiStartKeepsTheLeastContourErrorAndFlagsAboveTheThreshold)
+{
+  const TriangleMesh mesh = fixtures::makeCavityWithBlobs();
+  const SyntheticTrial trial = fixtureTrial(mesh);
+  vtkNew<vtkVIMLOPRegistration> registration;
+  connect(registration, mesh, trial.data);
+  registration->SetMinScale(0.8);
+  registration->SetMaxScale(1.25);
+  // The trial's start, and the same start turned by 40 degrees about the
+  // data: the multi-start must keep the good one.
+  vtkNew<vtkTransform> good;
+  good->SetMatrix(
+    Eigen::Matrix<double, 4, 4, Eigen::RowMajor>(trial.initialSfmToCT.matrix()).data());
+  vtkNew<vtkTransform> turned;
+  turned->PostMultiply();
+  turned->SetMatrix(good->GetMatrix());
+  const Eigen::Vector3d centre = trial.initialSfmToCT.apply(trial.data.points.front());
+  turned->Translate(-centre.x(), -centre.y(), -centre.z());
+  turned->RotateZ(40.0);
+  turned->Translate(centre.x(), centre.y(), centre.z());
+  vtkNew<vtkTransformCollection> starts;
+  starts->AddItem(turned);
+  starts->AddItem(good);
+  registration->SetStarts(starts);
+  EventLog log;
+  observe(registration, log);
+  registration->Update();
+  ASSERT_TRUE(log.error.empty()) << log.error;
+  // Two starts, each at the three scale factors (some may be skipped: a
+  // camera outside the airway).
+  EXPECT_EQ(registration->GetNumberOfCandidates(), 6);
+  EXPECT_LT(
+    targetRegistrationError(registration->GetResult().sfmToCT, trial.truthSfmToCT, trial.targetsCT),
+    0.5);
+  EXPECT_FALSE(registration->GetFlaggedAsFailure());
+  EXPECT_GT(log.progress, 2);
+  const double contourErrorPx = registration->GetContourErrorPx();
+
+  // A threshold below the winner's contour error flags it (and re-executes).
+  registration->SetFailureThresholdPx(0.5 * contourErrorPx);
+  registration->Update();
+  EXPECT_TRUE(registration->GetFlaggedAsFailure());
+  std::ostringstream printed;
+  registration->Print(printed);
+  EXPECT_NE(printed.str().find("FLAGGED AS A FAILURE"), std::string::npos);
+}
+
+TEST(vtkVIMLOPRegistration, CanonicalStartsWithoutAnInitialScaleAreAnError)
+{
+  const TriangleMesh mesh = fixtures::makeCavityWithBlobs();
+  const SyntheticTrial trial = fixtureTrial(mesh);
+  vtkNew<vtkVIMLOPRegistration> registration;
+  connect(registration, mesh, trial.data);
+  registration->StartFromCanonicalPosesOn();
+  EventLog log;
+  observe(registration, log);
+  registration->Update();
+  EXPECT_NE(log.error.find("canonical starts need InitialScale (mm per SfM unit)"),
+    std::string::npos)
+    << log.error;
+  EXPECT_FALSE(registration->GetFlaggedAsFailure());
 }
