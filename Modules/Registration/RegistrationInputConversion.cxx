@@ -1,6 +1,7 @@
 #include "RegistrationInputConversion.h"
 
 #include "Error.h"
+#include "OrientNormalsIntoAir.h"
 #include "NoiseModel.h"
 
 #include <vtkCellArray.h>
@@ -141,12 +142,9 @@ TriangleMesh toModelMesh(vtkPolyData* surface, std::string* note)
     consistent->ComputeCellNormalsOn();
     consistent->Update();
     vtkPolyData* oriented = consistent->GetOutput();
-    TriangleMesh mesh(pointsOf(oriented), facesOf(oriented, pointsOf(oriented), nullptr));
+    const TriangleMesh mesh = orientNormalsIntoAir(
+      TriangleMesh(pointsOf(oriented), facesOf(oriented, pointsOf(oriented), nullptr)));
     const bool closed = mesh.numberOfBoundaryEdges() == 0;
-    if (closed && mesh.signedVolume() > 0.0)
-    {
-      mesh = mesh.flipped();
-    }
     if (note)
     {
       *note = closed

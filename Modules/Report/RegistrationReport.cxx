@@ -13,6 +13,7 @@
 #include "RegistrationScene.h"
 #include "ReportCharts.h"
 #include "Statistics.h"
+#include "VisibleModelContours.h"
 #include "vtkVIMLOPSilhouetteRenderer.h"
 
 #include <vtkImageData.h>
@@ -56,24 +57,12 @@ ContourMeasure measureContours(const RegistrationModel& model, const VideoFrame&
 {
   OccludingContourOptions contourOptions;
   contourOptions.sampleSpacingPx = options.contourSampleSpacingPx;
-  const std::vector<ModelContourPoint> samples =
-    extractOccludingContours(model.mesh(), frame.intrinsics, camera, contourOptions);
-  std::vector<Eigen::Vector3d> points;
-  for (const ModelContourPoint& s : samples)
-  {
-    points.push_back(s.point);
-  }
-  std::vector<char> visible;
-  model.visibility().classify(frame.intrinsics, camera, points, visible);
-  std::vector<ModelContourPoint> seen;
+  const std::vector<ModelContourPoint> seen =
+    visibleModelContours(model, frame.intrinsics, camera, contourOptions);
   std::vector<Eigen::Vector2d> pixels;
-  for (size_t i = 0; i < samples.size(); ++i)
+  for (const ModelContourPoint& s : seen)
   {
-    if (visible[i])
-    {
-      seen.push_back(samples[i]);
-      pixels.push_back(samples[i].pixel);
-    }
+    pixels.push_back(s.pixel);
   }
   const KdTree2D tree(std::move(pixels));
   ContourMeasure measure;
