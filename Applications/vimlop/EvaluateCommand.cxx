@@ -6,7 +6,8 @@
 #include "OffscreenRendering.h"
 #include "PerturbationStudy.h"
 #include "RegistrationReport.h"
-#include "SyntheticEvaluation.h"
+#include "SyntheticProtocol.h"
+#include "TerminalEvaluationProgress.h"
 #include "VideoEvaluation.h"
 
 #include <CLI/CLI.hpp>
@@ -39,7 +40,7 @@ struct SyntheticCommandOptions
 
 void runSynthetic(const SyntheticCommandOptions& o)
 {
-  SyntheticEvaluationOptions options;
+  SyntheticProtocolOptions options;
   options.trials = o.trials;
   options.seed = o.seed;
   options.threads = o.threads;
@@ -49,24 +50,22 @@ void runSynthetic(const SyntheticCommandOptions& o)
     requireOffscreenRendering("--save-trial");
   }
   options.methods = parseList(o.methods, "--methods");
-  checkSyntheticMethods(options.methods);
+  checkSyntheticProtocolMethods(options.methods);
   std::tie(options.synthetic.misalignMinMm, options.synthetic.misalignMaxMm) =
     parseRange(o.misalignMm, "--misalign-mm");
   std::tie(options.synthetic.misalignMinDeg, options.synthetic.misalignMaxDeg) =
     parseRange(o.misalignDeg, "--misalign-deg");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
-  const nlohmann::json report = runSyntheticEvaluation(mesh, options, &std::cerr);
-  writeJsonFile(report, o.out);
-  for (const std::string& method : options.methods)
+  const SyntheticProtocolReport report =
+    runSyntheticProtocol(mesh, options, terminalEvaluationProgress());
+  writeJsonFile(report.toJson(), o.out);
+  for (const SyntheticProtocolMethodReport& m : report.methods)
   {
-    const nlohmann::json& m = report["methods"][method];
     std::printf("P1 %-12s TRE median %.3f mm (mean %.3f, p95 %.3f), success %.0f %%, camera %.3f "
                 "mm / %.3f deg, "
                 "runtime median %.3f s\n",
-      method.c_str(), m["tre_mm"]["median"].get<double>(), m["tre_mm"]["mean"].get<double>(),
-      m["tre_mm"]["p95"].get<double>(), 100.0 * m["success_rate"].get<double>(),
-      m["camera_position_mm"]["median"].get<double>(),
-      m["camera_angle_deg"]["median"].get<double>(), m["runtime_s"]["median"].get<double>());
+      m.method.c_str(), m.treMedianMm, m.treMeanMm, m.treP95Mm, 100.0 * m.successRate,
+      m.cameraPositionMedianMm, m.cameraAngleMedianDeg, m.runtimeMedianS);
   }
 }
 
@@ -235,7 +234,7 @@ CLI::App* addEvaluateCommand(CLI::App& app)
       "--misalign-deg", synthetic->misalignDeg, "range of the initial rotation error, degrees")
     ->capture_default_str();
   p1->add_option("--methods", synthetic->methods,
-      std::string("comma-separated methods: ") + syntheticMethodNames())
+      std::string("comma-separated methods: ") + syntheticProtocolMethodNames())
     ->capture_default_str();
   p1->add_option("--threads", synthetic->threads, "threads per registration, 0 for all cores")
     ->capture_default_str();

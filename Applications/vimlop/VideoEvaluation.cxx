@@ -14,6 +14,7 @@
 #include "Rotation.h"
 #include "Statistics.h"
 #include "StructureFromMotion.h"
+#include "TerminalProgress.h"
 #include "TrackerScale.h"
 
 #include <Eigen/Dense>
@@ -100,7 +101,12 @@ VideoCase prepareVideoCase(
   };
   const TriangleMesh& mesh = model.mesh();
   VideoCase c;
-  c.video = simulateVideo(model, o.simulation, progress);
+  c.video = simulateEndoscopeVideo(model, o.simulation,
+    [progress](const std::string& what, int done, int total)
+    {
+      printCount(progress, what, done, total);
+      return true;
+    });
   const SimulatedVideo& video = c.video;
   const PinholeCamera& k = video.intrinsics;
 

@@ -2,12 +2,12 @@
 #define vimlop_VideoEvaluation_h
 
 #include "CanonicalPoses.h"
+#include "EndoscopeSimulation.h"
 #include "MultiStartRegistration.h"
 #include "OccludingContourDetector.h"
 #include "RegistrationData.h"
 #include "SfmReconstruction.h"
 #include "TriangleMesh.h"
-#include "VideoSimulation.h"
 
 #include <nlohmann/json.hpp>
 
@@ -22,8 +22,8 @@ namespace vimlop
 /// @brief Settings of P2, the paper's simulated-video experiment.
 struct VideoEvaluationOptions
 {
-  /// The sequence: frames (default 30), seed, camera, path (see VideoSimulationOptions).
-  VideoSimulationOptions simulation;
+  /// The sequence: frames (default 30), seed, camera, path (see EndoscopeSimulationOptions).
+  EndoscopeSimulationOptions simulation;
   /// "builtin" (StructureFromMotion) or "colmap" (the `colmap` program, imported).
   std::string sfm = "builtin";
   /// The COLMAP executable and a folder for its work (default: a folder
