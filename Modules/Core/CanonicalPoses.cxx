@@ -3,6 +3,7 @@
 #include "Error.h"
 
 #include "MeshTree.h"
+#include "RayClearance.h"
 #include "Rotation.h"
 #include "SurfaceLocator.h"
 #include <Eigen/Geometry>
@@ -38,7 +39,8 @@ std::vector<Eigen::Vector3d> sphereDirections(int n)
 double clearanceAlong(
   const RegistrationModel& model, const Eigen::Vector3d& p, const Eigen::Vector3d& d, double length)
 {
-  if (model.tree().isSegmentOccluded(p, p + length * d, 1e-6))
+  // One step of the whole length: a view only needs to know whether it is free.
+  if (freeLengthAlongRay(model.tree(), p, d, length, length) < length)
   {
     return -1.0;
   }

@@ -15,8 +15,9 @@ namespace vimlop
 /// @brief Noise model and bound of the oriented 2-D match (V5).
 struct ContourMatchOptions
 {
-  /// Σ2d: covariance of contour positions, px² (default 9 I, the paper's P1 value).
-  Eigen::Matrix2d positionCovariancePx2 = 9.0 * Eigen::Matrix2d::Identity();
+  /// Σ2d: covariance of contour positions, px² (default I, the paper's value
+  /// for contours detected in video; its synthetic experiment, P1, uses 9 I).
+  Eigen::Matrix2d positionCovariancePx2 = Eigen::Matrix2d::Identity();
   /// κ: von Mises concentration of contour normals (default 200, the paper's).
   double kappa = 200.0;
   /// Largest angle between matched normals, radians (default 45°; the paper

@@ -1,6 +1,8 @@
 #include "MultiStartRegistration.h"
 
+#include "AnatomicalConstraint.h"
 #include "Error.h"
+#include "MethodDescriptor.h"
 #include "TaskPool.h"
 
 #include <algorithm>
@@ -99,17 +101,10 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
       {
         c.skipped = "not a valid similarity";
       }
-      else if (base.anatomicalConstraint && base.method != RegistrationMethod::TrimmedICP)
+      else if (int outside = -1; usesAnatomicalConstraint(base) &&
+               !camerasInside(model, data.frames, c.initialSfmToCT, &outside))
       {
-        for (const VideoFrame& frame : data.frames)
-        {
-          if (!model.isInside(c.initialSfmToCT.apply(frame.cameraToSfm.centre)))
-          {
-            c.skipped =
-              "the camera of frame " + std::to_string(frame.frameId) + " starts outside the airway";
-            break;
-          }
-        }
+        c.skipped = "the camera of frame " + std::to_string(outside) + " starts outside the airway";
       }
       out.candidates.push_back(c);
     }
@@ -149,7 +144,7 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
     screeningData.pointCovariances.push_back(data.pointCovariances[i]);
   }
   if (screeningData.points.size() < 10 ||
-    (base.method == RegistrationMethod::VIMLOP && screeningData.numberOfContourPoints() == 0))
+    (describeMethod(base.method).usesContours && screeningData.numberOfContourPoints() == 0))
   {
     screeningData = data;
   }

@@ -1,9 +1,11 @@
 #include "SyntheticExperiment.h"
 
+#include "AnatomicalConstraint.h"
 #include "Error.h"
 #include "NoiseModel.h"
-#include "OccludingContours.h"
+#include "RayClearance.h"
 #include "Rotation.h"
+#include "VisibleModelContours.h"
 
 #include <Eigen/Dense>
 
@@ -75,20 +77,6 @@ std::vector<char> seenBy(const RegistrationModel& model, const PinholeCamera& k,
   return visible;
 }
 
-/// Free length of the ray from `p` along `d` (up to `limit` mm, 1 mm steps).
-double freeLength(
-  const MeshTree& tree, const Eigen::Vector3d& p, const Eigen::Vector3d& d, double limit)
-{
-  for (double length = 1.0; length <= limit; length += 1.0)
-  {
-    if (tree.isSegmentOccluded(p, p + length * d, 1e-6))
-    {
-      return length - 1.0;
-    }
-  }
-  return limit;
-}
-
 std::vector<CameraPose> cameraPath(
   const RegistrationModel& model, const SyntheticOptions& o, Sampler& rng)
 {
@@ -108,7 +96,8 @@ std::vector<CameraPose> cameraPath(
     for (int k = 0; k < 32; ++k)
     {
       const Eigen::Vector3d d = rng.direction();
-      const double free = freeLength(model.tree(), start, d, 40.0);
+      // 1 mm steps: the path needs 5 mm more than its length, far coarser.
+      const double free = freeLengthAlongRay(model.tree(), start, d, 40.0, 1.0);
       if (free > bestFree)
       {
         bestFree = free;
@@ -252,7 +241,9 @@ SyntheticTrial makeSyntheticTrial(
     for (const CameraPose& truth : trial.trueCamerasCT)
     {
       CameraPose noisy;
-      noisy.rotation = rotationFromVector(rng.uniform(0.0, o.poseNoiseMaxDeg) * Degree * rng.direction()) * truth.rotation;
+      noisy.rotation =
+        rotationFromVector(rng.uniform(0.0, o.poseNoiseMaxDeg) * Degree * rng.direction()) *
+        truth.rotation;
       noisy.centre = truth.centre + rng.uniform(0.0, o.poseNoiseMaxMm) * rng.direction();
       noisyCameras.push_back(noisy);
     }
@@ -267,18 +258,23 @@ SyntheticTrial makeSyntheticTrial(
       centroid += p;
     }
     centroid /= static_cast<double>(truePoints.size());
-    SimilarityTransform misalign;
-    bool camerasInside = false;
-    for (int draw = 0; draw < 200 && !camerasInside; ++draw)
+    std::vector<VideoFrame> noisyFrames(noisyCameras.size());
+    for (size_t c = 0; c < noisyCameras.size(); ++c)
     {
-      misalign.rotation =
-        rotationFromVector(rng.uniform(o.misalignMinDeg, o.misalignMaxDeg) * Degree * rng.direction());
+      noisyFrames[c].frameId = static_cast<int>(c);
+      noisyFrames[c].cameraToSfm = noisyCameras[c];
+    }
+    SimilarityTransform misalign;
+    bool inside = false;
+    for (int draw = 0; draw < 200 && !inside; ++draw)
+    {
+      misalign.rotation = rotationFromVector(
+        rng.uniform(o.misalignMinDeg, o.misalignMaxDeg) * Degree * rng.direction());
       misalign.translation = centroid - misalign.rotation * centroid +
         rng.uniform(o.misalignMinMm, o.misalignMaxMm) * rng.direction();
-      camerasInside = std::all_of(noisyCameras.begin(), noisyCameras.end(),
-        [&](const CameraPose& camera) { return model.isInside(misalign.apply(camera.centre)); });
+      inside = camerasInside(model, noisyFrames, misalign);
     }
-    if (!camerasInside)
+    if (!inside)
     {
       continue;
     }
@@ -314,25 +310,13 @@ SyntheticTrial makeSyntheticTrial(
 
       OccludingContourOptions contourOptions;
       contourOptions.sampleSpacingPx = o.contourSpacingPx;
-      const std::vector<ModelContourPoint> samples =
-        extractOccludingContours(mesh, o.intrinsics, truth, contourOptions);
-      std::vector<Eigen::Vector3d> points;
-      for (const ModelContourPoint& s : samples)
+      for (const ModelContourPoint& sample :
+        visibleModelContours(model, o.intrinsics, truth, contourOptions))
       {
-        points.push_back(s.point);
-      }
-      std::vector<char> visible;
-      model.visibility().classify(o.intrinsics, truth, points, visible);
-      for (size_t i = 0; i < samples.size(); ++i)
-      {
-        if (visible[i])
-        {
-          ContourPoint p;
-          p.pixel =
-            samples[i].pixel + o.contourNoisePx * Eigen::Vector2d(rng.normal(), rng.normal());
-          p.normal = samples[i].pixelNormal;
-          frame.contour.push_back(p);
-        }
+        ContourPoint p;
+        p.pixel = sample.pixel + o.contourNoisePx * Eigen::Vector2d(rng.normal(), rng.normal());
+        p.normal = sample.pixelNormal;
+        frame.contour.push_back(p);
       }
       enoughContours = enoughContours && frame.contour.size() >= 10;
       trial.data.frames.push_back(frame);

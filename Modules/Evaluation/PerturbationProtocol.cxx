@@ -63,8 +63,8 @@ PerturbationProtocolReport runPerturbationProtocol(const TriangleMesh& mesh,
   o.validate();
   const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
   const SimulatedVideoCase c = prepareSimulatedVideoCase(model, o.video, progress);
-  RegistrationOptions options =
-    videoRegistrationOptions(c.initialScale, o.video.registration, RegistrationMethod::VIMLOP);
+  RegistrationOptions options = o.video.pipeline.registrationOptions(c.initialScale);
+  options.method = RegistrationMethod::VIMLOP;
   options.threads = 1;
 
   // Every start is drawn first, from its own stream, so that the runs do not
@@ -87,7 +87,7 @@ PerturbationProtocolReport runPerturbationProtocol(const TriangleMesh& mesh,
   std::vector<double> scores(total);
   std::mutex progressMutex;
   int done = 0;
-  TaskPool(o.video.registration.threads)
+  TaskPool(o.video.pipeline.threads)
     .run(total,
       [&](int i)
       {

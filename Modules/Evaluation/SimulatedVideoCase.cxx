@@ -7,9 +7,11 @@
 #include "RandomDirection.h"
 #include "RegistrationMetrics.h"
 #include "Rotation.h"
+#include "SimilarityFromCameras.h"
 #include "Statistics.h"
 #include "StructureFromMotion.h"
 #include "TrackerScale.h"
+#include "VideoRegistrationData.h"
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -37,7 +39,7 @@ SimulatedVideoCase prepareSimulatedVideoCase(
   const PinholeCamera& k = video.intrinsics;
 
   // Contours: detected on the pictures, scored against the true ones.
-  ScoredContours scored = detectAndScoreContours(model, video, o.registration.contours);
+  ScoredContours scored = detectAndScoreContours(model, video, o.pipeline.contours);
   const std::vector<std::vector<ContourPoint>>& contours = scored.contoursPerFrame;
   c.contourScores = scored.scores;
   say("contours: precision " + std::to_string(c.contourScores.precision) + ", recall " +
@@ -104,30 +106,11 @@ SimulatedVideoCase prepareSimulatedVideoCase(
     std::to_string(c.truth.scale));
 
   // Registration data: the registered frames with their contours.
-  for (size_t f = 0; f < sfm.frames.size(); ++f)
-  {
-    if (!sfm.frames[f].registered)
-    {
-      continue;
-    }
-    VideoFrame frame;
-    frame.frameId = static_cast<int>(f);
-    frame.intrinsics = sfm.frames[f].intrinsics;
-    frame.intrinsics.distortion.resize(0);
-    frame.cameraToSfm = sfm.frames[f].cameraToSfm;
-    frame.contour = contours[f];
-    c.data.frames.push_back(frame);
-    c.frameOf.push_back(static_cast<int>(f));
-  }
-  const double s0 = c.initialScale;
+  c.data = makeVideoRegistrationData(
+    sfm, contours, c.initialScale, o.pipeline.pointNoiseFloorMm, &c.frameOf);
   c.centroidCT = Eigen::Vector3d::Zero();
   for (const SfmReconstruction::Point& p : sfm.points)
   {
-    c.data.points.push_back(p.position);
-    // SfM units² to mm² with the initial scale; the registration keeps it fixed.
-    c.data.pointCovariances.push_back(s0 * s0 * p.covariance +
-      o.registration.pointNoiseFloorMm * o.registration.pointNoiseFloorMm *
-        Eigen::Matrix3d::Identity());
     c.centroidCT += c.truth.apply(p.position);
   }
   c.centroidCT /= static_cast<double>(sfm.points.size());

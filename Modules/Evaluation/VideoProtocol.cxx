@@ -1,5 +1,6 @@
 #include "VideoProtocol.h"
 
+#include "CanonicalStarts.h"
 #include "EmbreeRegistrationModel.h"
 #include "Error.h"
 #include "MultiStartRegistration.h"
@@ -69,10 +70,7 @@ void VideoProtocolOptions::validate() const
   {
     throw Error("--sfm: expected 'builtin' or 'colmap', got '" + this->sfm + "'");
   }
-  if (!(this->registration.scaleBoundFactor > 1.0))
-  {
-    throw Error("the scale bound factor must be greater than 1");
-  }
+  this->pipeline.validate();
 }
 
 VideoProtocolReport runVideoProtocol(
@@ -98,7 +96,7 @@ VideoProtocolReport runVideoProtocol(
   report.sfmFloor = c.floor;
   report.init = o.init;
 
-  const VideoEvaluationOptions& settings = o.registration;
+  const VideoRegistrationPipeline::Options& settings = o.pipeline;
   std::vector<SimilarityTransform> starts;
   if (o.init == "perturbed")
   {
@@ -118,7 +116,8 @@ VideoProtocolReport runVideoProtocol(
 
   for (const RegistrationMethod method : { RegistrationMethod::VIMLOP, RegistrationMethod::IMLP })
   {
-    const RegistrationOptions options = videoRegistrationOptions(c.initialScale, settings, method);
+    RegistrationOptions options = settings.registrationOptions(c.initialScale);
+    options.method = method;
     const auto start = std::chrono::steady_clock::now();
     RegistrationResult r;
     VideoProtocolMethodReport m;

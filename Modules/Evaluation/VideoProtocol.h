@@ -5,7 +5,7 @@
 #include "EndoscopeSimulation.h"
 #include "EvaluationProgress.h"
 #include "TriangleMesh.h"
-#include "VideoEvaluation.h"
+#include "VideoRegistrationPipeline.h"
 
 #include <nlohmann/json.hpp>
 
@@ -36,9 +36,10 @@ struct VideoProtocolOptions
   double perturbMaxMm = 3.0;
   double perturbMinDeg = 2.0;
   double perturbMaxDeg = 3.0;
-  /// The registration: noise model, scale bounds, V11, contours, threads,
-  /// canonical poses and multi-start (the production defaults).
-  VideoEvaluationOptions registration;
+  /// The registration: noise model, V11, scale bounds, point noise floor,
+  /// contour detector, canonical poses, multi-start, threads (the production
+  /// defaults, those of `vimlop register`).
+  VideoRegistrationPipeline::Options pipeline;
   /// The start: "perturbed" (the truth moved by the ranges above) or
   /// "canonical" (the multi-start from canonical poses, V13 b). Default "perturbed".
   std::string init = "perturbed";

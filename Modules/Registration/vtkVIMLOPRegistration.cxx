@@ -2,6 +2,7 @@
 
 #include "EmbreeRegistrationModel.h"
 #include "Error.h"
+#include "MethodDescriptor.h"
 #include "OffscreenRendering.h"
 #include "Registration.h"
 #include "RegistrationInputConversion.h"
@@ -358,7 +359,7 @@ int vtkVIMLOPRegistration::RequestData(
     vtkErrorMacro(<< "no SfM points on input port 1 (SetPointsConnection or SetPointsData)");
     return 0;
   }
-  if (this->Options.method == vimlop::RegistrationMethod::VIMLOP && (!frames || !contours))
+  if (vimlop::describeMethod(this->Options.method).usesContours && (!frames || !contours))
   {
     vtkErrorMacro(<< "V-IMLOP needs the frame table on input port 2 and the video contours on "
                      "input port 3 (IMLP and trimmed ICP register the points alone)");

@@ -1,9 +1,10 @@
 #include "EndoscopeTrajectory.h"
 
 #include "Error.h"
-#include "OccludingContours.h"
 #include "RandomDirection.h"
+#include "RayClearance.h"
 #include "Rotation.h"
+#include "VisibleModelContours.h"
 
 #include <Eigen/Geometry>
 
@@ -21,44 +22,9 @@ namespace
 
 constexpr double Degree = M_PI / 180.0;
 
-/// Free length of the ray from `p` along unit `d`, up to `limit` mm, in 0.5 mm steps.
-double freeLength(
-  const MeshTree& tree, const Eigen::Vector3d& p, const Eigen::Vector3d& d, double limit)
-{
-  for (double length = 0.5; length <= limit; length += 0.5)
-  {
-    if (tree.isSegmentOccluded(p, p + length * d, 1e-6))
-    {
-      return length - 0.5;
-    }
-  }
-  return limit;
-}
-
 bool hasClearance(const RegistrationModel& model, const Eigen::Vector3d& p, double clearanceMm)
 {
   return model.isInside(p) && model.locator().closestPoint(p).distanceMm >= clearanceMm;
-}
-
-int visibleContourSamples(
-  const RegistrationModel& model, const PinholeCamera& k, const CameraPose& pose)
-{
-  const std::vector<ModelContourPoint> samples =
-    extractOccludingContours(model.mesh(), k, pose, OccludingContourOptions());
-  std::vector<Eigen::Vector3d> points;
-  points.reserve(samples.size());
-  for (const ModelContourPoint& s : samples)
-  {
-    points.push_back(s.point);
-  }
-  std::vector<char> visible;
-  model.visibility().classify(k, pose, points, visible);
-  int count = 0;
-  for (char v : visible)
-  {
-    count += v != 0;
-  }
-  return count;
 }
 
 } // namespace
@@ -99,7 +65,9 @@ std::vector<CameraPose> makeEndoscopeTrajectory(
     const double needed = pathLength + o.lookAheadMm;
     auto clearanceAlong = [&](const Eigen::Vector3d& d)
     {
-      if (freeLength(model.tree(), start, d, needed) < needed)
+      // 0.5 mm steps: the look-ahead beyond the path is short, so a coarser
+      // walk would let the camera look at a wall it should have seen.
+      if (freeLengthAlongRay(model.tree(), start, d, needed, 0.5) < needed)
       {
         return -1.0;
       }
@@ -189,7 +157,8 @@ std::vector<CameraPose> makeEndoscopeTrajectory(
     {
       for (const CameraPose& pose : path)
       {
-        if (visibleContourSamples(model, o.intrinsics, pose) < o.minContourSamples)
+        if (static_cast<int>(visibleModelContours(model, o.intrinsics, pose).size()) <
+          o.minContourSamples)
         {
           ok = false;
           break;

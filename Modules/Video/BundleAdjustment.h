@@ -4,7 +4,6 @@
 #include "CameraPose.h"
 #include "PinholeCamera.h"
 
-#include "VIMLOPVideoModule.h"
 
 #include <Eigen/Core>
 
@@ -32,7 +31,7 @@ namespace vimlop
  * cameras in `fixedCameras` still; the remaining scale freedom is held by
  * the damping.
  */
-class VIMLOPVIDEO_EXPORT BundleAdjustment
+class BundleAdjustment
 {
 public:
   /// @brief Solver settings.

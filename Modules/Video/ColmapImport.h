@@ -3,7 +3,6 @@
 
 #include "SfmReconstruction.h"
 
-#include "VIMLOPVideoModule.h"
 
 #include <string>
 #include <vector>
@@ -42,7 +41,7 @@ enum class ColmapFormat
  * point observed by an unknown image (dangling ids), a truncated or
  * malformed file.
  */
-VIMLOPVIDEO_EXPORT SfmReconstruction readColmapModel(const std::string& folder,
+SfmReconstruction readColmapModel(const std::string& folder,
   ColmapFormat format = ColmapFormat::Automatic,
   const std::vector<std::string>& frameNames = std::vector<std::string>(), double sigmaPx = 0.5,
   std::vector<std::string>* warnings = nullptr);
@@ -52,7 +51,7 @@ VIMLOPVIDEO_EXPORT SfmReconstruction readColmapModel(const std::string& folder,
  * ("fx,fy,cx,cy", with COLMAP's pixel-centre convention), for
  * `colmap feature_extractor --ImageReader.camera_params`.
  */
-VIMLOPVIDEO_EXPORT std::string colmapPinholeParameters(const PinholeCamera& camera);
+std::string colmapPinholeParameters(const PinholeCamera& camera);
 
 } // namespace vimlop
 

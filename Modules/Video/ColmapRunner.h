@@ -3,7 +3,6 @@
 
 #include "PinholeCamera.h"
 
-#include "VIMLOPVideoModule.h"
 
 #include <string>
 
@@ -17,7 +16,7 @@ namespace vimlop
  * text copy of the model. Everything COLMAP prints goes to
  * `workFolder/colmap.log`; it runs headless (QT_QPA_PLATFORM=offscreen).
  */
-class VIMLOPVIDEO_EXPORT ColmapRunner
+class ColmapRunner
 {
 public:
   /// @brief The program and how hard it works.

@@ -5,7 +5,6 @@
 #include "DepthMap.h"
 #include "ModelContourPoint.h"
 
-#include "VIMLOPVideoModule.h"
 
 #include <vector>
 
@@ -31,7 +30,7 @@ namespace vimlop
  * deeper than the sample. Precision counts a detected point as correct when it
  * lies within `tolerancePx` of any visible true sample, with or without a step.
  */
-class VIMLOPVIDEO_EXPORT ContourEvaluation
+class ContourEvaluation
 {
 public:
   /// @brief Matching tolerance and the visibility rule of the truth.

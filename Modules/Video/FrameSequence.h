@@ -1,7 +1,6 @@
 #ifndef vimlop_FrameSequence_h
 #define vimlop_FrameSequence_h
 
-#include "VIMLOPVideoModule.h"
 
 #include <opencv2/core/mat.hpp>
 
@@ -20,7 +19,7 @@ namespace vimlop
  * OpenCV. All frames are 8-bit BGR and share one size. Sequences for
  * registration are short (about 30 frames), so they are held in memory.
  */
-class VIMLOPVIDEO_EXPORT FrameSequence
+class FrameSequence
 {
 public:
   /**

@@ -3,7 +3,6 @@
 
 #include "PinholeCamera.h"
 
-#include "VIMLOPVideoModule.h"
 
 #include <string>
 
@@ -22,16 +21,16 @@ namespace vimlop
  *
  * @throws vimlop::Error naming the file and the missing or invalid entry.
  */
-VIMLOPVIDEO_EXPORT PinholeCamera readIntrinsics(const std::string& path);
+PinholeCamera readIntrinsics(const std::string& path);
 
 /**
  * @brief Writes intrinsics in OpenCV's calibration layout; format by extension.
  * @throws vimlop::Error for an unsupported extension or a failed write.
  */
-VIMLOPVIDEO_EXPORT void writeIntrinsics(const PinholeCamera& camera, const std::string& path);
+void writeIntrinsics(const PinholeCamera& camera, const std::string& path);
 
 /// @brief True when `path` has an extension readIntrinsics() accepts.
-VIMLOPVIDEO_EXPORT bool isIntrinsicsPath(const std::string& path);
+bool isIntrinsicsPath(const std::string& path);
 
 } // namespace vimlop
 

@@ -4,7 +4,6 @@
 #include "CameraPose.h"
 #include "PinholeCamera.h"
 
-#include "VIMLOPVideoModule.h"
 
 #include <Eigen/Core>
 
@@ -25,7 +24,7 @@ namespace vimlop
  * pixels with the centre of the top-left pixel at (0, 0)). Frames that SfM
  * could not register keep `registered == false` and an identity pose.
  */
-struct VIMLOPVIDEO_EXPORT SfmReconstruction
+struct SfmReconstruction
 {
   /// @brief One image of the sequence.
   struct Frame

@@ -3,7 +3,6 @@
 
 #include "SfmReconstruction.h"
 
-#include "VIMLOPVideoModule.h"
 
 #include <string>
 
@@ -35,7 +34,7 @@ namespace vimlop
 
 /// @brief Writes `reconstruction` to `path` (JSON, the layout above).
 /// @throws vimlop::Error if the file cannot be written.
-VIMLOPVIDEO_EXPORT void writeSfmReconstruction(
+void writeSfmReconstruction(
   const SfmReconstruction& reconstruction, const std::string& path);
 
 /**
@@ -43,7 +42,7 @@ VIMLOPVIDEO_EXPORT void writeSfmReconstruction(
  * @throws vimlop::Error naming the file and the problem (missing, not JSON,
  * wrong format, a missing or malformed entry, dangling frame indices).
  */
-VIMLOPVIDEO_EXPORT SfmReconstruction readSfmReconstruction(const std::string& path);
+SfmReconstruction readSfmReconstruction(const std::string& path);
 
 } // namespace vimlop
 

@@ -4,7 +4,6 @@
 #include "PinholeCamera.h"
 #include "SfmReconstruction.h"
 
-#include "VIMLOPVideoModule.h"
 
 #include <opencv2/core/mat.hpp>
 
@@ -36,7 +35,7 @@ namespace vimlop
  *    on average; per-point covariances from the triangulation geometry with
  *    the final RMS reprojection error as image noise.
  */
-class VIMLOPVIDEO_EXPORT StructureFromMotion
+class StructureFromMotion
 {
 public:
   /// @brief The image channel features are found in.

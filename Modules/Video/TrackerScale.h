@@ -3,7 +3,6 @@
 
 #include "TrackerTrajectory.h"
 
-#include "VIMLOPVideoModule.h"
 
 #include <Eigen/Core>
 
@@ -47,7 +46,7 @@ struct TrackerScaleResult
  * @throws vimlop::Error naming both time spans when no frame time lies
  * within the tracker's.
  */
-VIMLOPVIDEO_EXPORT void checkTrackerOverlap(
+void checkTrackerOverlap(
   const TrackerTrajectory& tracker, const std::vector<double>& frameTimesS);
 
 /**
@@ -62,7 +61,7 @@ VIMLOPVIDEO_EXPORT void checkTrackerOverlap(
  * time, fewer than `minFrames` frames match, or either trajectory has no
  * length (no motion).
  */
-VIMLOPVIDEO_EXPORT TrackerScaleResult estimateTrackerScale(const TrackerTrajectory& tracker,
+TrackerScaleResult estimateTrackerScale(const TrackerTrajectory& tracker,
   const std::vector<double>& frameTimesS, const std::vector<Eigen::Vector3d>& sfmCentres,
   const TrackerScaleOptions& options = TrackerScaleOptions());
 

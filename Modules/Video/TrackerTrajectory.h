@@ -1,7 +1,6 @@
 #ifndef vimlop_TrackerTrajectory_h
 #define vimlop_TrackerTrajectory_h
 
-#include "VIMLOPVideoModule.h"
 
 #include <Eigen/Core>
 
@@ -20,7 +19,7 @@ namespace vimlop
  * frame: only lengths are used); times in seconds on the clock of the video
  * frames. Samples are kept sorted by time with distinct times.
  */
-class VIMLOPVIDEO_EXPORT TrackerTrajectory
+class TrackerTrajectory
 {
 public:
   /// @brief One tracker reading.

@@ -5,6 +5,7 @@
 #include "CTVolumeIO.h"
 #include "Error.h"
 #include "MeshIO.h"
+#include "OrientNormalsIntoAir.h"
 #include "PolyDataConversion.h"
 
 #include <vtkPolyData.h>
@@ -26,11 +27,11 @@ TriangleMesh loadAirwayMesh(const std::string& path)
   {
     throw Error("'" + path + "': " + e.what());
   }
-  if (mesh.numberOfBoundaryEdges() == 0 && mesh.signedVolume() > 0.0)
+  std::string note;
+  mesh = orientNormalsIntoAir(mesh, &note);
+  if (!note.empty())
   {
-    std::cerr << "vimlop: note: '" << path
-              << "' has normals pointing out of the air it encloses; flipping them\n";
-    mesh = mesh.flipped();
+    std::cerr << "vimlop: note: '" << path << "': " << note << "\n";
   }
   return mesh;
 }

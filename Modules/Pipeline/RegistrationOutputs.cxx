@@ -1,0 +1,175 @@
+#include "RegistrationOutputs.h"
+
+#include "Error.h"
+#include "RecordJson.h"
+#include "RegisteredVideo.h"
+#include "RegistrationMetrics.h"
+#include "RegistrationRecordIO.h"
+#include "RegistrationReport.h"
+#include "SimilarityFromCameras.h"
+#include "Statistics.h"
+
+#include <vtkVersion.h>
+
+#include <opencv2/core/version.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <ostream>
+
+namespace vimlop
+{
+
+namespace fs = std::filesystem;
+
+namespace
+{
+
+std::string frameImageName(int frameId)
+{
+  char name[64];
+  std::snprintf(name, sizeof name, "frames/frame-%04d.png", frameId);
+  return name;
+}
+
+} // namespace
+
+RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipeline,
+  const std::string& source, const std::vector<FramePose>& truthPoses,
+  const std::string& truthSource)
+{
+  const MultiStartResult& outcome = pipeline.outcome();
+  RegistrationRecord record;
+  record.source = source;
+  record.model = pipeline.mesh();
+  record.data = pipeline.data();
+  record.options = pipeline.options().registrationOptions(pipeline.initialScale());
+  record.initialSfmToCT = outcome.candidates[outcome.bestCandidate].initialSfmToCT;
+  record.result = outcome.best;
+  for (const VideoFrame& frame : record.data.frames)
+  {
+    record.frameImages.push_back(frameImageName(frame.frameId));
+  }
+  record.confidence = RegistrationRecord::Confidence{ outcome.failure, outcome.failureThresholdPx,
+    pipeline.startMode() == StartMode::Manual ? "manual" : "canonical",
+    static_cast<int>(outcome.candidates.size()), outcome.bestCandidate };
+  record.versions = { { "vtk", vtkVersion::GetVTKVersion() }, { "opencv", CV_VERSION } };
+  if (truthPoses.empty())
+  {
+    return record;
+  }
+  const SfmReconstruction& sfm = pipeline.sfm();
+  std::vector<CameraPose> truthPerSfmFrame(sfm.frames.size());
+  std::vector<bool> known(sfm.frames.size(), false);
+  for (const FramePose& p : truthPoses)
+  {
+    if (p.frameId >= 0 && p.frameId < static_cast<int>(sfm.frames.size()))
+    {
+      truthPerSfmFrame[p.frameId] = p.cameraToWorld;
+      known[p.frameId] = true;
+    }
+  }
+  RegistrationRecord::GroundTruth truth;
+  for (int f : pipeline.frameOf())
+  {
+    if (!known[f])
+    {
+      throw Error("'" + truthSource + "': has no pose for some registered frames");
+    }
+    truth.camerasCT.push_back(truthPerSfmFrame[f]);
+  }
+  truth.sfmToCT = similarityFromCameras(sfm, truthPerSfmFrame);
+  record.truth = truth;
+  return record;
+}
+
+void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
+  const RegistrationRecord& record, const std::string& folder, double fps,
+  const RegistrationOutputOptions& options, std::ostream* log)
+{
+  std::error_code ec;
+  fs::remove(fs::path(folder) / "result.json", ec);
+  fs::create_directories(fs::path(folder) / "frames", ec);
+  if (ec)
+  {
+    throw Error("'" + folder + "': cannot create the folder (" + ec.message() + ")");
+  }
+  const std::vector<int>& frameOf = pipeline.frameOf();
+  for (size_t j = 0; j < record.data.frames.size(); ++j)
+  {
+    pipeline.writeFrame(frameOf[j], (fs::path(folder) / record.frameImages[j]).string());
+  }
+  if (options.video)
+  {
+    if (log)
+    {
+      *log << "vimlop register: registered video\n";
+    }
+    writeRegisteredVideo(record, folder, fps);
+  }
+  writeCameraPath(record.result, (fs::path(folder) / "camera-path.vtp").string());
+  writeRegistrationRecord(record, folder);
+  if (options.report)
+  {
+    if (log)
+    {
+      *log << "vimlop register: report\n";
+    }
+    RegistrationReport::write(
+      &record, folder, {}, (fs::path(folder) / "report").string(), RegistrationReport::Options());
+  }
+}
+
+nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline,
+  const RegistrationRecord& record, const std::string& resultPath, double seconds)
+{
+  const MultiStartResult& outcome = pipeline.outcome();
+  const RegistrationResult& result = outcome.best;
+  nlohmann::json summary = { { "result", resultPath }, { "frames", record.data.frames.size() },
+    { "points", record.data.points.size() }, { "scale", result.sfmToCT.scale },
+    { "init", record.confidence ? record.confidence->init : std::string() },
+    { "candidates", outcome.candidates.size() }, { "termination", toString(result.termination) },
+    { "residual_error_mm", result.residualErrorMm }, { "contour_error_px", result.contourErrorPx },
+    { "failure", outcome.failure }, { "failure_threshold_px", outcome.failureThresholdPx },
+    { "runtime_s", seconds } };
+  if (record.truth)
+  {
+    std::vector<double> position;
+    std::vector<double> angle;
+    for (size_t j = 0; j < result.frames.size(); ++j)
+    {
+      position.push_back(
+        cameraPositionError(result.frames[j].cameraToCT, record.truth->camerasCT[j]));
+      angle.push_back(cameraAngleErrorDeg(result.frames[j].cameraToCT, record.truth->camerasCT[j]));
+    }
+    const Summary p = summarize(position);
+    const Summary a = summarize(angle);
+    summary["camera_position_error_mm"] = { { "mean", p.mean }, { "max", p.max } };
+    summary["camera_angle_error_deg"] = { { "mean", a.mean }, { "max", a.max } };
+  }
+  return summary;
+}
+
+nlohmann::json registrationOptionsJson(const VideoRegistrationPipeline::Options& o)
+{
+  const MultiStartOptions& m = o.multiStart;
+  return { { "registration", recordjson::optionsJson(o.registration) },
+    { "scale_bound_factor", o.scaleBoundFactor }, { "point_noise_floor_mm", o.pointNoiseFloorMm },
+    { "threads", o.threads },
+    { "multi_start",
+      { { "scale_factors", m.scaleFactors }, { "screening_iterations", m.screeningIterations },
+        { "screening_stride", m.screeningStride }, { "finalists", m.finalists },
+        { "failure_contour_error_px", m.failureContourErrorPx },
+        { "min_matched_fraction", m.minMatchedFraction } } },
+    { "canonical",
+      { { "spacing_mm", o.canonical.spacingMm }, { "min_clearance_mm", o.canonical.minClearanceMm },
+        { "look_ahead_mm", o.canonical.lookAheadMm },
+        { "views_per_position", o.canonical.viewsPerPosition },
+        { "rolls_deg", o.canonical.rollsDeg } } },
+    { "contours",
+      { { "smoothing_sigma_px", o.contours.smoothingSigmaPx },
+        { "high_threshold", o.contours.highThreshold },
+        { "low_threshold", o.contours.lowThreshold }, { "spacing_px", o.contours.spacingPx } } } };
+}
+
+} // namespace vimlop

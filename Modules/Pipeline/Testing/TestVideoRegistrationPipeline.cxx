@@ -1,0 +1,114 @@
+#include "VideoRegistrationPipeline.h"
+
+#include "RegistrationMetrics.h"
+#include "RenderedSequence.h"
+#include "SimilarityFromCameras.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+
+namespace vimlop
+{
+namespace
+{
+
+namespace fs = std::filesystem;
+
+/// The fixture's frames as a folder of pictures, written once.
+std::string framesFolder()
+{
+  static const std::string folder = []
+  {
+    const fs::path dir = fs::path(VIMLOP_TEST_OUTPUT_DIR) / "pipeline-frames";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fixtures::Sequence& s = fixtures::sequence();
+    for (size_t f = 0; f < s.frames.size(); ++f)
+    {
+      cv::imwrite((dir / s.names[f]).string(), s.frames[f]);
+    }
+    return dir.string();
+  }();
+  return folder;
+}
+
+/// The stages up to the data, with the true scale off by 5 % (as from a tracker).
+void prepare(VideoRegistrationPipeline& pipeline)
+{
+  const fixtures::Sequence& s = fixtures::sequence();
+  pipeline.loadModel(s.mesh);
+  pipeline.loadFrames(framesFolder(), s.intrinsics);
+  pipeline.detectContours();
+  pipeline.reconstruct();
+  const double trueScale = similarityFromCameras(pipeline.sfm(), s.poses).scale;
+  pipeline.estimateInitialScale(nullptr, 30.0, 0.0, 1.05 * trueScale);
+  pipeline.makeData();
+}
+
+/// Mean camera position error (mm) of the pipeline's result against the fixture's truth.
+double meanCameraErrorMm(const VideoRegistrationPipeline& pipeline)
+{
+  const fixtures::Sequence& s = fixtures::sequence();
+  double sum = 0.0;
+  for (const FrameResult& f : pipeline.result().frames)
+  {
+    sum += cameraPositionError(f.cameraToCT, s.poses[f.frameId]);
+  }
+  return sum / pipeline.result().frames.size();
+}
+
+TEST(VideoRegistrationPipeline, RegistersRenderedFramesFromAManualStart)
+{
+  const fixtures::Sequence& s = fixtures::sequence();
+  VideoRegistrationPipeline pipeline;
+  prepare(pipeline);
+  EXPECT_EQ(pipeline.numberOfFrames(), static_cast<int>(s.frames.size()));
+  EXPECT_GT(pipeline.data().numberOfContourPoints(), 100);
+  // The middle frame's true pose, 1 mm off.
+  FramePose start{ 8, s.poses[8] };
+  start.cameraToWorld.centre += Eigen::Vector3d(0.6, -0.6, 0.5);
+  pipeline.makeManualStart(start);
+  pipeline.run();
+  EXPECT_LT(meanCameraErrorMm(pipeline), 0.3);
+  EXPECT_FALSE(pipeline.flaggedAsFailure());
+  EXPECT_EQ(pipeline.outcome().candidates.size(), 1u);
+}
+
+TEST(VideoRegistrationPipeline, AMultiStartPicksTheGoodStartAndAWrongOneAloneIsFlagged)
+{
+  const fixtures::Sequence& s = fixtures::sequence();
+  VideoRegistrationPipeline pipeline;
+  prepare(pipeline);
+  const CameraPose anchor = pipeline.data().frames[pipeline.data().frames.size() / 2].cameraToSfm;
+  const int anchorId = pipeline.data().frames[pipeline.data().frames.size() / 2].frameId;
+  // A good start, and one with the scope turned round (looking back up the tube).
+  CameraPose turned = s.poses[anchorId];
+  turned.rotation = turned.rotation * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY());
+  const double scale = pipeline.initialScale();
+  const SimilarityTransform good = startFromCameraPose(s.poses[anchorId], anchor, scale);
+  const SimilarityTransform wrong = startFromCameraPose(turned, anchor, scale);
+  pipeline.setStarts({ wrong, good }, StartMode::Canonical);
+  pipeline.run();
+  EXPECT_LT(meanCameraErrorMm(pipeline), 0.3);
+  EXPECT_FALSE(pipeline.flaggedAsFailure());
+
+  pipeline.setStarts({ wrong }, StartMode::Manual);
+  pipeline.run();
+  EXPECT_GT(meanCameraErrorMm(pipeline), 2.0);
+  EXPECT_TRUE(pipeline.flaggedAsFailure());
+}
+
+TEST(VideoRegistrationPipeline, ACancelledRunSaysSo)
+{
+  VideoRegistrationPipeline pipeline;
+  prepare(pipeline);
+  pipeline.makeManualStart({ 8, fixtures::sequence().poses[8] });
+  pipeline.setProgress([](const std::string& stage, double) { return stage != "registration"; });
+  EXPECT_THROW(pipeline.run(), PipelineCancelled);
+}
+
+} // namespace
+} // namespace vimlop

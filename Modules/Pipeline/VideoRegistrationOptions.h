@@ -1,0 +1,53 @@
+#ifndef vimlop_VideoRegistrationOptions_h
+#define vimlop_VideoRegistrationOptions_h
+
+#include "CanonicalPoses.h"
+#include "ContourDetectionOptions.h"
+#include "MultiStartRegistration.h"
+#include "RegistrationOptions.h"
+
+namespace vimlop
+{
+
+/**
+ * @brief Every setting of the main job, with the production defaults:
+ * the one set `vimlop register`, the VTK face and Python use.
+ */
+struct VideoRegistrationOptions
+{
+  /// V2-V12: method, noise, outliers, constraint, convergence. Core's
+  /// defaults are the production ones (Σ2d 1 px², κ 200, stall 0.001 %
+  /// over 10 iterations, at most 300). minScale and maxScale are set from
+  /// `scaleBoundFactor` around the initial scale by registrationOptions().
+  RegistrationOptions registration;
+  /// V7: scale bounds: the initial scale divided and multiplied by this
+  /// (default 1.25, the bound P2 and P3 are measured with; a registration
+  /// that ends at it is warned about, its tracker scale may be wrong).
+  double scaleBoundFactor = 1.25;
+  /// V1: std added to every SfM point's covariance, mm (default 0.1): the
+  /// model's own error and what triangulation geometry does not capture.
+  double pointNoiseFloorMm = 0.1;
+  /// V1: the video contour detector (see OccludingContourDetector).
+  ContourDetectionOptions contours;
+  /// V13 b: the canonical poses generated along the airway when no pose file is given.
+  CanonicalPoseOptions canonical;
+  /// V13: the multi-start and its failure flag (screening, finalists,
+  /// scale factors, contour-error threshold). Its `registration` is
+  /// replaced by registrationOptions().
+  MultiStartOptions multiStart;
+  /// Threads, 0 for all cores (default 0). Results do not depend on it.
+  int threads = 0;
+
+  /**
+   * @brief The registration options for a start at `initialScale` (mm
+   * per SfM unit): `registration` with the scale bounds of
+   * `scaleBoundFactor` and `threads`.
+   */
+  RegistrationOptions registrationOptions(double initialScale) const;
+  /// @throws vimlop::Error naming the first invalid field.
+  void validate() const;
+};
+
+} // namespace vimlop
+
+#endif

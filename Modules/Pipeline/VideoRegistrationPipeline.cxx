@@ -1,0 +1,487 @@
+#include "VideoRegistrationPipeline.h"
+
+#include "CanonicalStarts.h"
+#include "EmbreeRegistrationModel.h"
+#include "Error.h"
+#include "FrameSequence.h"
+#include "ModelLoading.h"
+#include "OccludingContourDetector.h"
+#include "Registration.h"
+#include "VideoInput.h"
+#include "VideoRegistrationData.h"
+
+#include <opencv2/core/mat.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <iostream>
+#include <ostream>
+#include <sstream>
+
+namespace vimlop
+{
+
+RegistrationOptions VideoRegistrationOptions::registrationOptions(double initialScale) const
+{
+  RegistrationOptions o = this->registration;
+  o.minScale = initialScale / this->scaleBoundFactor;
+  o.maxScale = initialScale * this->scaleBoundFactor;
+  o.threads = this->threads;
+  return o;
+}
+
+void VideoRegistrationOptions::validate() const
+{
+  if (!(this->scaleBoundFactor > 1.0))
+  {
+    throw Error("the scale bound factor must be greater than 1, got " +
+      std::to_string(this->scaleBoundFactor));
+  }
+  if (!(this->pointNoiseFloorMm >= 0.0))
+  {
+    throw Error("the point noise floor must not be negative, got " +
+      std::to_string(this->pointNoiseFloorMm) + " mm");
+  }
+  if (this->threads < 0)
+  {
+    throw Error("the thread count must not be negative");
+  }
+  this->registration.validate();
+  this->multiStart.validate();
+  this->canonical.validate();
+}
+
+struct VideoRegistrationPipeline::Internals
+{
+  Options Opts;
+  std::ostream* Log = nullptr;
+  std::function<void(const std::string&)> Warn = [](const std::string& text)
+  { std::cerr << "vimlop: warning: " << text << "\n"; };
+  Progress Report;
+
+  std::optional<TriangleMesh> Mesh;
+  std::unique_ptr<RegistrationModel> Model;
+  PinholeCamera Intrinsics;
+  bool FramesLoaded = false;
+  std::vector<cv::Mat> Frames;
+  std::vector<std::string> Names;
+  bool ContoursDetected = false;
+  std::vector<std::vector<ContourPoint>> Contours;
+  std::optional<SfmReconstruction> Sfm;
+  double Scale = 0.0;
+  bool DataMade = false;
+  RegistrationData Data;
+  std::vector<int> FrameOf;
+  std::vector<SimilarityTransform> Starts;
+  StartMode Mode = StartMode::Canonical;
+  int Anchor = -1;
+  std::optional<MultiStartResult> Outcome;
+
+  void say(const std::string& text) const
+  {
+    if (this->Log)
+    {
+      *this->Log << "vimlop register: " << text << "\n";
+    }
+  }
+
+  /// Cancels (PipelineCancelled) when the progress callback says so.
+  void progress(const std::string& stage, double fraction) const
+  {
+    if (this->Report && !this->Report(stage, fraction))
+    {
+      throw PipelineCancelled{};
+    }
+  }
+
+  template <typename T>
+  const T& need(const std::optional<T>& value, const char* what) const
+  {
+    if (!value)
+    {
+      throw Error(std::string("video registration: ") + what + " first");
+    }
+    return *value;
+  }
+  void need(bool done, const char* what) const
+  {
+    if (!done)
+    {
+      throw Error(std::string("video registration: ") + what + " first");
+    }
+  }
+};
+
+VideoRegistrationPipeline::VideoRegistrationPipeline(const Options& options)
+  : Impl(std::make_unique<Internals>())
+{
+  options.validate();
+  this->Impl->Opts = options;
+}
+
+VideoRegistrationPipeline::~VideoRegistrationPipeline() = default;
+
+const VideoRegistrationPipeline::Options& VideoRegistrationPipeline::options() const
+{
+  return this->Impl->Opts;
+}
+
+void VideoRegistrationPipeline::setLog(std::ostream* log)
+{
+  this->Impl->Log = log;
+}
+
+void VideoRegistrationPipeline::setWarningHandler(std::function<void(const std::string&)> handler)
+{
+  this->Impl->Warn = std::move(handler);
+}
+
+void VideoRegistrationPipeline::setProgress(Progress progress)
+{
+  this->Impl->Report = std::move(progress);
+}
+
+void VideoRegistrationPipeline::loadModel(const TriangleMesh& airwayCT)
+{
+  Internals& d = *this->Impl;
+  d.progress("model", 0.0);
+  d.Mesh = airwayCT;
+  d.Model = std::make_unique<RegistrationModel>(makeEmbreeRegistrationModel(*d.Mesh));
+  d.progress("model", 1.0);
+}
+
+void VideoRegistrationPipeline::loadModel(const std::string& meshPath, const std::string& ctPath)
+{
+  this->Impl->say("model");
+  this->loadModel(airwayMeshFrom(meshPath, ctPath));
+}
+
+void VideoRegistrationPipeline::loadFrames(const std::string& path, const PinholeCamera& intrinsics,
+  int maxFrames, const std::string& intrinsicsSource)
+{
+  Internals& d = *this->Impl;
+  d.progress("frames", 0.0);
+  const FrameSequence sequence = FrameSequence::load(path, maxFrames);
+  intrinsics.validate();
+  d.Frames = idealFrames(sequence, intrinsics, path, intrinsicsSource, d.Log);
+  d.Names.clear();
+  for (int f = 0; f < sequence.size(); ++f)
+  {
+    d.Names.push_back(sequence.name(f));
+  }
+  d.Intrinsics = intrinsics;
+  d.FramesLoaded = true;
+  d.progress("frames", 1.0);
+}
+
+void VideoRegistrationPipeline::detectContours()
+{
+  Internals& d = *this->Impl;
+  d.need(d.FramesLoaded, "load the frames");
+  d.say("contours of " + std::to_string(d.Frames.size()) + " frames");
+  const OccludingContourDetector detector{ d.Opts.contours };
+  d.Contours.clear();
+  for (size_t f = 0; f < d.Frames.size(); ++f)
+  {
+    d.progress("contours", static_cast<double>(f) / d.Frames.size());
+    d.Contours.push_back(detector.detect(d.Frames[f]));
+  }
+  d.ContoursDetected = true;
+  d.progress("contours", 1.0);
+}
+
+void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
+{
+  Internals& d = *this->Impl;
+  d.need(d.FramesLoaded, "load the frames");
+  d.progress("sfm", 0.0);
+  PinholeCamera ideal = d.Intrinsics;
+  ideal.distortion.resize(0);
+  SfmReconstruction sfm = reconstructFrames(d.Frames, d.Names, ideal, colmapFolder, d.Log);
+  if (sfm.numberOfRegisteredFrames() < 2 || sfm.points.size() < 10)
+  {
+    throw Error("SfM registered " + std::to_string(sfm.numberOfRegisteredFrames()) +
+      " frames and " + std::to_string(sfm.points.size()) + " points; too few to register");
+  }
+  d.Sfm = std::move(sfm);
+  d.progress("sfm", 1.0);
+}
+
+void VideoRegistrationPipeline::estimateInitialScale(
+  const TrackerTrajectory* tracker, double fps, double timeOffsetS, double givenScale)
+{
+  Internals& d = *this->Impl;
+  const SfmReconstruction& sfm = d.need(d.Sfm, "reconstruct");
+  if (!tracker && !(givenScale > 0.0))
+  {
+    throw Error("give a tracker recording or an initial scale: SfM alone has no metric scale");
+  }
+  if (!(fps > 0.0))
+  {
+    throw Error("the frame rate must be positive, got " + std::to_string(fps));
+  }
+  double scale = givenScale;
+  if (tracker)
+  {
+    const TrackerScaleResult fromTracker =
+      scaleFromTracker(*tracker, sfm, frameTimesS(sfm.frames.size(), fps, timeOffsetS), d.Log);
+    if (givenScale > 0.0)
+    {
+      const double ratio = fromTracker.scale / givenScale;
+      if (ratio > d.Opts.scaleBoundFactor || ratio < 1.0 / d.Opts.scaleBoundFactor)
+      {
+        d.Warn("the tracker's scale " + std::to_string(fromTracker.scale) +
+          " disagrees with the given scale " + std::to_string(givenScale) +
+          " by more than the scale bound; using the given scale");
+      }
+    }
+    else
+    {
+      scale = fromTracker.scale;
+    }
+  }
+  d.Scale = scale;
+  std::ostringstream text;
+  text << "initial scale " << scale << " mm per SfM unit";
+  d.say(text.str());
+}
+
+void VideoRegistrationPipeline::makeData()
+{
+  Internals& d = *this->Impl;
+  const SfmReconstruction& sfm = d.need(d.Sfm, "reconstruct");
+  d.need(d.ContoursDetected, "detect the contours");
+  d.need(d.Scale > 0.0, "estimate the initial scale");
+  d.Data =
+    makeVideoRegistrationData(sfm, d.Contours, d.Scale, d.Opts.pointNoiseFloorMm, &d.FrameOf);
+  d.DataMade = true;
+}
+
+void VideoRegistrationPipeline::makeCanonicalStarts(
+  const std::vector<CameraPose>* posesCT, const std::string& source)
+{
+  Internals& d = *this->Impl;
+  d.need(d.Model != nullptr, "load the model");
+  d.need(d.DataMade, "make the data");
+  std::vector<CameraPose> poses;
+  if (!posesCT)
+  {
+    poses = makeCanonicalPoses(*d.Model, d.Opts.canonical);
+  }
+  else
+  {
+    int dropped = 0;
+    for (const CameraPose& p : *posesCT)
+    {
+      if (d.Model->isInside(p.centre))
+      {
+        poses.push_back(p);
+      }
+      else
+      {
+        ++dropped;
+      }
+    }
+    if (dropped > 0)
+    {
+      d.Warn(std::to_string(dropped) + " canonical poses" +
+        (source.empty() ? std::string() : " of '" + source + "'") +
+        " lie outside the patient's airway; dropped");
+    }
+    if (poses.empty())
+    {
+      throw Error((source.empty() ? std::string() : "'" + source + "': ") +
+        "no canonical pose lies inside the patient's airway");
+    }
+  }
+  d.Starts = canonicalStarts(d.Data, d.Scale, poses, &d.Anchor);
+  d.Mode = StartMode::Canonical;
+  d.say(std::to_string(poses.size()) + " canonical poses, frame " + std::to_string(d.Anchor) +
+    " placed at each");
+}
+
+void VideoRegistrationPipeline::makeManualStart(const FramePose& pose)
+{
+  Internals& d = *this->Impl;
+  d.need(d.DataMade, "make the data");
+  auto it = std::find_if(d.Data.frames.begin(), d.Data.frames.end(),
+    [&](const VideoFrame& f) { return f.frameId == pose.frameId; });
+  if (it == d.Data.frames.end())
+  {
+    throw Error("frame " + std::to_string(pose.frameId) +
+      " is not a frame SfM registered; give the pose of another frame");
+  }
+  d.Starts = { startFromCameraPose(pose.cameraToWorld, it->cameraToSfm, d.Scale) };
+  d.Mode = StartMode::Manual;
+  d.Anchor = pose.frameId;
+}
+
+void VideoRegistrationPipeline::setStarts(
+  const std::vector<SimilarityTransform>& startsSfmToCT, StartMode mode)
+{
+  if (startsSfmToCT.empty())
+  {
+    throw Error("video registration: no start given");
+  }
+  this->Impl->Starts = startsSfmToCT;
+  this->Impl->Mode = mode;
+  this->Impl->Anchor = -1;
+}
+
+void VideoRegistrationPipeline::run()
+{
+  Internals& d = *this->Impl;
+  d.need(d.Model != nullptr, "load the model");
+  d.need(d.DataMade, "make the data");
+  d.need(!d.Starts.empty(), "make the starts");
+  const RegistrationOptions options = d.Opts.registrationOptions(d.Scale);
+  MultiStartOptions multi = d.Opts.multiStart;
+  multi.registration = options;
+  multi.threads = d.Opts.threads;
+  if (d.Starts.size() > 1)
+  {
+    try
+    {
+      d.Outcome = registerMultiStart(*d.Model, d.Data, d.Starts, multi,
+        [&](const char* phase, int done, int total)
+        {
+          if (d.Log && (done == total || done % 10 == 0))
+          {
+            *d.Log << "vimlop register: " << phase << " " << done << "/" << total << "\n";
+          }
+          return !d.Report ||
+            d.Report(
+              std::string("registration ") + phase, static_cast<double>(done) / std::max(total, 1));
+        });
+    }
+    catch (const Error&)
+    {
+      d.progress("registration", 1.0); // a cancellation shows as PipelineCancelled
+      throw;
+    }
+    return;
+  }
+  // A single start uses every thread inside the registration instead.
+  multi.scaleFactors = { 1.0 };
+  MultiStartResult outcome;
+  outcome.candidates.resize(1);
+  outcome.candidates[0].initialSfmToCT = d.Starts[0];
+  const double maxIterations = std::max(options.maxIterations, 1);
+  bool cancelled = false;
+  outcome.best = registerVideo(*d.Model, d.Data, d.Starts[0], options,
+    [&](const IterationRecord& r)
+    {
+      if (d.Log && r.iteration % 10 == 0)
+      {
+        *d.Log << "vimlop register: iteration " << r.iteration << ", contour error "
+               << r.contourErrorPx << " px\n";
+      }
+      cancelled = d.Report && !d.Report("registration", r.iteration / maxIterations);
+      return !cancelled;
+    });
+  if (cancelled)
+  {
+    throw PipelineCancelled{};
+  }
+  outcome.bestCandidate = 0;
+  outcome.failureThresholdPx = multi.failureContourErrorPx;
+  outcome.failure = isFlaggedAsFailure(outcome.best, multi);
+  d.Outcome = std::move(outcome);
+}
+
+const TriangleMesh& VideoRegistrationPipeline::mesh() const
+{
+  return this->Impl->need(this->Impl->Mesh, "load the model");
+}
+
+const RegistrationModel& VideoRegistrationPipeline::model() const
+{
+  this->Impl->need(this->Impl->Model != nullptr, "load the model");
+  return *this->Impl->Model;
+}
+
+const PinholeCamera& VideoRegistrationPipeline::intrinsics() const
+{
+  this->Impl->need(this->Impl->FramesLoaded, "load the frames");
+  return this->Impl->Intrinsics;
+}
+
+int VideoRegistrationPipeline::numberOfFrames() const
+{
+  return static_cast<int>(this->Impl->Frames.size());
+}
+
+const std::vector<std::string>& VideoRegistrationPipeline::frameNames() const
+{
+  return this->Impl->Names;
+}
+
+const std::vector<std::vector<ContourPoint>>& VideoRegistrationPipeline::contours() const
+{
+  return this->Impl->Contours;
+}
+
+const SfmReconstruction& VideoRegistrationPipeline::sfm() const
+{
+  return this->Impl->need(this->Impl->Sfm, "reconstruct");
+}
+
+double VideoRegistrationPipeline::initialScale() const
+{
+  return this->Impl->Scale;
+}
+
+const RegistrationData& VideoRegistrationPipeline::data() const
+{
+  return this->Impl->Data;
+}
+
+const std::vector<int>& VideoRegistrationPipeline::frameOf() const
+{
+  return this->Impl->FrameOf;
+}
+
+const std::vector<SimilarityTransform>& VideoRegistrationPipeline::starts() const
+{
+  return this->Impl->Starts;
+}
+
+StartMode VideoRegistrationPipeline::startMode() const
+{
+  return this->Impl->Mode;
+}
+
+int VideoRegistrationPipeline::anchorFrameId() const
+{
+  return this->Impl->Anchor;
+}
+
+const MultiStartResult& VideoRegistrationPipeline::outcome() const
+{
+  return this->Impl->need(this->Impl->Outcome, "run the registration");
+}
+
+const RegistrationResult& VideoRegistrationPipeline::result() const
+{
+  return this->outcome().best;
+}
+
+bool VideoRegistrationPipeline::flaggedAsFailure() const
+{
+  return this->outcome().failure;
+}
+
+void VideoRegistrationPipeline::writeFrame(int index, const std::string& path) const
+{
+  const Internals& d = *this->Impl;
+  if (index < 0 || index >= static_cast<int>(d.Frames.size()))
+  {
+    throw Error("video registration: no frame " + std::to_string(index));
+  }
+  if (!cv::imwrite(path, d.Frames[static_cast<size_t>(index)]))
+  {
+    throw Error("'" + path + "': cannot write the frame");
+  }
+}
+
+} // namespace vimlop

@@ -1,0 +1,186 @@
+#ifndef vimlop_VideoRegistrationPipeline_h
+#define vimlop_VideoRegistrationPipeline_h
+
+#include "CameraPose.h"
+#include "ContourPoint.h"
+#include "FramePose.h"
+#include "MultiStartRegistration.h"
+#include "PinholeCamera.h"
+#include "RegistrationData.h"
+#include "RegistrationModel.h"
+#include "RegistrationOptions.h"
+#include "SfmReconstruction.h"
+#include "TrackerTrajectory.h"
+#include "TriangleMesh.h"
+#include "VideoRegistrationOptions.h"
+
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vimlop
+{
+
+/// @brief Where the registration starts (V13).
+enum class StartMode
+{
+  Manual,   ///< the camera-to-CT pose of one frame, given by the user (V13 a)
+  Canonical ///< every canonical pose along the airway, a multi-start (V13 b)
+};
+
+/**
+ * @brief The main job as a library: video frames and a CT airway model in,
+ * the registered camera poses with their confidence out (DESIGN §2).
+ *
+ * The stages run in this order, each a public method that checks what it
+ * needs from the earlier ones (so an embedding program can replace one, e.g.
+ * bring its own model or SfM):
+ * 1. loadModel(): the airway surface (a mesh, or the CT's airway segmented);
+ * 2. loadFrames(): the frames, checked against the intrinsics and undistorted;
+ * 3. detectContours(): the occluding contours of every frame (V1);
+ * 4. reconstruct(): structure from motion (built in, or a COLMAP model);
+ * 5. estimateInitialScale(): SfM units to mm from the tracker (V14) or given;
+ * 6. makeData(): the registration data (V1), see makeVideoRegistrationData;
+ * 7. makeStarts(): canonical starts (V13 b) or one manual start (V13 a);
+ * 8. run(): the (multi-start) V-IMLOP registration and its failure flag (V13);
+ * then record() and writeOutputs() (result folder, registered video, report).
+ * `vimlop register`, `vtkVIMLOPVideoRegistration` and Python's
+ * `vimlop.register_video` are thin faces over it and share its Options.
+ *
+ * Progress lines go to the log stream (none by default); warnings to the
+ * warning handler (stderr by default); the progress callback may cancel
+ * between stages and inside the registration, which then throws
+ * PipelineCancelled.
+ */
+class VideoRegistrationPipeline
+{
+public:
+  /// @brief Every setting of the main job (see VideoRegistrationOptions).
+  using Options = VideoRegistrationOptions;
+
+  /// @brief Progress: the stage ("model", "contours", "sfm", "registration", ...) and the
+  /// fraction of it done; return false to cancel.
+  using Progress = std::function<bool(const std::string& stage, double fraction)>;
+
+  explicit VideoRegistrationPipeline(const Options& options = Options());
+  ~VideoRegistrationPipeline();
+  VideoRegistrationPipeline(const VideoRegistrationPipeline&) = delete;
+  VideoRegistrationPipeline& operator=(const VideoRegistrationPipeline&) = delete;
+
+  const Options& options() const;
+
+  /// @brief Where progress lines go (nullptr, the default: nowhere).
+  void setLog(std::ostream* log);
+  /// @brief Who hears warnings (default: "vimlop: warning: ..." on stderr).
+  void setWarningHandler(std::function<void(const std::string&)> handler);
+  void setProgress(Progress progress);
+
+  ///@{
+  /// 1. The airway surface, CT frame (LPS, mm), normals into the air.
+  void loadModel(const TriangleMesh& airwayCT);
+  /// Reads `meshPath` or, when it is empty, segments the airway of `ctPath`.
+  void loadModel(const std::string& meshPath, const std::string& ctPath);
+  ///@}
+
+  /**
+   * 2. Reads at most `maxFrames` frames of `path` (a folder of pictures or a
+   * video file) and undistorts them with `intrinsics` (named
+   * `intrinsicsSource` in messages, e.g. its file).
+   * @throws vimlop::Error when they cannot be read or the intrinsics are for another size.
+   */
+  void loadFrames(const std::string& path, const PinholeCamera& intrinsics, int maxFrames = 1000,
+    const std::string& intrinsicsSource = "intrinsics");
+
+  /// 3. Occluding contours of every frame (Options::contours).
+  void detectContours();
+
+  /**
+   * 4. Structure from motion of the frames: the built-in one when
+   * `colmapFolder` is empty, else that COLMAP sparse model (frames matched by
+   * name).
+   * @throws vimlop::Error when it registers fewer than 2 frames or 10 points.
+   */
+  void reconstruct(const std::string& colmapFolder = std::string());
+
+  /**
+   * 5. The initial scale (V14): from `tracker` over the registered frames
+   * (frame f at `timeOffsetS + f / fps` on its clock) unless `givenScale`
+   * is positive, which then wins (with a warning when the tracker disagrees
+   * by more than the scale bound).
+   * @throws vimlop::Error when neither is given or the tracker does not overlap the frames.
+   */
+  void estimateInitialScale(
+    const TrackerTrajectory* tracker, double fps, double timeOffsetS, double givenScale);
+
+  /// 6. The registration data (V1) of the registered frames and SfM points.
+  void makeData();
+
+  ///@{
+  /**
+   * 7. The starts. Canonical: one per pose of `posesCT` (those outside the
+   * airway are dropped with a warning), or generated along the airway with
+   * Options::canonical when null. Manual: the given frame's camera at the
+   * given camera-to-CT pose. `source` names the poses in messages (e.g. their file).
+   * @throws vimlop::Error when no canonical pose lies inside the airway, or
+   * the manual pose is of a frame SfM did not register.
+   */
+  void makeCanonicalStarts(
+    const std::vector<CameraPose>* posesCT = nullptr, const std::string& source = "");
+  void makeManualStart(const FramePose& cameraToCT);
+  /// Starts given directly (SfM frame to CT frame), e.g. by an embedding program.
+  void setStarts(const std::vector<SimilarityTransform>& startsSfmToCT, StartMode mode);
+  ///@}
+
+  /**
+   * 8. Registers from every start (the multi-start; a single start uses every
+   * thread inside the registration instead) and flags the result (V13).
+   * @throws vimlop::Error when no candidate could run; PipelineCancelled.
+   */
+  void run();
+
+  ///@{
+  /// What the stages produced (each valid after its stage).
+  const TriangleMesh& mesh() const;
+  const RegistrationModel& model() const;
+  const PinholeCamera& intrinsics() const; ///< as loaded, with its distortion
+  int numberOfFrames() const;
+  const std::vector<std::string>& frameNames() const;
+  const std::vector<std::vector<ContourPoint>>& contours() const;
+  const SfmReconstruction& sfm() const;
+  double initialScale() const;
+  const RegistrationData& data() const;
+  /// For each data frame, its index in the loaded frames.
+  const std::vector<int>& frameOf() const;
+  const std::vector<SimilarityTransform>& starts() const;
+  StartMode startMode() const;
+  /// For canonical starts: the id of the frame placed at each pose.
+  int anchorFrameId() const;
+  const MultiStartResult& outcome() const;
+  /// The winner's result (outcome().best).
+  const RegistrationResult& result() const;
+  bool flaggedAsFailure() const;
+  ///@}
+
+  /**
+   * @brief Writes frame `index` (of the loaded, undistorted frames) as a
+   * picture file (PNG by the name's extension).
+   * @throws vimlop::Error when it cannot be written.
+   */
+  void writeFrame(int index, const std::string& path) const;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
+/// @brief Thrown when the progress callback asked the pipeline to stop.
+struct PipelineCancelled
+{
+};
+
+} // namespace vimlop
+
+#endif
