@@ -58,11 +58,19 @@ registration.SetPointsConnection(points.GetOutputPort())
 registration.SetFramesConnection(frames.GetOutputPort())
 registration.SetContoursConnection(contours.GetOutputPort())
 registration.SetInitialTransform(transform_of(result["initial_transform"]["matrix"]))
+# The parameters the C++ run used (P1's: the paper's synthetic noise and
+# stall rule), which differ from the filter's defaults (the video ones).
 parameters = result["parameters"]
 if isinstance(parameters.get("min_scale"), (int, float)):
     registration.SetMinScale(parameters["min_scale"])
 if isinstance(parameters.get("max_scale"), (int, float)):
     registration.SetMaxScale(parameters["max_scale"])
+covariance = parameters["contour_position_covariance_px2"]
+registration.SetContourPositionCovariancePx2(covariance[0][0], covariance[0][1], covariance[1][1])
+registration.SetContourKappa(parameters["contour_kappa"])
+registration.SetStallRelativeDecrease(parameters["stall_relative_decrease"])
+registration.SetStallIterations(parameters["stall_iterations"])
+registration.SetMaxIterations(parameters["max_iterations"])
 
 # One IterationEvent per iteration; the live transform can be read in it.
 scales = []

@@ -64,6 +64,7 @@ TEST(ContourMatcher, OrientationDecidesBetweenNearbyCandidates)
   const std::vector<ContourPoint> video = { { { 0.0, 0.0 }, unit(0.1) } };
   const KdTree2D tree({ model[0].pixel, model[1].pixel });
   ContourMatchOptions options;
+  options.positionCovariancePx2 = 9.0 * Eigen::Matrix2d::Identity();
   const auto matches = matchContours(video, model, tree, options);
   ASSERT_EQ(matches[0].model, 1);
   EXPECT_NEAR(matches[0].angleRad, 0.1, 1e-12);

@@ -1,12 +1,18 @@
 """VIMLOP's VTK classes in Python: V-IMLOP video-CT registration for VTK pipelines.
 
     import vimlop
-    registration = vimlop.vtkVIMLOPRegistration()
+    result = vimlop.register_video(ct="Cranium.inv3", frames="sim/frames",
+                                   intrinsics="sim/intrinsics.yaml", tracker="sim/tracker.csv")
+    result["camera_to_ct"]          # (n, 4, 4) numpy array, one pose per registered frame
+    result["flagged_as_failure"]    # True: do not navigate with it
 
-vtkVIMLOPRegistration (the registration filter with a live GetTransform())
-and vtkVIMLOPCTReader (CT volumes through ITK and InVesalius projects) work
-with the classes of VTK's own Python package, `vtkmodules`. The layouts of
-the filter's inputs and outputs are in Documentation/Embedding.md.
+register_video() runs the main job (what `vimlop register` does, with the
+same defaults) and returns numpy arrays. vtkVIMLOPVideoRegistration is the
+same job as a VTK source; vtkVIMLOPRegistration (the registration filter
+with a live GetTransform()) and vtkVIMLOPCTReader (CT volumes through ITK
+and InVesalius projects) work with the classes of VTK's own Python package,
+`vtkmodules`. The layouts of the inputs and outputs are in
+Documentation/Embedding.md.
 """
 
 # VTK's modules that hold the base classes and argument types come first, so
@@ -16,5 +22,77 @@ from vtkmodules import vtkCommonExecutionModel, vtkCommonTransforms  # noqa: F40
 
 from .VIMLOPImaging import vtkVIMLOPCTReader  # noqa: F401
 from .VIMLOPRegistration import vtkVIMLOPRegistration  # noqa: F401
+from .VIMLOPRegistration import vtkVIMLOPVideoRegistration  # noqa: F401
 
-__all__ = ["vtkVIMLOPCTReader", "vtkVIMLOPRegistration"]
+__all__ = ["vtkVIMLOPCTReader", "vtkVIMLOPRegistration", "vtkVIMLOPVideoRegistration",
+           "register_video"]
+
+
+class RegistrationError(RuntimeError):
+    """The registration could not run (bad input, too little SfM, no start inside the airway)."""
+
+
+def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0.0,
+                   fps=30.0, time_offset_s=0.0, colmap=None, start_poses=None,
+                   manual_start=False, threads=0):
+    """Registers a video sequence to a CT: the main job, with `vimlop register`'s defaults.
+
+    frames: a folder of pictures or a video file; intrinsics: OpenCV YAML/JSON/XML;
+    ct (a CT volume whose airway is segmented) or mesh (the airway surface, CT
+    frame, normals into the air); tracker (CSV time_s,x_mm,y_mm,z_mm) or scale
+    (mm per SfM unit) for the initial scale; colmap: a COLMAP sparse model
+    folder instead of the built-in SfM; start_poses: a FramePose JSON file of
+    canonical poses (default: generated along the airway) or, with
+    manual_start, the camera-to-CT pose of one frame.
+
+    Returns a dict of numpy arrays and numbers: "frame_ids" (n,), "camera_to_ct"
+    (n, 4, 4; camera x right, y down, z forward; mm, CT frame LPS),
+    "contour_error_px" (n,), "sfm_to_ct" (4, 4, a similarity), "flagged_as_failure",
+    "mean_contour_error_px", "residual_error_mm", "candidates".
+    Raises RegistrationError with the reason when the registration cannot run.
+    """
+    import numpy
+    from vtkmodules.util.misc import calldata_type
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.util.vtkConstants import VTK_STRING
+
+    if (ct is None) == (mesh is None):
+        raise ValueError("give exactly one of ct and mesh")
+    registration = vtkVIMLOPVideoRegistration()
+    registration.SetFramesPath(str(frames))
+    registration.SetIntrinsicsFileName(str(intrinsics))
+    registration.SetMeshFileName(str(mesh) if mesh is not None else "")
+    registration.SetCTFileName(str(ct) if ct is not None else "")
+    registration.SetTrackerFileName(str(tracker) if tracker is not None else "")
+    registration.SetInitialScale(float(scale))
+    registration.SetFramesPerSecond(float(fps))
+    registration.SetTimeOffset(float(time_offset_s))
+    registration.SetColmapFolder(str(colmap) if colmap is not None else "")
+    registration.SetStartPosesFileName(str(start_poses) if start_poses is not None else "")
+    registration.SetStartFromManualPose(bool(manual_start))
+    registration.SetNumberOfThreads(int(threads))
+
+    errors = []
+
+    @calldata_type(VTK_STRING)
+    def on_error(caller, event, text):
+        errors.append(text or "registration failed")
+
+    registration.AddObserver("ErrorEvent", on_error)
+    registration.Update()
+    if errors:
+        raise RegistrationError(errors[-1].strip().split("\n")[-1])
+
+    table = registration.GetCameraPoses()
+    poses = vtk_to_numpy(table.GetColumnByName("CameraToCT")).reshape(-1, 4, 4)
+    matrix = registration.GetTransform().GetMatrix()
+    return {
+        "frame_ids": vtk_to_numpy(table.GetColumnByName("FrameId")).copy(),
+        "camera_to_ct": poses.copy(),
+        "contour_error_px": vtk_to_numpy(table.GetColumnByName("ContourErrorPx")).copy(),
+        "sfm_to_ct": numpy.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)]),
+        "flagged_as_failure": bool(registration.GetFlaggedAsFailure()),
+        "mean_contour_error_px": registration.GetContourErrorPx(),
+        "residual_error_mm": registration.GetResidualErrorMm(),
+        "candidates": registration.GetNumberOfCandidates(),
+    }
