@@ -1,7 +1,6 @@
 #include "EvaluateCommand.h"
 
 #include "CommandLine.h"
-#include "Error.h"
 #include "ModelLoading.h"
 #include "OffscreenRendering.h"
 #include "PerturbationProtocol.h"
@@ -14,9 +13,7 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 #include <memory>
-#include <stdexcept>
 
 namespace vimlop
 {
