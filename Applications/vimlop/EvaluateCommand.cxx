@@ -1,21 +1,19 @@
 #include "EvaluateCommand.h"
 
 #include "CommandLine.h"
-#include "Error.h"
 #include "ModelLoading.h"
 #include "OffscreenRendering.h"
-#include "PerturbationStudy.h"
+#include "PerturbationProtocol.h"
 #include "RegistrationReport.h"
-#include "SyntheticEvaluation.h"
-#include "VideoEvaluation.h"
+#include "SyntheticProtocol.h"
+#include "TerminalEvaluationProgress.h"
+#include "VideoProtocol.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 #include <memory>
-#include <stdexcept>
 
 namespace vimlop
 {
@@ -39,7 +37,7 @@ struct SyntheticCommandOptions
 
 void runSynthetic(const SyntheticCommandOptions& o)
 {
-  SyntheticEvaluationOptions options;
+  SyntheticProtocolOptions options;
   options.trials = o.trials;
   options.seed = o.seed;
   options.threads = o.threads;
@@ -49,24 +47,22 @@ void runSynthetic(const SyntheticCommandOptions& o)
     requireOffscreenRendering("--save-trial");
   }
   options.methods = parseList(o.methods, "--methods");
-  checkSyntheticMethods(options.methods);
+  checkSyntheticProtocolMethods(options.methods);
   std::tie(options.synthetic.misalignMinMm, options.synthetic.misalignMaxMm) =
     parseRange(o.misalignMm, "--misalign-mm");
   std::tie(options.synthetic.misalignMinDeg, options.synthetic.misalignMaxDeg) =
     parseRange(o.misalignDeg, "--misalign-deg");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
-  const nlohmann::json report = runSyntheticEvaluation(mesh, options, &std::cerr);
-  writeJsonFile(report, o.out);
-  for (const std::string& method : options.methods)
+  const SyntheticProtocolReport report =
+    runSyntheticProtocol(mesh, options, terminalEvaluationProgress());
+  writeJsonFile(report.toJson(), o.out);
+  for (const SyntheticProtocolMethodReport& m : report.methods)
   {
-    const nlohmann::json& m = report["methods"][method];
     std::printf("P1 %-12s TRE median %.3f mm (mean %.3f, p95 %.3f), success %.0f %%, camera %.3f "
                 "mm / %.3f deg, "
                 "runtime median %.3f s\n",
-      method.c_str(), m["tre_mm"]["median"].get<double>(), m["tre_mm"]["mean"].get<double>(),
-      m["tre_mm"]["p95"].get<double>(), 100.0 * m["success_rate"].get<double>(),
-      m["camera_position_mm"]["median"].get<double>(),
-      m["camera_angle_deg"]["median"].get<double>(), m["runtime_s"]["median"].get<double>());
+      m.method.c_str(), m.treMedianMm, m.treMeanMm, m.treP95Mm, 100.0 * m.successRate,
+      m.cameraPositionMedianMm, m.cameraAngleMedianDeg, m.runtimeMedianS);
   }
 }
 
@@ -94,7 +90,7 @@ struct VideoCommandOptions
 
 void runVideo(const VideoCommandOptions& o)
 {
-  VideoEvaluationOptions options;
+  VideoProtocolOptions options;
   options.simulation.frames = o.frames;
   options.simulation.seed = o.seed;
   options.sfm = o.sfm;
@@ -104,44 +100,41 @@ void runVideo(const VideoCommandOptions& o)
   {
     options.workFolder = o.out + ".work";
   }
-  options.threads = o.threads;
   std::tie(options.perturbMinMm, options.perturbMaxMm) = parseRange(o.perturbMm, "--perturb-mm");
   std::tie(options.perturbMinDeg, options.perturbMaxDeg) =
     parseRange(o.perturbDeg, "--perturb-deg");
   options.init = o.init;
   options.uprightRollDeg = o.uprightDeg;
-  options.canonical.spacingMm = o.canonicalSpacingMm;
-  options.multiStart.scaleFactors = parseNumbers(o.scaleFactors, "--scale-factors");
-  options.multiStart.screeningIterations = o.screeningIterations;
-  options.multiStart.finalists = o.finalists;
-  options.multiStart.failureContourErrorPx = o.failureThresholdPx;
-  if (o.sfm != "builtin" && o.sfm != "colmap")
-  {
-    throw Error("--sfm: expected 'builtin' or 'colmap', got '" + o.sfm + "'");
-  }
+  VideoRegistrationPipeline::Options& pipeline = options.pipeline;
+  pipeline.threads = o.threads;
+  pipeline.canonical.spacingMm = o.canonicalSpacingMm;
+  pipeline.multiStart.scaleFactors = parseNumbers(o.scaleFactors, "--scale-factors");
+  pipeline.multiStart.screeningIterations = o.screeningIterations;
+  pipeline.multiStart.finalists = o.finalists;
+  pipeline.multiStart.failureContourErrorPx = o.failureThresholdPx;
+  options.validate();
   requireOffscreenRendering("vimlop evaluate video");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
-  const nlohmann::json report = runVideoEvaluation(mesh, options, &std::cerr);
-  writeJsonFile(report, o.out);
-  const nlohmann::json& c = report["contours"];
+  const VideoProtocolReport report = runVideoProtocol(mesh, options, terminalEvaluationProgress());
+  writeJsonFile(report.toJson(), o.out);
+  const ContourScores& c = report.contours;
   std::printf(
     "P2 contours: precision %.3f, recall %.3f, median normal error %.1f deg; SfM (%s) %d points\n",
-    c["precision"].get<double>(), c["recall"].get<double>(),
-    c["normal_error_deg_median"].get<double>(), o.sfm.c_str(), report["sfm_points"].get<int>());
-  for (const char* method : { "vimlop", "imlp" })
+    c.precision, c.recall, c.normalErrorDegMedian, o.sfm.c_str(),
+    static_cast<int>(report.sfmPoints));
+  for (const VideoProtocolMethodReport& m : report.methods)
   {
-    const nlohmann::json& m = report["methods"][method];
+    const VideoCameraErrors& e = m.errors;
     std::printf("P2 %-6s camera %.3f mm (max %.3f) / %.3f deg (max %.3f), scale error %.2f %%, "
                 "runtime %.1f s\n",
-      method, m["camera_position_mm"]["mean"].get<double>(),
-      m["camera_position_mm"]["max"].get<double>(), m["camera_angle_deg"]["mean"].get<double>(),
-      m["camera_angle_deg"]["max"].get<double>(), 100.0 * m["scale_error_rel"].get<double>(),
-      m["runtime_s"].get<double>());
-    if (m.contains("failure_flag"))
+      m.method.c_str(), e.positionMeanMm, e.positionMaxMm, e.angleMeanDeg, e.angleMaxDeg,
+      100.0 * e.scaleErrorRel, e.runtimeS);
+    if (m.multiStart)
     {
-      std::printf("P2 %-6s multi-start of %d candidates: contour error %.2f px, %s\n", method,
-        report["candidates"].get<int>(), m["contour_error_px"].get<double>(),
-        m["failure_flag"].get<bool>() ? "FLAGGED as a failure" : "not flagged");
+      std::printf("P2 %-6s multi-start of %d candidates: contour error %.2f px, %s\n",
+        m.method.c_str(), static_cast<int>(report.candidates.value_or(0)),
+        m.multiStart->contourErrorPx,
+        m.multiStart->failureFlag ? "FLAGGED as a failure" : "not flagged");
     }
   }
 }
@@ -162,47 +155,44 @@ struct PerturbationCommandOptions
 
 void runPerturbation(const PerturbationCommandOptions& o)
 {
-  PerturbationStudyOptions options;
+  PerturbationProtocolOptions options;
   options.offsets = parseNumbers(o.offsets, "--offsets-mm");
   options.trialsPerOffset = o.trialsPerOffset;
   options.successMm = o.successMm;
   options.video.simulation.seed = o.seed;
   options.video.simulation.frames = o.frames;
-  options.video.threads = o.threads;
+  options.video.pipeline.threads = o.threads;
   options.validate();
   requireOffscreenRendering("vimlop evaluate perturbation");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
   std::filesystem::create_directories(o.out);
-  std::vector<PerturbationRun> runs;
-  const nlohmann::json p3 = runPerturbationStudy(mesh, options, runs, &std::cerr);
+  const PerturbationProtocolReport p3 =
+    runPerturbationProtocol(mesh, options, terminalEvaluationProgress());
   namespace fs = std::filesystem;
-  writePerturbationRuns(runs, (fs::path(o.out) / "runs.json").string());
+  writePerturbationRuns(p3.runs, (fs::path(o.out) / "runs.json").string());
   if (!o.noReport)
   {
     RegistrationReport::write(
-      nullptr, "", runs, (fs::path(o.out) / "report").string(), RegistrationReport::Options());
+      nullptr, "", p3.runs, (fs::path(o.out) / "report").string(), RegistrationReport::Options());
   }
-  writeJsonFile(p3, (fs::path(o.out) / "p3.json").string());
-  for (const nlohmann::json& offset : p3["offsets"])
+  writeJsonFile(p3.toJson(), (fs::path(o.out) / "p3.json").string());
+  for (const PerturbationOffsetReport& offset : p3.offsets)
   {
     std::printf("P3 offset %4.1f mm / %4.1f deg: success %3.0f %%, camera error median %.3f mm, "
                 "contour error median %.2f px\n",
-      offset["offset_mm"].get<double>(), offset["offset_deg"].get<double>(),
-      100.0 * offset["success_rate"].get<double>(),
-      offset["camera_position_mm_median"].get<double>(),
-      offset["contour_error_px_median"].get<double>());
+      offset.offsetMm, offset.offsetDeg, 100.0 * offset.successRate, offset.cameraPositionMedianMm,
+      offset.contourErrorMedianPx);
   }
-  if (p3["auc"].is_null())
+  if (!p3.auc)
   {
     std::printf("P3 %s; no ROC area (it needs both successes and failures)\n",
-      p3["failures"].get<int>() == 0 ? "every run succeeded" : "every run failed");
+      p3.failures == 0 ? "every run succeeded" : "every run failed");
   }
   else
   {
     std::printf("P3 contour error separates failures from successes: ROC AUC %.3f, best "
                 "threshold %.2f px (%d failures of %d runs)\n",
-      p3["auc"].get<double>(), p3["failure_threshold_px"].get<double>(), p3["failures"].get<int>(),
-      p3["runs_total"].get<int>());
+      *p3.auc, p3.failureThresholdPx.value_or(0.0), static_cast<int>(p3.failures), p3.runsTotal);
   }
 }
 
@@ -235,7 +225,7 @@ CLI::App* addEvaluateCommand(CLI::App& app)
       "--misalign-deg", synthetic->misalignDeg, "range of the initial rotation error, degrees")
     ->capture_default_str();
   p1->add_option("--methods", synthetic->methods,
-      std::string("comma-separated methods: ") + syntheticMethodNames())
+      std::string("comma-separated methods: ") + syntheticProtocolMethodNames())
     ->capture_default_str();
   p1->add_option("--threads", synthetic->threads, "threads per registration, 0 for all cores")
     ->capture_default_str();

@@ -1,16 +1,16 @@
 #include "SimulateCommand.h"
 
 #include "EmbreeRegistrationModel.h"
+#include "EndoscopeSimulation.h"
 #include "Error.h"
 #include "ModelLoading.h"
 #include "OffscreenRendering.h"
-#include "VideoSimulation.h"
+#include "TerminalEvaluationProgress.h"
 
 #include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <cstdio>
-#include <iostream>
 #include <memory>
 
 namespace vimlop
@@ -24,7 +24,7 @@ struct SimulateOptions
   std::string mesh;
   std::string ct;
   std::string out;
-  VideoSimulationOptions simulation;
+  EndoscopeSimulationOptions simulation;
   int width = 320;
   int height = 240;
   double focal = 200.0;
@@ -43,7 +43,8 @@ void runSimulate(SimulateOptions o)
   requireOffscreenRendering("vimlop simulate");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
   const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
-  const SimulatedVideo video = simulateVideo(model, o.simulation, &std::cerr);
+  const SimulatedVideo video =
+    simulateEndoscopeVideo(model, o.simulation, terminalEvaluationProgress());
   writeSimulatedVideo(video, o.out);
   double length = 0.0;
   double clearance = 1e300;

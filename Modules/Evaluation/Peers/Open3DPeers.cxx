@@ -50,7 +50,8 @@ Open3DPeers::Open3DPeers(const TriangleMesh& mesh, double maxCorrespondenceMm)
   for (int i = 0; i < samples; ++i)
   {
     const int f = std::min(mesh.numberOfFaces() - 1,
-      static_cast<int>(std::lower_bound(cumulative.begin(), cumulative.end(), u(rng) * area) - cumulative.begin()));
+      static_cast<int>(std::lower_bound(cumulative.begin(), cumulative.end(), u(rng) * area) -
+        cumulative.begin()));
     double a = u(rng);
     double b = u(rng);
     if (a + b > 1.0)
@@ -58,8 +59,8 @@ Open3DPeers::Open3DPeers(const TriangleMesh& mesh, double maxCorrespondenceMm)
       a = 1.0 - a;
       b = 1.0 - b;
     }
-    this->Impl->Target.points_.push_back(mesh.corner(f, 0) + a * (mesh.corner(f, 1) - mesh.corner(f, 0)) +
-      b * (mesh.corner(f, 2) - mesh.corner(f, 0)));
+    this->Impl->Target.points_.push_back(mesh.corner(f, 0) +
+      a * (mesh.corner(f, 1) - mesh.corner(f, 0)) + b * (mesh.corner(f, 2) - mesh.corner(f, 0)));
   }
   this->Impl->Target.EstimateCovariances(open3d::geometry::KDTreeSearchParamKNN(20));
 }
@@ -121,12 +122,14 @@ Open3DPeers::Open3DPeers(const TriangleMesh&, double)
 
 Open3DPeers::~Open3DPeers() = default;
 
-SimilarityTransform Open3DPeers::icpWithScale(const std::vector<Eigen::Vector3d>&, const SimilarityTransform&) const
+SimilarityTransform Open3DPeers::icpWithScale(
+  const std::vector<Eigen::Vector3d>&, const SimilarityTransform&) const
 {
   throw Error("this build of VIMLOP has no Open3D");
 }
 
-SimilarityTransform Open3DPeers::generalizedIcp(const std::vector<Eigen::Vector3d>&, const SimilarityTransform&) const
+SimilarityTransform Open3DPeers::generalizedIcp(
+  const std::vector<Eigen::Vector3d>&, const SimilarityTransform&) const
 {
   throw Error("this build of VIMLOP has no Open3D");
 }

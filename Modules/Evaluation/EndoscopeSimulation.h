@@ -1,9 +1,10 @@
-#ifndef vimlop_VideoSimulation_h
-#define vimlop_VideoSimulation_h
+#ifndef vimlop_EndoscopeSimulation_h
+#define vimlop_EndoscopeSimulation_h
 
 #include "CameraPose.h"
 #include "DepthMap.h"
 #include "EndoscopeTrajectory.h"
+#include "EvaluationProgress.h"
 #include "PinholeCamera.h"
 #include "RegistrationModel.h"
 #include "TrackerTrajectory.h"
@@ -11,7 +12,6 @@
 #include <opencv2/core/mat.hpp>
 
 #include <cstdint>
-#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -19,9 +19,11 @@ namespace vimlop
 {
 
 /// @brief Settings of a simulated endoscope sequence (the virtual endoscope of P2).
-struct VideoSimulationOptions
+struct EndoscopeSimulationOptions
 {
+  /// Number of frames (default 30).
   int frames = 30;
+  /// Seed of the path, the texture, the picture noise and the tracker noise (default 1).
   std::uint64_t seed = 1;
   /// The endoscope camera (default 320 x 240 pixels, fx = fy = 200: 77° x 62°).
   PinholeCamera intrinsics = defaultIntrinsics();
@@ -36,9 +38,11 @@ struct VideoSimulationOptions
   double trackerNoiseMm = 0.2;
   double trackerMarginS = 0.3;
   /// Picture blur and noise (see vtkVIMLOPVirtualEndoscope).
+  /// Defaults 0.5 px and 1.5 grey levels.
   double blurSigmaPx = 0.5;
   double noiseSigma = 1.5;
 
+  /// @brief 320 x 240 pixels, fx = fy = 200, principal point at the centre.
   static PinholeCamera defaultIntrinsics();
 };
 
@@ -58,11 +62,12 @@ struct SimulatedVideo
  * @brief Simulates an endoscope sequence in the airway of `model`: a path
  * (makeEndoscopeTrajectory), the frames and depth maps of the virtual
  * endoscope (vtkVIMLOPVirtualEndoscope with a MucosaTexture seeded from
- * `seed`), and a noisy tracker recording of the tip. Needs an X display.
- * @throws vimlop::Error if no path fits in the airway.
+ * `seed`), and a noisy tracker recording of the tip. Counts the frames to
+ * `progress` as "simulate: frame". Needs an X display.
+ * @throws vimlop::Error if no path fits in the airway, or on cancellation.
  */
-SimulatedVideo simulateVideo(
-  const RegistrationModel& model, const VideoSimulationOptions& options, std::ostream* progress);
+SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
+  const EndoscopeSimulationOptions& options, const EvaluationProgress& progress);
 
 /**
  * @brief Writes a simulated sequence to `folder`: `frames/frame000.png`, ...;

@@ -1,9 +1,8 @@
-#include "VideoSimulation.h"
+#include "EndoscopeSimulation.h"
 
 #include "Error.h"
 #include "IntrinsicsIO.h"
 #include "MucosaTexture.h"
-#include "TerminalProgress.h"
 #include "vtkVIMLOPVirtualEndoscope.h"
 
 #include <vtkNew.h>
@@ -16,13 +15,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <ostream>
 #include <random>
 
 namespace vimlop
 {
 
-PinholeCamera VideoSimulationOptions::defaultIntrinsics()
+PinholeCamera EndoscopeSimulationOptions::defaultIntrinsics()
 {
   PinholeCamera k;
   k.fx = k.fy = 200.0;
@@ -33,8 +31,8 @@ PinholeCamera VideoSimulationOptions::defaultIntrinsics()
   return k;
 }
 
-SimulatedVideo simulateVideo(
-  const RegistrationModel& model, const VideoSimulationOptions& o, std::ostream* progress)
+SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
+  const EndoscopeSimulationOptions& o, const EvaluationProgress& progress)
 {
   if (o.frames < 2)
   {
@@ -73,7 +71,7 @@ SimulatedVideo simulateVideo(
     video.frames.push_back(bgr);
     video.depth.push_back(image.depth);
     video.frameTimesS.push_back(f / o.framesPerSecond);
-    printCount(progress, "simulate: frame", f + 1, o.frames);
+    reportEvaluationCount(progress, "simulate: frame", f + 1, o.frames);
   }
 
   // The tracker follows the tip (linear between frames, extrapolated at

@@ -1,9 +1,10 @@
-#include "PerturbationStudy.h"
+#include "PerturbationProtocol.h"
 
 #include "EmbreeRegistrationModel.h"
 #include "Error.h"
 #include "MultiStartRegistration.h"
 #include "Registration.h"
+#include "SimulatedVideoCase.h"
 #include "Statistics.h"
 #include "TaskPool.h"
 
@@ -11,13 +12,14 @@
 #include <limits>
 #include <mutex>
 #include <numeric>
-#include <ostream>
+#include <sstream>
 
 namespace vimlop
 {
 
-void PerturbationStudyOptions::validate() const
+void PerturbationProtocolOptions::validate() const
 {
+  this->video.validate();
   if (this->offsets.empty() || this->trialsPerOffset < 1)
   {
     throw Error("P3: need at least one offset and one trial per offset");
@@ -36,14 +38,33 @@ void PerturbationStudyOptions::validate() const
   }
 }
 
-nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const PerturbationStudyOptions& o,
-  std::vector<PerturbationRun>& runs, std::ostream* progress)
+nlohmann::json PerturbationProtocolReport::toJson() const
+{
+  nlohmann::json offsetsJson = nlohmann::json::array();
+  for (const PerturbationOffsetReport& o : this->offsets)
+  {
+    offsetsJson.push_back({ { "offset_mm", o.offsetMm }, { "offset_deg", o.offsetDeg },
+      { "trials", o.trials }, { "success_rate", o.successRate },
+      { "camera_position_mm_median", o.cameraPositionMedianMm },
+      { "contour_error_px_median", o.contourErrorMedianPx } });
+  }
+  auto numberOrNull = [](const std::optional<double>& x)
+  { return x ? nlohmann::json(*x) : nlohmann::json(); };
+  return { { "protocol", "P3" }, { "seed", this->seed }, { "success_mm", this->successMm },
+    { "sfm_points", this->sfmPoints }, { "offsets", offsetsJson },
+    { "runs_total", this->runsTotal }, { "failures", this->failures },
+    { "auc", numberOrNull(this->auc) },
+    { "failure_threshold_px", numberOrNull(this->failureThresholdPx) } };
+}
+
+PerturbationProtocolReport runPerturbationProtocol(const TriangleMesh& mesh,
+  const PerturbationProtocolOptions& o, const EvaluationProgress& progress)
 {
   o.validate();
   const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
-  const VideoCase c = prepareVideoCase(model, o.video, progress);
-  RegistrationOptions options =
-    videoRegistrationOptions(c.initialScale, o.video, RegistrationMethod::VIMLOP);
+  const SimulatedVideoCase c = prepareSimulatedVideoCase(model, o.video, progress);
+  RegistrationOptions options = o.video.pipeline.registrationOptions(c.initialScale);
+  options.method = RegistrationMethod::VIMLOP;
   options.threads = 1;
 
   // Every start is drawn first, from its own stream, so that the runs do not
@@ -57,6 +78,8 @@ nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const Perturbation
     std::mt19937_64 rng(o.video.simulation.seed * 1000003ull + static_cast<std::uint64_t>(i));
     starts[i] = perturbedStart(c, model, rng, offset, offset, offset, offset);
   }
+  PerturbationProtocolReport report;
+  std::vector<PerturbationRun>& runs = report.runs;
   runs.assign(total, PerturbationRun());
   // The flag's score: the contour error, or infinity for a pose that matches
   // too few video contour points (its mean error over no matches says nothing).
@@ -64,7 +87,7 @@ nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const Perturbation
   std::vector<double> scores(total);
   std::mutex progressMutex;
   int done = 0;
-  TaskPool(o.video.threads)
+  TaskPool(o.video.pipeline.threads)
     .run(total,
       [&](int i)
       {
@@ -82,13 +105,14 @@ nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const Perturbation
         if (progress)
         {
           std::lock_guard<std::mutex> lock(progressMutex);
-          *progress << "P3: run " << ++done << "/" << total << ": offset " << run.offsetMm
-                    << " mm/deg, camera error " << run.finalErrorMm << " mm, contour error "
-                    << run.contourErrorPx << " px\n";
+          std::ostringstream note;
+          note << "P3: run " << ++done << "/" << total << ": offset " << run.offsetMm
+               << " mm/deg, camera error " << run.finalErrorMm << " mm, contour error "
+               << run.contourErrorPx << " px";
+          reportEvaluationNote(progress, note.str()); // TaskPool rethrows a cancellation
         }
       });
 
-  nlohmann::json offsets = nlohmann::json::array();
   std::vector<double> failed;
   std::vector<double> succeeded;
   for (size_t k = 0; k < o.offsets.size(); ++k)
@@ -104,20 +128,31 @@ nlohmann::json runPerturbationStudy(const TriangleMesh& mesh, const Perturbation
       successes += run.success;
       (run.success ? succeeded : failed).push_back(scores[k * perOffset + t]);
     }
-    offsets.push_back({ { "offset_mm", o.offsets[k] }, { "offset_deg", o.offsets[k] },
-      { "trials", perOffset }, { "success_rate", static_cast<double>(successes) / perOffset },
-      { "camera_position_mm_median", summarize(position).median },
-      { "contour_error_px_median", summarize(contour).median } });
+    PerturbationOffsetReport offset;
+    offset.offsetMm = offset.offsetDeg = o.offsets[k];
+    offset.trials = perOffset;
+    offset.successRate = static_cast<double>(successes) / perOffset;
+    offset.cameraPositionMedianMm = summarize(position).median;
+    offset.contourErrorMedianPx = summarize(contour).median;
+    report.offsets.push_back(offset);
   }
   // Failures are the positives: a high contour error should flag them.
   const double auc = rocAuc(failed, succeeded);
   const double threshold = bestSeparatingThreshold(failed, succeeded);
-  auto numberOrNull = [](double x)
-  { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
-  return { { "protocol", "P3" }, { "seed", o.video.simulation.seed }, { "success_mm", o.successMm },
-    { "sfm_points", c.sfm.points.size() }, { "offsets", offsets }, { "runs_total", total },
-    { "failures", failed.size() }, { "auc", numberOrNull(auc) },
-    { "failure_threshold_px", numberOrNull(threshold) } };
+  report.seed = o.video.simulation.seed;
+  report.successMm = o.successMm;
+  report.sfmPoints = c.sfm.points.size();
+  report.runsTotal = total;
+  report.failures = failed.size();
+  if (std::isfinite(auc))
+  {
+    report.auc = auc;
+  }
+  if (std::isfinite(threshold))
+  {
+    report.failureThresholdPx = threshold;
+  }
+  return report;
 }
 
 } // namespace vimlop

@@ -3,8 +3,6 @@
 
 #include "CTVolume.h"
 
-#include "VIMLOPImagingModule.h"
-
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -54,18 +52,17 @@ public:
    * @throws vimlop::Error for a non-3-D grid or options out of range
    * (negative displacement, control spacing under two voxels).
    */
-  VIMLOPIMAGING_EXPORT SyntheticDeformation(const CTVolume& grid, const Options& options);
+  SyntheticDeformation(const CTVolume& grid, const Options& options);
 
   /// @brief b(y): the displacement (mm) that takes patient point y to its template point.
-  VIMLOPIMAGING_EXPORT std::array<double, 3> patientToTemplateDisplacement(
+  std::array<double, 3> patientToTemplateDisplacement(
     const std::array<double, 3>& patientPointMm) const;
 
   /**
    * @brief The patient point y with y + b(y) = `templatePointMm` (to 1e-6 mm).
    * @throws vimlop::Error if the iteration does not converge (a field too strong to invert).
    */
-  VIMLOPIMAGING_EXPORT std::array<double, 3> templateToPatient(
-    const std::array<double, 3>& templatePointMm) const;
+  std::array<double, 3> templateToPatient(const std::array<double, 3>& templatePointMm) const;
 
   /**
    * @brief The patient CT: `templateCT` (on the grid given at construction)
@@ -73,8 +70,7 @@ public:
    * plus zero-mean Gaussian noise of `noiseHU` standard deviation drawn with
    * `noiseSeed`.
    */
-  VIMLOPIMAGING_EXPORT CTVolume makePatient(
-    const CTVolume& templateCT, double noiseHU, std::uint32_t noiseSeed) const;
+  CTVolume makePatient(const CTVolume& templateCT, double noiseHU, std::uint32_t noiseSeed) const;
 
   /// @brief The largest |b| over the region's voxels (mm): `maxDisplacementMm`.
   double largestDisplacementMm() const { return this->Largest; }

@@ -3,8 +3,6 @@
 
 #include "CTVolume.h"
 
-#include "VIMLOPImagingModule.h"
-
 #include <array>
 #include <string>
 #include <vector>
@@ -47,16 +45,15 @@ struct ElastixRegistration
   double transformSeconds = 0.0;
 
   /// @brief True when both programs can be run (`--version` succeeds).
-  VIMLOPIMAGING_EXPORT static bool available(const Options& options);
+  static bool available(const Options& options);
 
   /**
    * @brief Registers `fixed` to `moving` and carries `fixedPoints` (fixed CT frame, mm) over.
    * @throws vimlop::Error when a program is missing or fails (naming its log
    * file), a parameter file is missing, or the output cannot be read.
    */
-  VIMLOPIMAGING_EXPORT static ElastixRegistration compute(const CTVolume& fixed,
-    const CTVolume& moving, const std::vector<std::array<double, 3>>& fixedPoints,
-    const Options& options);
+  static ElastixRegistration compute(const CTVolume& fixed, const CTVolume& moving,
+    const std::vector<std::array<double, 3>>& fixedPoints, const Options& options);
 };
 
 } // namespace vimlop

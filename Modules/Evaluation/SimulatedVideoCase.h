@@ -1,0 +1,60 @@
+#ifndef vimlop_SimulatedVideoCase_h
+#define vimlop_SimulatedVideoCase_h
+
+#include "ContourScoring.h"
+#include "EndoscopeSimulation.h"
+#include "EvaluationProgress.h"
+#include "RegistrationData.h"
+#include "SfmReconstruction.h"
+#include "VideoProtocol.h"
+
+#include <random>
+#include <vector>
+
+namespace vimlop
+{
+
+/// @brief A simulated sequence turned into registration data, with its truth (P2, P3).
+struct SimulatedVideoCase
+{
+  SimulatedVideo video;
+  ContourScores contourScores;
+  SfmReconstruction sfm;
+  SimilarityTransform truth; ///< true SfM-to-CT similarity
+  double initialScale = 1.0; ///< from the simulated tracker (V14)
+  RegistrationData data;     ///< registered frames with contours, points with covariances
+  std::vector<int> frameOf;  ///< data frame -> simulated frame
+  Eigen::Vector3d centroidCT = Eigen::Vector3d::Zero(); ///< of the points, through the truth
+  VideoCameraErrors floor; ///< camera errors of SfM through the true similarity
+};
+
+/**
+ * @brief Simulates the sequence of `o` in `model`, detects and scores its
+ * contours, runs SfM and the tracker scale, and builds the registration
+ * data. Notes go to `progress` as "P2: ...". `o` is valid (VideoProtocolOptions::validate).
+ * @throws vimlop::Error when a stage fails (no path,
+ * too little SfM), or on cancellation.
+ */
+SimulatedVideoCase prepareSimulatedVideoCase(const RegistrationModel& model,
+  const VideoProtocolOptions& o, const EvaluationProgress& progress);
+
+/// @brief Mean/max camera position (mm) and angle (deg) errors and the scale error of `sfmToCT`.
+VideoCameraErrors cameraErrors(
+  const SimulatedVideoCase& c, const SimilarityTransform& sfmToCT, double seconds);
+
+/// @brief Per registered frame, the camera position error (mm) of `sfmToCT`.
+std::vector<double> cameraPositionErrorsMm(
+  const SimulatedVideoCase& c, const SimilarityTransform& sfmToCT);
+
+/**
+ * @brief The truth at the tracker's scale, turned about the points' centroid
+ * by an angle in [minDeg, maxDeg] and shifted by [minMm, maxMm], both in
+ * random directions; drawn again until every camera is inside the airway.
+ * @throws vimlop::Error when 500 draws leave a camera outside.
+ */
+SimilarityTransform perturbedStart(const SimulatedVideoCase& c, const RegistrationModel& model,
+  std::mt19937_64& rng, double minMm, double maxMm, double minDeg, double maxDeg);
+
+} // namespace vimlop
+
+#endif

@@ -1,0 +1,117 @@
+#ifndef vimlop_TemplateWarpProtocol_h
+#define vimlop_TemplateWarpProtocol_h
+
+#include "CTVolume.h"
+#include "EvaluationProgress.h"
+#include "TemplateRegistration.h"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vimlop
+{
+
+/// @brief Settings of P4, the template warp (DESIGN section 6).
+struct TemplateWarpProtocolOptions
+{
+  /// Largest displacement of the known deformation over the airway, mm (default 5).
+  double maxDisplacementMm = 5.0;
+  /// Control point spacing of the known deformation, mm (default 30).
+  double controlSpacingMm = 30.0;
+  /// Standard deviation of the noise added to the patient, HU (default 20).
+  double noiseHU = 20.0;
+  /// Seed of the deformation; the noise uses seed + 1000 (default 1).
+  unsigned seed = 1;
+  /// VIMLOP's registration (default: TemplateRegistration's defaults, which
+  /// suit head CTs); its region is set to the bounds of the airway mesh.
+  TemplateRegistration::Options registration;
+  /// Run elastix on the same pair when it is installed (default true).
+  bool runElastix = true;
+  /// Folder with the elastix parameter files affine.txt and bspline.txt
+  /// (default: the ones VIMLOP ships, see defaultElastixParametersFolder()).
+  std::string elastixParametersFolder;
+  /// Folder for elastix's images, logs and results; required when elastix runs.
+  std::string elastixWorkFolder;
+
+  /// @throws vimlop::Error naming the first invalid setting.
+  void validate() const;
+};
+
+/// @brief Per-vertex errors of a warped airway mesh against the known deformation, mm.
+struct VertexErrorSummary
+{
+  double meanMm = 0.0;
+  /// 95th percentile (nearest rank).
+  double p95Mm = 0.0;
+  double maxMm = 0.0;
+};
+
+/// @brief The result of P4.
+struct TemplateWarpProtocolReport
+{
+  unsigned seed = 0;
+  double maxDisplacementMm = 0.0;
+  double controlSpacingMm = 0.0;
+  double noiseHU = 0.0;
+  /// Vertices of the template's airway mesh, and the airway's volume (cm³).
+  std::size_t vertices = 0;
+  double airwayVolumeCm3 = 0.0;
+  /// VIMLOP's registration (TemplateRegistration): the warped mesh's errors.
+  VertexErrorSummary errors;
+  /// Where the largest error is (template frame, mm): typically on the cap
+  /// that closes the airway where it leaves the CT's field of view, which no
+  /// image content guides.
+  std::array<double, 3> maxAtMm{ 0.0, 0.0, 0.0 };
+  /// Wall-clock time of the registration and the warp of the mesh, s.
+  double runtimeS = 0.0;
+  /// The errors with no registration, and with its affine part alone.
+  VertexErrorSummary beforeRegistration;
+  VertexErrorSummary affineOnly;
+  /// The registration's own account.
+  double affineS = 0.0;
+  double synS = 0.0;
+  double overlapFraction = 0.0;
+  double initialCorrelation = 0.0;
+  double affineCorrelation = 0.0;
+  double finalCorrelation = 0.0;
+  std::array<double, 6> templateCropMm{ 0, 0, 0, 0, 0, 0 };
+  /// The registration's warnings (e.g. a low correlation).
+  std::vector<std::string> warnings;
+
+  /// @brief elastix's figures on the same pair, when it ran.
+  struct Elastix
+  {
+    VertexErrorSummary errors;
+    /// Registration plus transformation, s, and that over VIMLOP's runtime.
+    double runtimeS = 0.0;
+    double runtimeRatio = 0.0;
+    std::vector<std::string> parameterFiles;
+  };
+  std::optional<Elastix> elastix;
+  /// "ran", "not installed" or "not run (--no-elastix)".
+  std::string elastixStatus;
+
+  /// @brief The report as written by `vimlop evaluate warp` (less the CT's name).
+  nlohmann::json toJson() const;
+};
+
+/**
+ * @brief Runs P4 on `templateCT`: segments its airway and meshes it, makes a
+ * patient by a known smooth deformation plus noise (SyntheticDeformation),
+ * registers the template to the patient (TemplateRegistration) and measures
+ * the warped mesh's per-vertex errors against the known deformation; then
+ * elastix on the same pair, when asked for and installed. Progress goes to
+ * `progress` in thousandths, named after the running step.
+ * @throws vimlop::Error for invalid options, a CT without an airway, a
+ * failed registration, or cancellation.
+ */
+TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& templateCT,
+  const TemplateWarpProtocolOptions& options, const EvaluationProgress& progress);
+
+} // namespace vimlop
+
+#endif
