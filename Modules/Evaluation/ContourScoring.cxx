@@ -1,7 +1,7 @@
 #include "ContourScoring.h"
 
 #include "ContourEvaluation.h"
-#include "OccludingContours.h"
+#include "VisibleModelContours.h"
 
 namespace vimlop
 {
@@ -19,24 +19,12 @@ ScoredContours detectAndScoreContours(const RegistrationModel& model, const Simu
   for (size_t f = 0; f < video.frames.size(); ++f)
   {
     const std::vector<ContourPoint> dense = detector.detect(video.frames[f]);
-    const std::vector<ModelContourPoint> samples =
-      extractOccludingContours(model.mesh(), k, video.camerasCT[f]);
-    std::vector<Eigen::Vector3d> points;
-    for (const ModelContourPoint& s : samples)
-    {
-      points.push_back(s.point);
-    }
-    std::vector<char> visible;
-    model.visibility().classify(k, video.camerasCT[f], points, visible);
     std::vector<ModelContourPoint> truth;
     std::vector<double> depths;
-    for (size_t i = 0; i < samples.size(); ++i)
+    for (const ModelContourPoint& s : visibleModelContours(model, k, video.camerasCT[f]))
     {
-      if (visible[i])
-      {
-        truth.push_back(samples[i]);
-        depths.push_back(video.camerasCT[f].worldToCamera(samples[i].point).z());
-      }
+      truth.push_back(s);
+      depths.push_back(video.camerasCT[f].worldToCamera(s.point).z());
     }
     evaluation.addFrame(dense, truth, depths, video.depth[f]);
     result.contoursPerFrame.push_back(

@@ -1,5 +1,6 @@
 #include "SimulatedVideoCase.h"
 
+#include "AnatomicalConstraint.h"
 #include "ColmapImport.h"
 #include "ColmapRunner.h"
 #include "Error.h"
@@ -178,12 +179,7 @@ SimilarityTransform perturbedStart(const SimulatedVideoCase& c, const Registrati
     initial.scale = s0;
     initial.rotation = rotation * scaled.rotation;
     initial.translation = rotation * (scaled.translation - c.centroidCT) + c.centroidCT + shift;
-    bool inside = true;
-    for (const VideoFrame& frame : c.data.frames)
-    {
-      inside = inside && model.isInside(initial.apply(frame.cameraToSfm.centre));
-    }
-    if (inside)
+    if (camerasInside(model, c.data.frames, initial))
     {
       return initial;
     }
