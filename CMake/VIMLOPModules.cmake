@@ -19,10 +19,7 @@ function(vimlop_module_include_directories target module)
   vimlop_link_module_headers(${module})
   target_include_directories(${target} PUBLIC
     $<BUILD_INTERFACE:${VIMLOP_BUILD_INCLUDE_DIR}>
-    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
-    # TRANSITIONAL until every include names its module
-    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}>
-    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/vimlop/${module}>)
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
 endfunction()
 
 # Installs a plain module target into the VIMLOPTargets export set and its

@@ -1,7 +1,7 @@
 #include "CommandLine.h"
 
-#include "AtomicFile.h"
-#include "Error.h"
+#include <vimlop/Core/AtomicFile.h>
+#include <vimlop/Core/Error.h>
 
 #include <cmath>
 #include <sstream>

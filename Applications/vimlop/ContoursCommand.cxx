@@ -1,9 +1,9 @@
 #include "ContoursCommand.h"
 
 #include "CommandLine.h"
-#include "Error.h"
-#include "FrameSequence.h"
-#include "OccludingContourDetector.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/FrameSequence.h>
+#include <vimlop/Video/OccludingContourDetector.h>
 
 #include <CLI/CLI.hpp>
 

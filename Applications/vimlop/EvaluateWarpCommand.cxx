@@ -1,9 +1,9 @@
 #include "EvaluateWarpCommand.h"
 
-#include "CTVolumeIO.h"
-#include "ElastixParameterFiles.h"
-#include "Error.h"
-#include "TemplateWarpProtocol.h"
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/TemplateWarpProtocol.h>
 #include "TerminalProgress.h"
 
 #include <CLI/CLI.hpp>

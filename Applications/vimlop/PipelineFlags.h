@@ -1,7 +1,7 @@
 #ifndef vimlop_PipelineFlags_h
 #define vimlop_PipelineFlags_h
 
-#include "VideoRegistrationPipeline.h"
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
 namespace CLI
 {

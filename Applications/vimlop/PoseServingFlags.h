@@ -1,7 +1,7 @@
 #ifndef vimlop_PoseServingFlags_h
 #define vimlop_PoseServingFlags_h
 
-#include "PoseServing.h"
+#include <vimlop/Server/PoseServing.h>
 
 namespace CLI
 {

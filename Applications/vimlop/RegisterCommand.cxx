@@ -1,18 +1,18 @@
 #include "RegisterCommand.h"
 
 #include "CommandLine.h"
-#include "Error.h"
-#include "FramePoseIO.h"
-#include "IntrinsicsIO.h"
-#include "OffscreenRendering.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/FramePoseIO.h>
+#include <vimlop/Video/IntrinsicsIO.h>
+#include <vimlop/Rendering/OffscreenRendering.h>
 #include "PipelineFlags.h"
-#include "PoseServing.h"
+#include <vimlop/Server/PoseServing.h>
 #include "PoseServingFlags.h"
-#include "RegistrationOutputs.h"
-#include "RegistrationRecordIO.h"
-#include "TrackerScale.h"
-#include "VideoInput.h"
-#include "VideoRegistrationPipeline.h"
+#include <vimlop/Pipeline/RegistrationOutputs.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
+#include <vimlop/Video/TrackerScale.h>
+#include <vimlop/Video/VideoInput.h>
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
 #include <CLI/CLI.hpp>
 

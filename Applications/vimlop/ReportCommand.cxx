@@ -1,11 +1,11 @@
 #include "ReportCommand.h"
 
 #include "CommandLine.h"
-#include "Error.h"
-#include "OffscreenRendering.h"
-#include "PerturbationRuns.h"
-#include "RegistrationRecordIO.h"
-#include "RegistrationReport.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Rendering/OffscreenRendering.h>
+#include <vimlop/Results/PerturbationRuns.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
+#include <vimlop/Report/RegistrationReport.h>
 
 #include <CLI/CLI.hpp>
 

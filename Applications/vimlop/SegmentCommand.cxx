@@ -1,10 +1,10 @@
 #include "SegmentCommand.h"
 
-#include "AirwaySegmentation.h"
-#include "AirwaySurface.h"
-#include "CTVolumeIO.h"
-#include "Error.h"
-#include "MeshIO.h"
+#include <vimlop/Imaging/AirwaySegmentation.h>
+#include <vimlop/Imaging/AirwaySurface.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/MeshIO.h>
 #include "TerminalProgress.h"
 
 #include <CLI/CLI.hpp>

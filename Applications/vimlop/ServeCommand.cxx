@@ -1,9 +1,9 @@
 #include "ServeCommand.h"
 
-#include "Error.h"
-#include "FramePoseIO.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/FramePoseIO.h>
 #include "PoseServingFlags.h"
-#include "RegistrationRecordIO.h"
+#include <vimlop/Results/RegistrationRecordIO.h>
 
 #include <CLI/CLI.hpp>
 

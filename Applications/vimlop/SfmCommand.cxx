@@ -1,9 +1,9 @@
 #include "SfmCommand.h"
 
-#include "Error.h"
-#include "IntrinsicsIO.h"
-#include "SfmReconstructionIO.h"
-#include "VideoInput.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/IntrinsicsIO.h>
+#include <vimlop/Video/SfmReconstructionIO.h>
+#include <vimlop/Video/VideoInput.h>
 
 #include <CLI/CLI.hpp>
 

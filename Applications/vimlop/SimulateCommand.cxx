@@ -1,10 +1,10 @@
 #include "SimulateCommand.h"
 
-#include "EmbreeRegistrationModel.h"
-#include "EndoscopeSimulation.h"
-#include "Error.h"
-#include "ModelLoading.h"
-#include "OffscreenRendering.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Evaluation/EndoscopeSimulation.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/ModelLoading.h>
+#include <vimlop/Rendering/OffscreenRendering.h>
 #include "TerminalEvaluationProgress.h"
 
 #include <CLI/CLI.hpp>

@@ -1,7 +1,7 @@
 #ifndef vimlop_TerminalEvaluationProgress_h
 #define vimlop_TerminalEvaluationProgress_h
 
-#include "EvaluationProgress.h"
+#include <vimlop/Evaluation/EvaluationProgress.h>
 
 namespace vimlop
 {

@@ -1,7 +1,7 @@
 #ifndef vimlop_TerminalProgress_h
 #define vimlop_TerminalProgress_h
 
-#include "ProgressCallback.h"
+#include <vimlop/Imaging/ProgressCallback.h>
 
 #include <iosfwd>
 #include <string>

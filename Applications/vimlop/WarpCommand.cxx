@@ -1,14 +1,14 @@
 #include "WarpCommand.h"
 
-#include "AirwaySegmentation.h"
-#include "AirwaySurface.h"
-#include "CTVolumeIO.h"
-#include "DisplacementFieldIO.h"
-#include "Error.h"
-#include "FramePoseIO.h"
-#include "MeshIO.h"
-#include "TemplateRegistration.h"
-#include "TemplateWarp.h"
+#include <vimlop/Imaging/AirwaySegmentation.h>
+#include <vimlop/Imaging/AirwaySurface.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Imaging/DisplacementFieldIO.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/FramePoseIO.h>
+#include <vimlop/Imaging/MeshIO.h>
+#include <vimlop/Imaging/TemplateRegistration.h>
+#include <vimlop/Imaging/TemplateWarp.h>
 #include "TerminalProgress.h"
 
 #include <CLI/CLI.hpp>

@@ -5,7 +5,7 @@
 #include "CanonicalCommand.h"
 #include "CommandLine.h"
 #include "ContoursCommand.h"
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 #include "EvaluateCommand.h"
 #include "EvaluateWarpCommand.h"
 #include "InfoCommand.h"

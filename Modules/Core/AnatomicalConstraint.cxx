@@ -1,4 +1,4 @@
-#include "AnatomicalConstraint.h"
+#include <vimlop/Core/AnatomicalConstraint.h>
 
 namespace vimlop
 {

@@ -1,9 +1,9 @@
 #ifndef vimlop_AnatomicalConstraint_h
 #define vimlop_AnatomicalConstraint_h
 
-#include "RegistrationModel.h"
-#include "SimilarityTransform.h"
-#include "VideoFrame.h"
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Core/SimilarityTransform.h>
+#include <vimlop/Core/VideoFrame.h>
 
 #include <vector>
 

@@ -1,6 +1,6 @@
-#include "AtomicFile.h"
+#include <vimlop/Core/AtomicFile.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <cstdio>
 #include <filesystem>

@@ -1,7 +1,7 @@
-#include "CameraPose.h"
+#include <vimlop/Core/CameraPose.h>
 
-#include "Error.h"
-#include "Rotation.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 
 #include <Eigen/Dense>
 

@@ -1,11 +1,11 @@
-#include "CanonicalPoses.h"
+#include <vimlop/Core/CanonicalPoses.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
-#include "MeshTree.h"
-#include "RayClearance.h"
-#include "Rotation.h"
-#include "SurfaceLocator.h"
+#include <vimlop/Core/MeshTree.h>
+#include <vimlop/Core/RayClearance.h>
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/SurfaceLocator.h>
 #include <Eigen/Geometry>
 
 #include <algorithm>

@@ -1,8 +1,8 @@
 #ifndef vimlop_CanonicalPoses_h
 #define vimlop_CanonicalPoses_h
 
-#include "CameraPose.h"
-#include "RegistrationModel.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/RegistrationModel.h>
 
 #include <Eigen/Core>
 

@@ -1,7 +1,7 @@
-#include "CanonicalStarts.h"
+#include <vimlop/Core/CanonicalStarts.h>
 
-#include "Error.h"
-#include "MultiStartRegistration.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/MultiStartRegistration.h>
 
 namespace vimlop
 {

@@ -1,9 +1,9 @@
 #ifndef vimlop_CanonicalStarts_h
 #define vimlop_CanonicalStarts_h
 
-#include "CameraPose.h"
-#include "RegistrationData.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <vector>
 

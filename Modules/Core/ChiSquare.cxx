@@ -1,6 +1,6 @@
-#include "ChiSquare.h"
+#include <vimlop/Core/ChiSquare.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <cmath>
 #include <limits>

@@ -1,6 +1,6 @@
-#include "ClosedFormSimilarityEstimator.h"
+#include <vimlop/Core/ClosedFormSimilarityEstimator.h>
 
-#include "SimilarityEstimation.h"
+#include <vimlop/Core/SimilarityEstimation.h>
 
 namespace vimlop
 {

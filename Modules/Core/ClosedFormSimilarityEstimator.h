@@ -1,7 +1,7 @@
 #ifndef vimlop_ClosedFormSimilarityEstimator_h
 #define vimlop_ClosedFormSimilarityEstimator_h
 
-#include "PoseEstimator.h"
+#include <vimlop/Core/PoseEstimator.h>
 
 #include <limits>
 

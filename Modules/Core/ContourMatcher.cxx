@@ -1,6 +1,6 @@
-#include "ContourMatcher.h"
+#include <vimlop/Core/ContourMatcher.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <Eigen/Dense>
 

@@ -1,9 +1,9 @@
 #ifndef vimlop_ContourMatcher_h
 #define vimlop_ContourMatcher_h
 
-#include "ContourPoint.h"
-#include "KdTree2D.h"
-#include "ModelContourPoint.h"
+#include <vimlop/Core/ContourPoint.h>
+#include <vimlop/Core/KdTree2D.h>
+#include <vimlop/Core/ModelContourPoint.h>
 
 #include <Eigen/Core>
 

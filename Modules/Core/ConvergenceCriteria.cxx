@@ -1,7 +1,7 @@
-#include "ConvergenceCriteria.h"
+#include <vimlop/Core/ConvergenceCriteria.h>
 
-#include "Error.h"
-#include "Rotation.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 
 #include <algorithm>
 #include <cmath>

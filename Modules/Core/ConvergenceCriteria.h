@@ -1,9 +1,9 @@
 #ifndef vimlop_ConvergenceCriteria_h
 #define vimlop_ConvergenceCriteria_h
 
-#include "RegistrationOptions.h"
-#include "RegistrationResult.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/RegistrationOptions.h>
+#include <vimlop/Core/RegistrationResult.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <Eigen/Core>
 

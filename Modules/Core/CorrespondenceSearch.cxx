@@ -1,10 +1,10 @@
-#include "CorrespondenceSearch.h"
+#include <vimlop/Core/CorrespondenceSearch.h>
 
-#include "ChiSquare.h"
-#include "KdTree2D.h"
-#include "OutlierRejection.h"
-#include "TaskPool.h"
-#include "VisibleModelContours.h"
+#include <vimlop/Core/ChiSquare.h>
+#include <vimlop/Core/KdTree2D.h>
+#include <vimlop/Core/OutlierRejection.h>
+#include <vimlop/Core/TaskPool.h>
+#include <vimlop/Core/VisibleModelContours.h>
 
 #include <Eigen/Cholesky>
 

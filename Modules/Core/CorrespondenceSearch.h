@@ -1,12 +1,12 @@
 #ifndef vimlop_CorrespondenceSearch_h
 #define vimlop_CorrespondenceSearch_h
 
-#include "Correspondences.h"
-#include "MethodDescriptor.h"
-#include "RegistrationData.h"
-#include "RegistrationModel.h"
-#include "RegistrationOptions.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/Correspondences.h>
+#include <vimlop/Core/MethodDescriptor.h>
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Core/RegistrationOptions.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <Eigen/Core>
 

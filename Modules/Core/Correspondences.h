@@ -1,9 +1,9 @@
 #ifndef vimlop_Correspondences_h
 #define vimlop_Correspondences_h
 
-#include "ContourMatcher.h"
-#include "ModelContourPoint.h"
-#include "RegistrationResult.h"
+#include <vimlop/Core/ContourMatcher.h>
+#include <vimlop/Core/ModelContourPoint.h>
+#include <vimlop/Core/RegistrationResult.h>
 
 #include <Eigen/Core>
 

@@ -1,7 +1,7 @@
 #ifndef vimlop_FramePose_h
 #define vimlop_FramePose_h
 
-#include "CameraPose.h"
+#include <vimlop/Core/CameraPose.h>
 
 namespace vimlop
 {

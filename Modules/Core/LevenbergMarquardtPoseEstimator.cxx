@@ -1,6 +1,6 @@
-#include "LevenbergMarquardtPoseEstimator.h"
+#include <vimlop/Core/LevenbergMarquardtPoseEstimator.h>
 
-#include "PoseUpdate.h"
+#include <vimlop/Core/PoseUpdate.h>
 
 #include <Eigen/Cholesky>
 

@@ -1,8 +1,8 @@
 #ifndef vimlop_LevenbergMarquardtPoseEstimator_h
 #define vimlop_LevenbergMarquardtPoseEstimator_h
 
-#include "PoseEstimator.h"
-#include "RegistrationOptions.h"
+#include <vimlop/Core/PoseEstimator.h>
+#include <vimlop/Core/RegistrationOptions.h>
 
 #include <Eigen/Core>
 

@@ -1,7 +1,7 @@
-#include "MeshTree.h"
+#include <vimlop/Core/MeshTree.h>
 
-#include "ClosestPointOnTriangle.h"
-#include "Error.h"
+#include <vimlop/Core/ClosestPointOnTriangle.h>
+#include <vimlop/Core/Error.h>
 
 #include <Eigen/Dense>
 

@@ -1,8 +1,8 @@
 #ifndef vimlop_MeshTree_h
 #define vimlop_MeshTree_h
 
-#include "SurfaceLocator.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/SurfaceLocator.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <Eigen/Core>
 

@@ -1,4 +1,4 @@
-#include "MeshTreeVisibility.h"
+#include <vimlop/Core/MeshTreeVisibility.h>
 
 #include <algorithm>
 

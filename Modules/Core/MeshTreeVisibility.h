@@ -1,8 +1,8 @@
 #ifndef vimlop_MeshTreeVisibility_h
 #define vimlop_MeshTreeVisibility_h
 
-#include "ContourVisibility.h"
-#include "MeshTree.h"
+#include <vimlop/Core/ContourVisibility.h>
+#include <vimlop/Core/MeshTree.h>
 
 #include <memory>
 

@@ -1,6 +1,6 @@
-#include "MethodDescriptor.h"
+#include <vimlop/Core/MethodDescriptor.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <string>
 

@@ -1,7 +1,7 @@
 #ifndef vimlop_MethodDescriptor_h
 #define vimlop_MethodDescriptor_h
 
-#include "RegistrationOptions.h"
+#include <vimlop/Core/RegistrationOptions.h>
 
 namespace vimlop
 {

@@ -1,9 +1,9 @@
-#include "MultiStartRegistration.h"
+#include <vimlop/Core/MultiStartRegistration.h>
 
-#include "AnatomicalConstraint.h"
-#include "Error.h"
-#include "MethodDescriptor.h"
-#include "TaskPool.h"
+#include <vimlop/Core/AnatomicalConstraint.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/MethodDescriptor.h>
+#include <vimlop/Core/TaskPool.h>
 
 #include <algorithm>
 #include <atomic>

@@ -1,8 +1,8 @@
 #ifndef vimlop_MultiStartRegistration_h
 #define vimlop_MultiStartRegistration_h
 
-#include "CameraPose.h"
-#include "Registration.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/Registration.h>
 
 #include <functional>
 #include <string>

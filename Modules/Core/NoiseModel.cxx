@@ -1,6 +1,6 @@
-#include "NoiseModel.h"
+#include <vimlop/Core/NoiseModel.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <Eigen/Dense>
 

@@ -1,4 +1,4 @@
-#include "OccludingContours.h"
+#include <vimlop/Core/OccludingContours.h>
 
 #include <Eigen/Dense>
 

@@ -1,10 +1,10 @@
 #ifndef vimlop_OccludingContours_h
 #define vimlop_OccludingContours_h
 
-#include "CameraPose.h"
-#include "ModelContourPoint.h"
-#include "PinholeCamera.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/ModelContourPoint.h>
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <vector>
 

@@ -1,6 +1,6 @@
-#include "OrientNormalsIntoAir.h"
+#include <vimlop/Core/OrientNormalsIntoAir.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 namespace vimlop
 {

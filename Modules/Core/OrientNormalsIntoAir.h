@@ -1,7 +1,7 @@
 #ifndef vimlop_OrientNormalsIntoAir_h
 #define vimlop_OrientNormalsIntoAir_h
 
-#include "TriangleMesh.h"
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <string>
 

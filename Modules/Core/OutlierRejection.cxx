@@ -1,6 +1,6 @@
-#include "OutlierRejection.h"
+#include <vimlop/Core/OutlierRejection.h>
 
-#include "ChiSquare.h"
+#include <vimlop/Core/ChiSquare.h>
 
 #include <Eigen/Dense>
 

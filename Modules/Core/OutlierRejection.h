@@ -1,7 +1,7 @@
 #ifndef vimlop_OutlierRejection_h
 #define vimlop_OutlierRejection_h
 
-#include "ContourMatcher.h"
+#include <vimlop/Core/ContourMatcher.h>
 
 #include <Eigen/Core>
 

@@ -1,6 +1,6 @@
-#include "PinholeCamera.h"
+#include <vimlop/Core/PinholeCamera.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <cmath>
 #include <sstream>

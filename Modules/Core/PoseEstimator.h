@@ -1,9 +1,9 @@
 #ifndef vimlop_PoseEstimator_h
 #define vimlop_PoseEstimator_h
 
-#include "Correspondences.h"
-#include "RegistrationData.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/Correspondences.h>
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 namespace vimlop
 {

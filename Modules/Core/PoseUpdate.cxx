@@ -1,8 +1,8 @@
-#include "PoseUpdate.h"
+#include <vimlop/Core/PoseUpdate.h>
 
-#include "Error.h"
-#include "Rotation.h"
-#include "TaskPool.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/TaskPool.h>
 
 #include <Eigen/Dense>
 

@@ -1,8 +1,8 @@
 #ifndef vimlop_PoseUpdate_h
 #define vimlop_PoseUpdate_h
 
-#include "SimilarityTransform.h"
-#include "VideoFrame.h"
+#include <vimlop/Core/SimilarityTransform.h>
+#include <vimlop/Core/VideoFrame.h>
 
 #include <Eigen/Core>
 

@@ -1,6 +1,6 @@
-#include "RayClearance.h"
+#include <vimlop/Core/RayClearance.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 namespace vimlop
 {

@@ -1,7 +1,7 @@
 #ifndef vimlop_RayClearance_h
 #define vimlop_RayClearance_h
 
-#include "MeshTree.h"
+#include <vimlop/Core/MeshTree.h>
 
 #include <Eigen/Core>
 

@@ -1,14 +1,14 @@
-#include "Registration.h"
+#include <vimlop/Core/Registration.h>
 
-#include "AnatomicalConstraint.h"
-#include "ClosedFormSimilarityEstimator.h"
-#include "ConvergenceCriteria.h"
-#include "CorrespondenceSearch.h"
-#include "Error.h"
-#include "LevenbergMarquardtPoseEstimator.h"
-#include "MethodDescriptor.h"
-#include "RegistrationSummary.h"
-#include "TaskPool.h"
+#include <vimlop/Core/AnatomicalConstraint.h>
+#include <vimlop/Core/ClosedFormSimilarityEstimator.h>
+#include <vimlop/Core/ConvergenceCriteria.h>
+#include <vimlop/Core/CorrespondenceSearch.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/LevenbergMarquardtPoseEstimator.h>
+#include <vimlop/Core/MethodDescriptor.h>
+#include <vimlop/Core/RegistrationSummary.h>
+#include <vimlop/Core/TaskPool.h>
 
 #include <algorithm>
 #include <chrono>

@@ -1,10 +1,10 @@
 #ifndef vimlop_Registration_h
 #define vimlop_Registration_h
 
-#include "RegistrationData.h"
-#include "RegistrationModel.h"
-#include "RegistrationOptions.h"
-#include "RegistrationResult.h"
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Core/RegistrationOptions.h>
+#include <vimlop/Core/RegistrationResult.h>
 
 #include <functional>
 

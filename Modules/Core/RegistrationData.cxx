@@ -1,8 +1,8 @@
-#include "RegistrationData.h"
+#include <vimlop/Core/RegistrationData.h>
 
-#include "Error.h"
-#include "NoiseModel.h"
-#include "Rotation.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/NoiseModel.h>
+#include <vimlop/Core/Rotation.h>
 
 #include <cmath>
 #include <string>

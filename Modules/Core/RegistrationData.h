@@ -1,7 +1,7 @@
 #ifndef vimlop_RegistrationData_h
 #define vimlop_RegistrationData_h
 
-#include "VideoFrame.h"
+#include <vimlop/Core/VideoFrame.h>
 
 #include <Eigen/Core>
 

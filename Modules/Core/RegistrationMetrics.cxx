@@ -1,7 +1,7 @@
-#include "RegistrationMetrics.h"
+#include <vimlop/Core/RegistrationMetrics.h>
 
-#include "Error.h"
-#include "Rotation.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 
 #include <cmath>
 

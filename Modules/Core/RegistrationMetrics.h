@@ -1,8 +1,8 @@
 #ifndef vimlop_RegistrationMetrics_h
 #define vimlop_RegistrationMetrics_h
 
-#include "CameraPose.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <Eigen/Core>
 

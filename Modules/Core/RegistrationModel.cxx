@@ -1,7 +1,7 @@
-#include "RegistrationModel.h"
+#include <vimlop/Core/RegistrationModel.h>
 
-#include "Error.h"
-#include "MeshTreeVisibility.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/MeshTreeVisibility.h>
 
 namespace vimlop
 {

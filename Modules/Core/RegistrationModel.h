@@ -1,10 +1,10 @@
 #ifndef vimlop_RegistrationModel_h
 #define vimlop_RegistrationModel_h
 
-#include "ContourVisibility.h"
-#include "MeshTree.h"
-#include "SurfaceLocator.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/ContourVisibility.h>
+#include <vimlop/Core/MeshTree.h>
+#include <vimlop/Core/SurfaceLocator.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <memory>
 

@@ -1,6 +1,6 @@
-#include "RegistrationOptions.h"
+#include <vimlop/Core/RegistrationOptions.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <cmath>
 #include <sstream>

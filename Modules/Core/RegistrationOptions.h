@@ -1,8 +1,8 @@
 #ifndef vimlop_RegistrationOptions_h
 #define vimlop_RegistrationOptions_h
 
-#include "ContourMatcher.h"
-#include "PoseUpdate.h"
+#include <vimlop/Core/ContourMatcher.h>
+#include <vimlop/Core/PoseUpdate.h>
 
 #include <limits>
 

@@ -1,4 +1,4 @@
-#include "RegistrationSummary.h"
+#include <vimlop/Core/RegistrationSummary.h>
 
 namespace vimlop
 {

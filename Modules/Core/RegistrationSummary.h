@@ -1,11 +1,11 @@
 #ifndef vimlop_RegistrationSummary_h
 #define vimlop_RegistrationSummary_h
 
-#include "Correspondences.h"
-#include "RegistrationData.h"
-#include "RegistrationModel.h"
-#include "RegistrationResult.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/Correspondences.h>
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Core/RegistrationResult.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 /**
  * @file RegistrationSummary.h

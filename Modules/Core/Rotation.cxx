@@ -1,4 +1,4 @@
-#include "Rotation.h"
+#include <vimlop/Core/Rotation.h>
 
 #include <Eigen/Dense>
 

@@ -1,6 +1,6 @@
-#include "SimilarityEstimation.h"
+#include <vimlop/Core/SimilarityEstimation.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <Eigen/Dense>
 

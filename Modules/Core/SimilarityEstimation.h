@@ -1,7 +1,7 @@
 #ifndef vimlop_SimilarityEstimation_h
 #define vimlop_SimilarityEstimation_h
 
-#include "SimilarityTransform.h"
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <Eigen/Core>
 

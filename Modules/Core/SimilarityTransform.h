@@ -1,7 +1,7 @@
 #ifndef vimlop_SimilarityTransform_h
 #define vimlop_SimilarityTransform_h
 
-#include "CameraPose.h"
+#include <vimlop/Core/CameraPose.h>
 
 #include <Eigen/Core>
 

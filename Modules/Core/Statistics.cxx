@@ -1,4 +1,4 @@
-#include "Statistics.h"
+#include <vimlop/Core/Statistics.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #ifndef vimlop_SurfaceLocator_h
 #define vimlop_SurfaceLocator_h
 
-#include "SurfacePoint.h"
+#include <vimlop/Core/SurfacePoint.h>
 
 #include <Eigen/Core>
 

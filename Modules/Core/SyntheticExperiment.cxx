@@ -1,11 +1,11 @@
-#include "SyntheticExperiment.h"
+#include <vimlop/Core/SyntheticExperiment.h>
 
-#include "AnatomicalConstraint.h"
-#include "Error.h"
-#include "NoiseModel.h"
-#include "RayClearance.h"
-#include "Rotation.h"
-#include "VisibleModelContours.h"
+#include <vimlop/Core/AnatomicalConstraint.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/NoiseModel.h>
+#include <vimlop/Core/RayClearance.h>
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/VisibleModelContours.h>
 
 #include <Eigen/Dense>
 

@@ -1,9 +1,9 @@
 #ifndef vimlop_SyntheticExperiment_h
 #define vimlop_SyntheticExperiment_h
 
-#include "RegistrationData.h"
-#include "RegistrationModel.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <cstdint>
 #include <vector>

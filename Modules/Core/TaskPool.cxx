@@ -1,4 +1,4 @@
-#include "TaskPool.h"
+#include <vimlop/Core/TaskPool.h>
 
 #include <algorithm>
 #include <exception>

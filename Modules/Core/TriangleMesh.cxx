@@ -1,6 +1,6 @@
-#include "TriangleMesh.h"
+#include <vimlop/Core/TriangleMesh.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <Eigen/Dense>
 

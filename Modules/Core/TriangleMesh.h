@@ -1,7 +1,7 @@
 #ifndef vimlop_TriangleMesh_h
 #define vimlop_TriangleMesh_h
 
-#include "MeshEdge.h"
+#include <vimlop/Core/MeshEdge.h>
 
 #include <Eigen/Core>
 

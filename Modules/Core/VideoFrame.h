@@ -1,9 +1,9 @@
 #ifndef vimlop_VideoFrame_h
 #define vimlop_VideoFrame_h
 
-#include "CameraPose.h"
-#include "ContourPoint.h"
-#include "PinholeCamera.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/ContourPoint.h>
+#include <vimlop/Core/PinholeCamera.h>
 
 #include <vector>
 

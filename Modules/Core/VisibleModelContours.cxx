@@ -1,6 +1,6 @@
-#include "VisibleModelContours.h"
+#include <vimlop/Core/VisibleModelContours.h>
 
-#include "RegistrationResult.h"
+#include <vimlop/Core/RegistrationResult.h>
 
 #include <chrono>
 

@@ -1,11 +1,11 @@
 #ifndef vimlop_VisibleModelContours_h
 #define vimlop_VisibleModelContours_h
 
-#include "CameraPose.h"
-#include "ModelContourPoint.h"
-#include "OccludingContours.h"
-#include "PinholeCamera.h"
-#include "RegistrationModel.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/ModelContourPoint.h>
+#include <vimlop/Core/OccludingContours.h>
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/RegistrationModel.h>
 
 #include <vector>
 

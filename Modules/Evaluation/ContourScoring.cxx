@@ -1,7 +1,7 @@
-#include "ContourScoring.h"
+#include <vimlop/Evaluation/ContourScoring.h>
 
-#include "ContourEvaluation.h"
-#include "VisibleModelContours.h"
+#include <vimlop/Video/ContourEvaluation.h>
+#include <vimlop/Core/VisibleModelContours.h>
 
 namespace vimlop
 {

@@ -1,10 +1,10 @@
 #ifndef vimlop_ContourScoring_h
 #define vimlop_ContourScoring_h
 
-#include "ContourPoint.h"
-#include "EndoscopeSimulation.h"
-#include "OccludingContourDetector.h"
-#include "RegistrationModel.h"
+#include <vimlop/Core/ContourPoint.h>
+#include <vimlop/Evaluation/EndoscopeSimulation.h>
+#include <vimlop/Video/OccludingContourDetector.h>
+#include <vimlop/Core/RegistrationModel.h>
 
 #include <vector>
 

@@ -1,9 +1,9 @@
-#include "EndoscopeSimulation.h"
+#include <vimlop/Evaluation/EndoscopeSimulation.h>
 
-#include "Error.h"
-#include "IntrinsicsIO.h"
-#include "MucosaTexture.h"
-#include "vtkVIMLOPVirtualEndoscope.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/IntrinsicsIO.h>
+#include <vimlop/Rendering/MucosaTexture.h>
+#include <vimlop/Rendering/vtkVIMLOPVirtualEndoscope.h>
 
 #include <vtkNew.h>
 

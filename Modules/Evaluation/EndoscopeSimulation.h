@@ -1,13 +1,13 @@
 #ifndef vimlop_EndoscopeSimulation_h
 #define vimlop_EndoscopeSimulation_h
 
-#include "CameraPose.h"
-#include "DepthMap.h"
-#include "EndoscopeTrajectory.h"
-#include "EvaluationProgress.h"
-#include "PinholeCamera.h"
-#include "RegistrationModel.h"
-#include "TrackerTrajectory.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/DepthMap.h>
+#include <vimlop/Rendering/EndoscopeTrajectory.h>
+#include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Video/TrackerTrajectory.h>
 
 #include <opencv2/core/mat.hpp>
 

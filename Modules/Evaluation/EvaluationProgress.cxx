@@ -1,6 +1,6 @@
-#include "EvaluationProgress.h"
+#include <vimlop/Evaluation/EvaluationProgress.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 namespace vimlop
 {

@@ -1,12 +1,12 @@
-#include "PerturbationProtocol.h"
+#include <vimlop/Evaluation/PerturbationProtocol.h>
 
-#include "EmbreeRegistrationModel.h"
-#include "Error.h"
-#include "MultiStartRegistration.h"
-#include "Registration.h"
-#include "SimulatedVideoCase.h"
-#include "Statistics.h"
-#include "TaskPool.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/MultiStartRegistration.h>
+#include <vimlop/Core/Registration.h>
+#include <vimlop/Evaluation/SimulatedVideoCase.h>
+#include <vimlop/Core/Statistics.h>
+#include <vimlop/Core/TaskPool.h>
 
 #include <cmath>
 #include <limits>

@@ -1,6 +1,6 @@
-#include "ProgressNoteStream.h"
+#include <vimlop/Evaluation/ProgressNoteStream.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 namespace vimlop
 {

@@ -1,7 +1,7 @@
 #ifndef vimlop_ProgressNoteStream_h
 #define vimlop_ProgressNoteStream_h
 
-#include "EvaluationProgress.h"
+#include <vimlop/Evaluation/EvaluationProgress.h>
 
 #include <ostream>
 #include <streambuf>

@@ -1,6 +1,6 @@
-#include "SyntheticDeformation.h"
+#include <vimlop/Evaluation/SyntheticDeformation.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #ifndef vimlop_SyntheticDeformation_h
 #define vimlop_SyntheticDeformation_h
 
-#include "CTVolume.h"
+#include <vimlop/Imaging/CTVolume.h>
 
 #include <array>
 #include <cstdint>

@@ -1,12 +1,12 @@
-#include "SyntheticProtocol.h"
+#include <vimlop/Evaluation/SyntheticProtocol.h>
 
-#include "EmbreeRegistrationModel.h"
-#include "Error.h"
-#include "Open3DPeers.h"
-#include "Registration.h"
-#include "RegistrationMetrics.h"
-#include "Statistics.h"
-#include "TrialSaving.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/Peers/Open3DPeers.h>
+#include <vimlop/Core/Registration.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Core/Statistics.h>
+#include <vimlop/Evaluation/TrialSaving.h>
 
 #include <algorithm>
 #include <chrono>

@@ -1,13 +1,13 @@
-#include "TemplateWarpProtocol.h"
+#include <vimlop/Evaluation/TemplateWarpProtocol.h>
 
-#include "AirwaySegmentation.h"
-#include "AirwaySurface.h"
-#include "ElastixParameterFiles.h"
-#include "ElastixRegistration.h"
-#include "Error.h"
-#include "SyntheticDeformation.h"
-#include "TemplateRegistration.h"
-#include "VolumeCrop.h"
+#include <vimlop/Imaging/AirwaySegmentation.h>
+#include <vimlop/Imaging/AirwaySurface.h>
+#include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
+#include <vimlop/Evaluation/Peers/ElastixRegistration.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/SyntheticDeformation.h>
+#include <vimlop/Imaging/TemplateRegistration.h>
+#include <vimlop/Imaging/VolumeCrop.h>
 
 #include <vtkPolyData.h>
 

@@ -1,9 +1,9 @@
 #ifndef vimlop_TemplateWarpProtocol_h
 #define vimlop_TemplateWarpProtocol_h
 
-#include "CTVolume.h"
-#include "EvaluationProgress.h"
-#include "TemplateRegistration.h"
+#include <vimlop/Imaging/CTVolume.h>
+#include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Imaging/TemplateRegistration.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,9 +1,9 @@
-#include "TrialSaving.h"
+#include <vimlop/Evaluation/TrialSaving.h>
 
-#include "Error.h"
-#include "PNGImageIO.h"
-#include "RegistrationRecordIO.h"
-#include "SurfaceView.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Rendering/PNGImageIO.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
+#include <vimlop/Rendering/SurfaceView.h>
 
 #include <vtkImageData.h>
 

@@ -1,10 +1,10 @@
 #ifndef vimlop_TrialSaving_h
 #define vimlop_TrialSaving_h
 
-#include "RegistrationOptions.h"
-#include "RegistrationResult.h"
-#include "SyntheticExperiment.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/RegistrationOptions.h>
+#include <vimlop/Core/RegistrationResult.h>
+#include <vimlop/Core/SyntheticExperiment.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <string>
 

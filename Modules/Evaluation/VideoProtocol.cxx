@@ -1,11 +1,11 @@
-#include "VideoProtocol.h"
+#include <vimlop/Evaluation/VideoProtocol.h>
 
-#include "CanonicalStarts.h"
-#include "EmbreeRegistrationModel.h"
-#include "Error.h"
-#include "MultiStartRegistration.h"
-#include "Registration.h"
-#include "SimulatedVideoCase.h"
+#include <vimlop/Core/CanonicalStarts.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/MultiStartRegistration.h>
+#include <vimlop/Core/Registration.h>
+#include <vimlop/Evaluation/SimulatedVideoCase.h>
 
 #include <chrono>
 #include <random>

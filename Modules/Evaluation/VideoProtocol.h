@@ -1,11 +1,11 @@
 #ifndef vimlop_VideoProtocol_h
 #define vimlop_VideoProtocol_h
 
-#include "ContourScoring.h"
-#include "EndoscopeSimulation.h"
-#include "EvaluationProgress.h"
-#include "TriangleMesh.h"
-#include "VideoRegistrationPipeline.h"
+#include <vimlop/Evaluation/ContourScoring.h>
+#include <vimlop/Evaluation/EndoscopeSimulation.h>
+#include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,10 +1,10 @@
 // Airway segmentation with ITK. Like every ITK translation unit this file
 // includes no Eigen (Debian's ITK 5.2 carries its own copy under the same
 // include guards); it exchanges plain CTVolume data with the rest.
-#include "AirwaySegmentation.h"
+#include <vimlop/Imaging/AirwaySegmentation.h>
 
-#include "Error.h"
-#include "ITKImageConversion.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/ITKImageConversion.h>
 
 #include <itkBinaryBallStructuringElement.h>
 #include <itkBinaryFillholeImageFilter.h>

@@ -1,8 +1,8 @@
-#include "AirwaySurface.h"
+#include <vimlop/Imaging/AirwaySurface.h>
 
-#include "Error.h"
-#include "PolyDataConversion.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <vtkCellArray.h>
 #include <vtkCleanPolyData.h>

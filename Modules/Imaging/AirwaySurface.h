@@ -1,8 +1,8 @@
 #ifndef vimlop_AirwaySurface_h
 #define vimlop_AirwaySurface_h
 
-#include "CTVolume.h"
-#include "ProgressCallback.h"
+#include <vimlop/Imaging/CTVolume.h>
+#include <vimlop/Imaging/ProgressCallback.h>
 
 #include "VIMLOPImagingModule.h"
 

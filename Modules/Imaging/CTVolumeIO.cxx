@@ -2,11 +2,11 @@
 // image IO templates (they are heavy to compile). Like every ITK translation
 // unit it includes no Eigen: Debian's ITK 5.2 brings its own older Eigen under
 // the same include guards, and the two cannot meet in one file.
-#include "CTVolumeIO.h"
+#include <vimlop/Imaging/CTVolumeIO.h>
 
-#include "Error.h"
-#include "ITKImageIOFactories.h"
-#include "InVesaliusProjectReader.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/ITKImageIOFactories.h>
+#include <vimlop/Imaging/InVesaliusProjectReader.h>
 
 #include <itkGDCMImageIO.h>
 #include <itkGDCMImageIOFactory.h>

@@ -1,7 +1,7 @@
 #ifndef vimlop_CTVolumeIO_h
 #define vimlop_CTVolumeIO_h
 
-#include "CTVolume.h"
+#include <vimlop/Imaging/CTVolume.h>
 
 #include "VIMLOPImagingModule.h"
 

@@ -1,4 +1,4 @@
-#include "DisplacementField.h"
+#include <vimlop/Imaging/DisplacementField.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
 // ITK translation unit: no Eigen here (see CTVolume.h).
-#include "DisplacementFieldIO.h"
+#include <vimlop/Imaging/DisplacementFieldIO.h>
 
-#include "CTVolumeIO.h"
-#include "Error.h"
-#include "ITKImageIOFactories.h"
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/ITKImageIOFactories.h>
 
 #include <itkImage.h>
 #include <itkImageFileReader.h>

@@ -1,7 +1,7 @@
 #ifndef vimlop_DisplacementFieldIO_h
 #define vimlop_DisplacementFieldIO_h
 
-#include "DisplacementField.h"
+#include <vimlop/Imaging/DisplacementField.h>
 
 #include "VIMLOPImagingModule.h"
 

@@ -1,6 +1,6 @@
-#include "FramePoseIO.h"
+#include <vimlop/Imaging/FramePoseIO.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 #ifndef vimlop_FramePoseIO_h
 #define vimlop_FramePoseIO_h
 
-#include "FramePose.h"
+#include <vimlop/Core/FramePose.h>
 
 #include "VIMLOPImagingModule.h"
 

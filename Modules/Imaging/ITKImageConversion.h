@@ -5,7 +5,7 @@
 // copies between CTVolume and itk::Image. Like every ITK translation unit,
 // those that include this header include no Eigen (see CTVolume.h).
 
-#include "CTVolume.h"
+#include <vimlop/Imaging/CTVolume.h>
 
 #include <itkImage.h>
 

@@ -1,6 +1,6 @@
-#include "ImageDataConversion.h"
+#include <vimlop/Imaging/ImageDataConversion.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>

@@ -1,7 +1,7 @@
 #ifndef vimlop_ImageDataConversion_h
 #define vimlop_ImageDataConversion_h
 
-#include "CTVolume.h"
+#include <vimlop/Imaging/CTVolume.h>
 
 #include "VIMLOPImagingModule.h"
 

@@ -1,6 +1,6 @@
-#include "InVesaliusProjectReader.h"
+#include <vimlop/Imaging/InVesaliusProjectReader.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>

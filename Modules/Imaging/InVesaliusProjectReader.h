@@ -1,7 +1,7 @@
 #ifndef vimlop_InVesaliusProjectReader_h
 #define vimlop_InVesaliusProjectReader_h
 
-#include "CTVolume.h"
+#include <vimlop/Imaging/CTVolume.h>
 
 #include "VIMLOPImagingModule.h"
 

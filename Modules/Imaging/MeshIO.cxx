@@ -1,6 +1,6 @@
-#include "MeshIO.h"
+#include <vimlop/Imaging/MeshIO.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <vtkNew.h>
 #include <vtkOBJReader.h>

@@ -1,12 +1,12 @@
-#include "ModelLoading.h"
+#include <vimlop/Imaging/ModelLoading.h>
 
-#include "AirwaySegmentation.h"
-#include "AirwaySurface.h"
-#include "CTVolumeIO.h"
-#include "Error.h"
-#include "MeshIO.h"
-#include "OrientNormalsIntoAir.h"
-#include "PolyDataConversion.h"
+#include <vimlop/Imaging/AirwaySegmentation.h>
+#include <vimlop/Imaging/AirwaySurface.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/MeshIO.h>
+#include <vimlop/Core/OrientNormalsIntoAir.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
 
 #include <vtkPolyData.h>
 

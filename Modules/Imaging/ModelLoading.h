@@ -1,7 +1,7 @@
 #ifndef vimlop_ModelLoading_h
 #define vimlop_ModelLoading_h
 
-#include "TriangleMesh.h"
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <string>
 

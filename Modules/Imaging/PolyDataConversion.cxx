@@ -1,6 +1,6 @@
-#include "PolyDataConversion.h"
+#include <vimlop/Imaging/PolyDataConversion.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>

@@ -1,7 +1,7 @@
 #ifndef vimlop_PolyDataConversion_h
 #define vimlop_PolyDataConversion_h
 
-#include "TriangleMesh.h"
+#include <vimlop/Core/TriangleMesh.h>
 
 #include "VIMLOPImagingModule.h"
 

@@ -2,11 +2,11 @@
 // translation unit (ITK's v4 registration templates), so all the ITK work of
 // the registration lives here, instantiated for float images only. Like every
 // ITK translation unit it includes no Eigen (see CTVolume.h).
-#include "TemplateRegistration.h"
+#include <vimlop/Imaging/TemplateRegistration.h>
 
-#include "Error.h"
-#include "ITKImageConversion.h"
-#include "VolumeCrop.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/ITKImageConversion.h>
+#include <vimlop/Imaging/VolumeCrop.h>
 
 #include <itkAffineTransform.h>
 #include <itkCommand.h>

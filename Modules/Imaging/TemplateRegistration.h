@@ -1,9 +1,9 @@
 #ifndef vimlop_TemplateRegistration_h
 #define vimlop_TemplateRegistration_h
 
-#include "CTVolume.h"
-#include "DisplacementField.h"
-#include "ProgressCallback.h"
+#include <vimlop/Imaging/CTVolume.h>
+#include <vimlop/Imaging/DisplacementField.h>
+#include <vimlop/Imaging/ProgressCallback.h>
 
 #include "VIMLOPImagingModule.h"
 

@@ -1,6 +1,6 @@
-#include "TemplateWarp.h"
+#include <vimlop/Imaging/TemplateWarp.h>
 
-#include "Rotation.h"
+#include <vimlop/Core/Rotation.h>
 
 #include <vtkCellData.h>
 #include <vtkNew.h>

@@ -1,9 +1,9 @@
 #ifndef vimlop_TemplateWarp_h
 #define vimlop_TemplateWarp_h
 
-#include "CameraPose.h"
-#include "DisplacementField.h"
-#include "FramePose.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Imaging/DisplacementField.h>
+#include <vimlop/Core/FramePose.h>
 
 #include "VIMLOPImagingModule.h"
 

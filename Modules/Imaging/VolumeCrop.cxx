@@ -1,6 +1,6 @@
-#include "VolumeCrop.h"
+#include <vimlop/Imaging/VolumeCrop.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <algorithm>
 #include <cmath>

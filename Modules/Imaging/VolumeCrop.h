@@ -1,7 +1,7 @@
 #ifndef vimlop_VolumeCrop_h
 #define vimlop_VolumeCrop_h
 
-#include "CTVolume.h"
+#include <vimlop/Imaging/CTVolume.h>
 
 #include "VIMLOPImagingModule.h"
 

@@ -1,8 +1,8 @@
-#include "vtkVIMLOPCTReader.h"
+#include <vimlop/Imaging/vtkVIMLOPCTReader.h>
 
-#include "CTVolumeIO.h"
-#include "Error.h"
-#include "ImageDataConversion.h"
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/ImageDataConversion.h>
 
 #include <vtkImageData.h>
 #include <vtkInformation.h>

@@ -1,13 +1,13 @@
-#include "RegistrationOutputs.h"
+#include <vimlop/Pipeline/RegistrationOutputs.h>
 
-#include "Error.h"
-#include "RecordJson.h"
-#include "RegisteredVideo.h"
-#include "RegistrationMetrics.h"
-#include "RegistrationRecordIO.h"
-#include "RegistrationReport.h"
-#include "SimilarityFromCameras.h"
-#include "Statistics.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Results/RecordJson.h>
+#include <vimlop/Report/RegisteredVideo.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
+#include <vimlop/Report/RegistrationReport.h>
+#include <vimlop/Pipeline/SimilarityFromCameras.h>
+#include <vimlop/Core/Statistics.h>
 
 #include <vtkVersion.h>
 

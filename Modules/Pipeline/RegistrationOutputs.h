@@ -1,9 +1,9 @@
 #ifndef vimlop_RegistrationOutputs_h
 #define vimlop_RegistrationOutputs_h
 
-#include "FramePose.h"
-#include "RegistrationRecord.h"
-#include "VideoRegistrationPipeline.h"
+#include <vimlop/Core/FramePose.h>
+#include <vimlop/Results/RegistrationRecord.h>
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
-#include "SimilarityFromCameras.h"
+#include <vimlop/Pipeline/SimilarityFromCameras.h>
 
-#include "Error.h"
-#include "Rotation.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 
 #include <string>
 

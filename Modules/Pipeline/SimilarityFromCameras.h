@@ -1,9 +1,9 @@
 #ifndef vimlop_SimilarityFromCameras_h
 #define vimlop_SimilarityFromCameras_h
 
-#include "CameraPose.h"
-#include "SfmReconstruction.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Video/SfmReconstruction.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <vector>
 

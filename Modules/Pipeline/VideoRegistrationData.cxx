@@ -1,6 +1,6 @@
-#include "VideoRegistrationData.h"
+#include <vimlop/Pipeline/VideoRegistrationData.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <cmath>
 #include <string>

@@ -1,9 +1,9 @@
 #ifndef vimlop_VideoRegistrationData_h
 #define vimlop_VideoRegistrationData_h
 
-#include "ContourPoint.h"
-#include "RegistrationData.h"
-#include "SfmReconstruction.h"
+#include <vimlop/Core/ContourPoint.h>
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Video/SfmReconstruction.h>
 
 #include <vector>
 

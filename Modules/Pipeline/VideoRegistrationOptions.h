@@ -1,10 +1,10 @@
 #ifndef vimlop_VideoRegistrationOptions_h
 #define vimlop_VideoRegistrationOptions_h
 
-#include "CanonicalPoses.h"
-#include "ContourDetectionOptions.h"
-#include "MultiStartRegistration.h"
-#include "RegistrationOptions.h"
+#include <vimlop/Core/CanonicalPoses.h>
+#include <vimlop/Video/ContourDetectionOptions.h>
+#include <vimlop/Core/MultiStartRegistration.h>
+#include <vimlop/Core/RegistrationOptions.h>
 
 namespace vimlop
 {

@@ -1,14 +1,14 @@
-#include "VideoRegistrationPipeline.h"
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
-#include "CanonicalStarts.h"
-#include "EmbreeRegistrationModel.h"
-#include "Error.h"
-#include "FrameSequence.h"
-#include "ModelLoading.h"
-#include "OccludingContourDetector.h"
-#include "Registration.h"
-#include "VideoInput.h"
-#include "VideoRegistrationData.h"
+#include <vimlop/Core/CanonicalStarts.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/FrameSequence.h>
+#include <vimlop/Imaging/ModelLoading.h>
+#include <vimlop/Video/OccludingContourDetector.h>
+#include <vimlop/Core/Registration.h>
+#include <vimlop/Video/VideoInput.h>
+#include <vimlop/Pipeline/VideoRegistrationData.h>
 
 #include <opencv2/core/mat.hpp>
 #include <opencv2/imgcodecs.hpp>

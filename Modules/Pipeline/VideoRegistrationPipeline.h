@@ -1,18 +1,18 @@
 #ifndef vimlop_VideoRegistrationPipeline_h
 #define vimlop_VideoRegistrationPipeline_h
 
-#include "CameraPose.h"
-#include "ContourPoint.h"
-#include "FramePose.h"
-#include "MultiStartRegistration.h"
-#include "PinholeCamera.h"
-#include "RegistrationData.h"
-#include "RegistrationModel.h"
-#include "RegistrationOptions.h"
-#include "SfmReconstruction.h"
-#include "TrackerTrajectory.h"
-#include "TriangleMesh.h"
-#include "VideoRegistrationOptions.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/ContourPoint.h>
+#include <vimlop/Core/FramePose.h>
+#include <vimlop/Core/MultiStartRegistration.h>
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Core/RegistrationOptions.h>
+#include <vimlop/Video/SfmReconstruction.h>
+#include <vimlop/Video/TrackerTrajectory.h>
+#include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Pipeline/VideoRegistrationOptions.h>
 
 #include <functional>
 #include <iosfwd>

@@ -1,11 +1,11 @@
-#include "vtkVIMLOPVideoRegistration.h"
+#include <vimlop/Pipeline/vtkVIMLOPVideoRegistration.h>
 
-#include "Error.h"
-#include "FramePoseIO.h"
-#include "IntrinsicsIO.h"
-#include "RegistrationOutputConversion.h"
-#include "RegistrationOutputs.h"
-#include "VideoRegistrationPipeline.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/FramePoseIO.h>
+#include <vimlop/Video/IntrinsicsIO.h>
+#include <vimlop/Registration/RegistrationOutputConversion.h>
+#include <vimlop/Pipeline/RegistrationOutputs.h>
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
 #include <vtkDemandDrivenPipeline.h>
 #include <vtkInformation.h>

@@ -1,7 +1,7 @@
-#include "EmbreeRegistrationModel.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
-#include "EmbreeScene.h"
-#include "EmbreeVisibility.h"
+#include <vimlop/Raycast/EmbreeScene.h>
+#include <vimlop/Raycast/EmbreeVisibility.h>
 
 namespace vimlop
 {

@@ -1,7 +1,7 @@
 #ifndef vimlop_EmbreeRegistrationModel_h
 #define vimlop_EmbreeRegistrationModel_h
 
-#include "RegistrationModel.h"
+#include <vimlop/Core/RegistrationModel.h>
 
 namespace vimlop
 {

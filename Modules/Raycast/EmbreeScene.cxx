@@ -1,7 +1,7 @@
-#include "EmbreeScene.h"
+#include <vimlop/Raycast/EmbreeScene.h>
 
-#include "ClosestPointOnTriangle.h"
-#include "Error.h"
+#include <vimlop/Core/ClosestPointOnTriangle.h>
+#include <vimlop/Core/Error.h>
 
 #include <embree3/rtcore.h>
 

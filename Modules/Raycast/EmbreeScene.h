@@ -1,9 +1,9 @@
 #ifndef vimlop_EmbreeScene_h
 #define vimlop_EmbreeScene_h
 
-#include "SurfaceLocator.h"
-#include "SurfacePoint.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/SurfaceLocator.h>
+#include <vimlop/Core/SurfacePoint.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <Eigen/Core>
 

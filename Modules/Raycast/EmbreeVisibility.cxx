@@ -1,4 +1,4 @@
-#include "EmbreeVisibility.h"
+#include <vimlop/Raycast/EmbreeVisibility.h>
 
 #include <algorithm>
 

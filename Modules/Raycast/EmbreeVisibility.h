@@ -1,8 +1,8 @@
 #ifndef vimlop_EmbreeVisibility_h
 #define vimlop_EmbreeVisibility_h
 
-#include "ContourVisibility.h"
-#include "EmbreeScene.h"
+#include <vimlop/Core/ContourVisibility.h>
+#include <vimlop/Raycast/EmbreeScene.h>
 
 #include <memory>
 

@@ -1,6 +1,6 @@
-#include "CameraPoseTable.h"
+#include <vimlop/Registration/CameraPoseTable.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>

@@ -1,7 +1,7 @@
 #ifndef vimlop_CameraPoseTable_h
 #define vimlop_CameraPoseTable_h
 
-#include "FramePose.h"
+#include <vimlop/Core/FramePose.h>
 
 #include "VIMLOPRegistrationModule.h"
 

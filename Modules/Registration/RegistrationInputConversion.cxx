@@ -1,8 +1,8 @@
-#include "RegistrationInputConversion.h"
+#include <vimlop/Registration/RegistrationInputConversion.h>
 
-#include "Error.h"
-#include "OrientNormalsIntoAir.h"
-#include "NoiseModel.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/OrientNormalsIntoAir.h>
+#include <vimlop/Core/NoiseModel.h>
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>

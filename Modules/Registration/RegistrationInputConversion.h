@@ -1,8 +1,8 @@
 #ifndef vimlop_RegistrationInputConversion_h
 #define vimlop_RegistrationInputConversion_h
 
-#include "RegistrationData.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include "VIMLOPRegistrationModule.h"
 

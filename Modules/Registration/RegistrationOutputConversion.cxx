@@ -1,7 +1,7 @@
-#include "RegistrationOutputConversion.h"
+#include <vimlop/Registration/RegistrationOutputConversion.h>
 
-#include "CameraPoseTable.h"
-#include "Error.h"
+#include <vimlop/Registration/CameraPoseTable.h>
+#include <vimlop/Core/Error.h>
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>

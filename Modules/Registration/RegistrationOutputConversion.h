@@ -1,8 +1,8 @@
 #ifndef vimlop_RegistrationOutputConversion_h
 #define vimlop_RegistrationOutputConversion_h
 
-#include "RegistrationData.h"
-#include "RegistrationResult.h"
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/RegistrationResult.h>
 
 #include "VIMLOPRegistrationModule.h"
 

@@ -1,15 +1,15 @@
-#include "vtkVIMLOPRegistration.h"
+#include <vimlop/Registration/vtkVIMLOPRegistration.h>
 
-#include "CanonicalStarts.h"
-#include "EmbreeRegistrationModel.h"
-#include "Error.h"
-#include "MethodDescriptor.h"
-#include "OffscreenRendering.h"
-#include "Registration.h"
-#include "RegistrationInputConversion.h"
-#include "RegistrationModel.h"
-#include "RegistrationOutputConversion.h"
-#include "vtkVIMLOPDepthVisibility.h"
+#include <vimlop/Core/CanonicalStarts.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/MethodDescriptor.h>
+#include <vimlop/Rendering/OffscreenRendering.h>
+#include <vimlop/Core/Registration.h>
+#include <vimlop/Registration/RegistrationInputConversion.h>
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Registration/RegistrationOutputConversion.h>
+#include <vimlop/Rendering/vtkVIMLOPDepthVisibility.h>
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkDemandDrivenPipeline.h>

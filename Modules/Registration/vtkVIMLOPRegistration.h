@@ -1,11 +1,11 @@
 #ifndef vtkVIMLOPRegistration_h
 #define vtkVIMLOPRegistration_h
 
-#include "CanonicalPoses.h"
-#include "MultiStartRegistration.h"
-#include "RegistrationData.h"
-#include "RegistrationOptions.h"
-#include "RegistrationResult.h"
+#include <vimlop/Core/CanonicalPoses.h>
+#include <vimlop/Core/MultiStartRegistration.h>
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/RegistrationOptions.h>
+#include <vimlop/Core/RegistrationResult.h>
 
 #include "VIMLOPRegistrationModule.h"
 

@@ -1,6 +1,6 @@
-#include "ContourOverlay.h"
+#include <vimlop/Rendering/ContourOverlay.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <vtkImageData.h>
 

@@ -1,7 +1,7 @@
 #ifndef vimlop_ContourOverlay_h
 #define vimlop_ContourOverlay_h
 
-#include "ContourPoint.h"
+#include <vimlop/Core/ContourPoint.h>
 
 #include "VIMLOPRenderingModule.h"
 

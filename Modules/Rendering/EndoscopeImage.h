@@ -1,7 +1,7 @@
 #ifndef vimlop_EndoscopeImage_h
 #define vimlop_EndoscopeImage_h
 
-#include "DepthMap.h"
+#include <vimlop/Core/DepthMap.h>
 
 #include <cstdint>
 #include <vector>

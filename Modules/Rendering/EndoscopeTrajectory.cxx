@@ -1,10 +1,10 @@
-#include "EndoscopeTrajectory.h"
+#include <vimlop/Rendering/EndoscopeTrajectory.h>
 
-#include "Error.h"
-#include "RandomDirection.h"
-#include "RayClearance.h"
-#include "Rotation.h"
-#include "VisibleModelContours.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/RandomDirection.h>
+#include <vimlop/Core/RayClearance.h>
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/VisibleModelContours.h>
 
 #include <Eigen/Geometry>
 

@@ -1,9 +1,9 @@
 #ifndef vimlop_EndoscopeTrajectory_h
 #define vimlop_EndoscopeTrajectory_h
 
-#include "CameraPose.h"
-#include "PinholeCamera.h"
-#include "RegistrationModel.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/RegistrationModel.h>
 
 #include "VIMLOPRenderingModule.h"
 

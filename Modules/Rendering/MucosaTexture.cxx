@@ -1,4 +1,4 @@
-#include "MucosaTexture.h"
+#include <vimlop/Rendering/MucosaTexture.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
-#include "OffscreenRendering.h"
+#include <vimlop/Rendering/OffscreenRendering.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <vtkAutoInit.h>
 #include <vtkRenderWindow.h>

@@ -1,6 +1,6 @@
-#include "PNGImageIO.h"
+#include <vimlop/Rendering/PNGImageIO.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <vtkImageData.h>
 #include <vtkNew.h>

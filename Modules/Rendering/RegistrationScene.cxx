@@ -1,8 +1,8 @@
-#include "RegistrationScene.h"
+#include <vimlop/Rendering/RegistrationScene.h>
 
-#include "Error.h"
-#include "PolyDataConversion.h"
-#include "WindowCapture.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Rendering/WindowCapture.h>
 
 #include <vtkActor.h>
 #include <vtkArrowSource.h>

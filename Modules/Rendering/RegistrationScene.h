@@ -1,8 +1,8 @@
 #ifndef vimlop_RegistrationScene_h
 #define vimlop_RegistrationScene_h
 
-#include "CameraPose.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include "VIMLOPRenderingModule.h"
 

@@ -1,8 +1,8 @@
-#include "ReportCharts.h"
+#include <vimlop/Rendering/ReportCharts.h>
 
-#include "ContourOverlay.h"
-#include "Error.h"
-#include "WindowCapture.h"
+#include <vimlop/Rendering/ContourOverlay.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Rendering/WindowCapture.h>
 
 #include <vtkAutoInit.h>
 #include <vtkAxis.h>

@@ -1,9 +1,9 @@
-#include "SurfaceView.h"
+#include <vimlop/Rendering/SurfaceView.h>
 
-#include "Error.h"
-#include "PolyDataConversion.h"
-#include "VTKCameraAdapter.h"
-#include "WindowCapture.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Rendering/VTKCameraAdapter.h>
+#include <vimlop/Rendering/WindowCapture.h>
 
 #include <vtkActor.h>
 #include <vtkAutoInit.h>

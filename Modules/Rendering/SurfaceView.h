@@ -1,9 +1,9 @@
 #ifndef vimlop_SurfaceView_h
 #define vimlop_SurfaceView_h
 
-#include "CameraPose.h"
-#include "PinholeCamera.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include "VIMLOPRenderingModule.h"
 

@@ -1,4 +1,4 @@
-#include "VTKCameraAdapter.h"
+#include <vimlop/Rendering/VTKCameraAdapter.h>
 
 #include <vtkCamera.h>
 #include <vtkMatrix4x4.h>

@@ -1,8 +1,8 @@
 #ifndef vimlop_VTKCameraAdapter_h
 #define vimlop_VTKCameraAdapter_h
 
-#include "CameraPose.h"
-#include "PinholeCamera.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/PinholeCamera.h>
 
 #include "VIMLOPRenderingModule.h"
 

@@ -1,4 +1,4 @@
-#include "WindowCapture.h"
+#include <vimlop/Rendering/WindowCapture.h>
 
 #include <vtkImageData.h>
 #include <vtkNew.h>

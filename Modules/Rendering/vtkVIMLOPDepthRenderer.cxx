@@ -1,7 +1,7 @@
-#include "vtkVIMLOPDepthRenderer.h"
+#include <vimlop/Rendering/vtkVIMLOPDepthRenderer.h>
 
-#include "Error.h"
-#include "VTKCameraAdapter.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Rendering/VTKCameraAdapter.h>
 
 #include <vtkActor.h>
 #include <vtkAutoInit.h>

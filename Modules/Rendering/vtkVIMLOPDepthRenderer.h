@@ -1,9 +1,9 @@
 #ifndef vtkVIMLOPDepthRenderer_h
 #define vtkVIMLOPDepthRenderer_h
 
-#include "CameraPose.h"
-#include "DepthMap.h"
-#include "PinholeCamera.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/DepthMap.h>
+#include <vimlop/Core/PinholeCamera.h>
 
 #include "VIMLOPRenderingModule.h"
 

@@ -1,9 +1,9 @@
-#include "vtkVIMLOPDepthVisibility.h"
+#include <vimlop/Rendering/vtkVIMLOPDepthVisibility.h>
 
-#include "DepthMap.h"
-#include "Error.h"
-#include "PolyDataConversion.h"
-#include "vtkVIMLOPDepthRenderer.h"
+#include <vimlop/Core/DepthMap.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Rendering/vtkVIMLOPDepthRenderer.h>
 
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>

@@ -1,8 +1,8 @@
 #ifndef vtkVIMLOPDepthVisibility_h
 #define vtkVIMLOPDepthVisibility_h
 
-#include "ContourVisibility.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/ContourVisibility.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include "VIMLOPRenderingModule.h"
 

@@ -1,8 +1,8 @@
-#include "vtkVIMLOPSilhouetteRenderer.h"
+#include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
 
-#include "Error.h"
-#include "PolyDataConversion.h"
-#include "VTKCameraAdapter.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Rendering/VTKCameraAdapter.h>
 
 #include <vtkActor.h>
 #include <vtkAutoInit.h>

@@ -1,9 +1,9 @@
 #ifndef vtkVIMLOPSilhouetteRenderer_h
 #define vtkVIMLOPSilhouetteRenderer_h
 
-#include "CameraPose.h"
-#include "PinholeCamera.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include "VIMLOPRenderingModule.h"
 

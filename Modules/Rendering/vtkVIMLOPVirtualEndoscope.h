@@ -1,11 +1,11 @@
 #ifndef vtkVIMLOPVirtualEndoscope_h
 #define vtkVIMLOPVirtualEndoscope_h
 
-#include "CameraPose.h"
-#include "EndoscopeImage.h"
-#include "MucosaTexture.h"
-#include "PinholeCamera.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Rendering/EndoscopeImage.h>
+#include <vimlop/Rendering/MucosaTexture.h>
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include "VIMLOPRenderingModule.h"
 

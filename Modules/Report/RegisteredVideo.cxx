@@ -1,10 +1,10 @@
-#include "RegisteredVideo.h"
+#include <vimlop/Report/RegisteredVideo.h>
 
-#include "ContourOverlay.h"
-#include "Error.h"
-#include "PNGImageIO.h"
-#include "SurfaceView.h"
-#include "vtkVIMLOPSilhouetteRenderer.h"
+#include <vimlop/Rendering/ContourOverlay.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Rendering/PNGImageIO.h>
+#include <vimlop/Rendering/SurfaceView.h>
+#include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
 
 #include <vtkCellArray.h>
 #include <vtkImageData.h>

@@ -1,7 +1,7 @@
 #ifndef vimlop_RegisteredVideo_h
 #define vimlop_RegisteredVideo_h
 
-#include "RegistrationRecord.h"
+#include <vimlop/Results/RegistrationRecord.h>
 
 #include "VIMLOPReportModule.h"
 

@@ -1,20 +1,20 @@
-#include "RegistrationReport.h"
+#include <vimlop/Report/RegistrationReport.h>
 
-#include "ContourMatcher.h"
-#include "ContourOverlay.h"
-#include "EmbreeRegistrationModel.h"
-#include "Error.h"
-#include "KdTree2D.h"
-#include "OccludingContours.h"
-#include "PNGImageIO.h"
-#include "RecordJson.h"
-#include "RegistrationMetrics.h"
-#include "RegistrationRecordIO.h"
-#include "RegistrationScene.h"
-#include "ReportCharts.h"
-#include "Statistics.h"
-#include "VisibleModelContours.h"
-#include "vtkVIMLOPSilhouetteRenderer.h"
+#include <vimlop/Core/ContourMatcher.h>
+#include <vimlop/Rendering/ContourOverlay.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/KdTree2D.h>
+#include <vimlop/Core/OccludingContours.h>
+#include <vimlop/Rendering/PNGImageIO.h>
+#include <vimlop/Results/RecordJson.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
+#include <vimlop/Rendering/RegistrationScene.h>
+#include <vimlop/Rendering/ReportCharts.h>
+#include <vimlop/Core/Statistics.h>
+#include <vimlop/Core/VisibleModelContours.h>
+#include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
 
 #include <vtkImageData.h>
 #include <vtkNew.h>

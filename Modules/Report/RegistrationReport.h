@@ -1,8 +1,8 @@
 #ifndef vimlop_RegistrationReport_h
 #define vimlop_RegistrationReport_h
 
-#include "PerturbationRuns.h"
-#include "RegistrationRecord.h"
+#include <vimlop/Results/PerturbationRuns.h>
+#include <vimlop/Results/RegistrationRecord.h>
 
 #include "VIMLOPReportModule.h"
 

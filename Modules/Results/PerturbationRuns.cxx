@@ -1,6 +1,6 @@
-#include "PerturbationRuns.h"
+#include <vimlop/Results/PerturbationRuns.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
-#include "RecordJson.h"
+#include <vimlop/Results/RecordJson.h>
 
-#include "Error.h"
-#include "RegistrationRecordIO.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
 
 #include <Eigen/Geometry>
 

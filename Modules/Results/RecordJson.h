@@ -5,8 +5,8 @@
 // report (RegistrationReport, in the Report module): not installed, so they
 // stay free to change with result.json.
 
-#include "RegistrationOptions.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/RegistrationOptions.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <nlohmann/json.hpp>
 

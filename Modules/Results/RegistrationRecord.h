@@ -1,12 +1,12 @@
 #ifndef vimlop_RegistrationRecord_h
 #define vimlop_RegistrationRecord_h
 
-#include "CameraPose.h"
-#include "RegistrationData.h"
-#include "RegistrationOptions.h"
-#include "RegistrationResult.h"
-#include "SimilarityTransform.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/RegistrationOptions.h>
+#include <vimlop/Core/RegistrationResult.h>
+#include <vimlop/Core/SimilarityTransform.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <Eigen/Core>
 

@@ -1,13 +1,13 @@
-#include "RegistrationRecordIO.h"
+#include <vimlop/Results/RegistrationRecordIO.h>
 
-#include "AtomicFile.h"
-#include "Error.h"
-#include "MeshIO.h"
-#include "PolyDataConversion.h"
-#include "RecordJson.h"
-#include "RegistrationInputConversion.h"
-#include "RegistrationMetrics.h"
-#include "RegistrationOutputConversion.h"
+#include <vimlop/Core/AtomicFile.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/MeshIO.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Results/RecordJson.h>
+#include <vimlop/Registration/RegistrationInputConversion.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Registration/RegistrationOutputConversion.h>
 
 #include <nlohmann/json.hpp>
 

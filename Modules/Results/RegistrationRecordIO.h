@@ -1,7 +1,7 @@
 #ifndef vimlop_RegistrationRecordIO_h
 #define vimlop_RegistrationRecordIO_h
 
-#include "RegistrationRecord.h"
+#include <vimlop/Results/RegistrationRecord.h>
 
 #include <string>
 

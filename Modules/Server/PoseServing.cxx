@@ -1,6 +1,6 @@
-#include "PoseServing.h"
+#include <vimlop/Server/PoseServing.h>
 
-#include "RegistrationResult.h"
+#include <vimlop/Core/RegistrationResult.h>
 
 #include <chrono>
 #include <csignal>

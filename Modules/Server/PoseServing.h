@@ -1,9 +1,9 @@
 #ifndef vimlop_PoseServing_h
 #define vimlop_PoseServing_h
 
-#include "FramePose.h"
-#include "PoseStreamServer.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/FramePose.h>
+#include <vimlop/Server/PoseStreamServer.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <optional>
 #include <string>

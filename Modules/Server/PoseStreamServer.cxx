@@ -1,7 +1,7 @@
-#include "PoseStreamServer.h"
+#include <vimlop/Server/PoseStreamServer.h>
 
-#include "CoordinateFrames.h"
-#include "Error.h"
+#include <vimlop/Core/CoordinateFrames.h>
+#include <vimlop/Core/Error.h>
 
 #include <igtlTransformMessage.h>
 

@@ -1,8 +1,8 @@
 #ifndef vimlop_PoseStreamServer_h
 #define vimlop_PoseStreamServer_h
 
-#include "FramePose.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/FramePose.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <functional>
 #include <string>

@@ -1,6 +1,6 @@
-#include "ColmapImport.h"
+#include <vimlop/Video/ColmapImport.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <Eigen/Geometry>
 

@@ -1,7 +1,7 @@
 #ifndef vimlop_ColmapImport_h
 #define vimlop_ColmapImport_h
 
-#include "SfmReconstruction.h"
+#include <vimlop/Video/SfmReconstruction.h>
 
 
 #include <string>

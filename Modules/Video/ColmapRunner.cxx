@@ -1,7 +1,7 @@
-#include "ColmapRunner.h"
+#include <vimlop/Video/ColmapRunner.h>
 
-#include "ColmapImport.h"
-#include "Error.h"
+#include <vimlop/Video/ColmapImport.h>
+#include <vimlop/Core/Error.h>
 
 #include <cstdlib>
 #include <filesystem>

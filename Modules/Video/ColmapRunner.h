@@ -1,7 +1,7 @@
 #ifndef vimlop_ColmapRunner_h
 #define vimlop_ColmapRunner_h
 
-#include "PinholeCamera.h"
+#include <vimlop/Core/PinholeCamera.h>
 
 
 #include <string>

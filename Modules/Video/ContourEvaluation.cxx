@@ -1,8 +1,8 @@
-#include "ContourEvaluation.h"
+#include <vimlop/Video/ContourEvaluation.h>
 
-#include "Error.h"
-#include "KdTree2D.h"
-#include "Statistics.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/KdTree2D.h>
+#include <vimlop/Core/Statistics.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
 #ifndef vimlop_ContourEvaluation_h
 #define vimlop_ContourEvaluation_h
 
-#include "ContourPoint.h"
-#include "DepthMap.h"
-#include "ModelContourPoint.h"
+#include <vimlop/Core/ContourPoint.h>
+#include <vimlop/Core/DepthMap.h>
+#include <vimlop/Core/ModelContourPoint.h>
 
 
 #include <vector>

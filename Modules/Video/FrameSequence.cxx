@@ -1,6 +1,6 @@
-#include "FrameSequence.h"
+#include <vimlop/Video/FrameSequence.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>

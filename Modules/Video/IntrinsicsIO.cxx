@@ -1,6 +1,6 @@
-#include "IntrinsicsIO.h"
+#include <vimlop/Video/IntrinsicsIO.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <opencv2/core.hpp>
 

@@ -1,7 +1,7 @@
 #ifndef vimlop_IntrinsicsIO_h
 #define vimlop_IntrinsicsIO_h
 
-#include "PinholeCamera.h"
+#include <vimlop/Core/PinholeCamera.h>
 
 
 #include <string>

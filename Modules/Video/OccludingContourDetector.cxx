@@ -1,6 +1,6 @@
-#include "OccludingContourDetector.h"
+#include <vimlop/Video/OccludingContourDetector.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <opencv2/imgproc.hpp>
 

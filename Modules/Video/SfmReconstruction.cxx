@@ -1,6 +1,6 @@
-#include "SfmReconstruction.h"
+#include <vimlop/Video/SfmReconstruction.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <Eigen/Dense>
 

@@ -1,8 +1,8 @@
 #ifndef vimlop_SfmReconstruction_h
 #define vimlop_SfmReconstruction_h
 
-#include "CameraPose.h"
-#include "PinholeCamera.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/PinholeCamera.h>
 
 
 #include <Eigen/Core>

@@ -1,7 +1,7 @@
-#include "SfmReconstructionIO.h"
+#include <vimlop/Video/SfmReconstructionIO.h>
 
-#include "AtomicFile.h"
-#include "Error.h"
+#include <vimlop/Core/AtomicFile.h>
+#include <vimlop/Core/Error.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 #ifndef vimlop_SfmReconstructionIO_h
 #define vimlop_SfmReconstructionIO_h
 
-#include "SfmReconstruction.h"
+#include <vimlop/Video/SfmReconstruction.h>
 
 
 #include <string>

@@ -1,8 +1,8 @@
-#include "StructureFromMotion.h"
+#include <vimlop/Video/StructureFromMotion.h>
 
-#include "BundleAdjustment.h"
-#include "Error.h"
-#include "Statistics.h"
+#include <vimlop/Video/BundleAdjustment.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Statistics.h>
 
 #include <Eigen/Dense>
 

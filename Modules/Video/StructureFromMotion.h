@@ -1,8 +1,8 @@
 #ifndef vimlop_StructureFromMotion_h
 #define vimlop_StructureFromMotion_h
 
-#include "PinholeCamera.h"
-#include "SfmReconstruction.h"
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Video/SfmReconstruction.h>
 
 
 #include <opencv2/core/mat.hpp>

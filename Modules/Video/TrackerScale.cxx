@@ -1,6 +1,6 @@
-#include "TrackerScale.h"
+#include <vimlop/Video/TrackerScale.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <cmath>
 #include <cstdio>

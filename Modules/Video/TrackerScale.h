@@ -1,7 +1,7 @@
 #ifndef vimlop_TrackerScale_h
 #define vimlop_TrackerScale_h
 
-#include "TrackerTrajectory.h"
+#include <vimlop/Video/TrackerTrajectory.h>
 
 
 #include <Eigen/Core>

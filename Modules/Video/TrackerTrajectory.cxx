@@ -1,6 +1,6 @@
-#include "TrackerTrajectory.h"
+#include <vimlop/Video/TrackerTrajectory.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #include <algorithm>
 #include <cctype>

@@ -1,8 +1,8 @@
-#include "VideoInput.h"
+#include <vimlop/Video/VideoInput.h>
 
-#include "ColmapImport.h"
-#include "Error.h"
-#include "StructureFromMotion.h"
+#include <vimlop/Video/ColmapImport.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/StructureFromMotion.h>
 
 #include <opencv2/calib3d.hpp>
 

@@ -1,11 +1,11 @@
 #ifndef vimlop_VideoInput_h
 #define vimlop_VideoInput_h
 
-#include "FrameSequence.h"
-#include "PinholeCamera.h"
-#include "SfmReconstruction.h"
-#include "TrackerScale.h"
-#include "TrackerTrajectory.h"
+#include <vimlop/Video/FrameSequence.h>
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Video/SfmReconstruction.h>
+#include <vimlop/Video/TrackerScale.h>
+#include <vimlop/Video/TrackerTrajectory.h>
 
 #include <opencv2/core/mat.hpp>
 

@@ -5,15 +5,15 @@
 //
 // Usage: VIMLOPBenchmarkRegistration --mesh airway.vtp [--trials N] [--threads T] [--json out.json]
 
-#include "EmbreeRegistrationModel.h"
-#include "Error.h"
-#include "MeshIO.h"
-#include "MeshTree.h"
-#include "PolyDataConversion.h"
-#include "Registration.h"
-#include "RegistrationMetrics.h"
-#include "Statistics.h"
-#include "SyntheticExperiment.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/MeshIO.h>
+#include <vimlop/Core/MeshTree.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Core/Registration.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Core/Statistics.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 
 #include <nlohmann/json.hpp>
 

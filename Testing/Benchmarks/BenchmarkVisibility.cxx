@@ -9,14 +9,14 @@
 // Usage: VIMLOPBenchmarkVisibility --mesh airway.vtp [--trials N] [--supersampling S]
 // (needs an X display: run it under xvfb-run -a on a server)
 
-#include "EmbreeRegistrationModel.h"
-#include "Error.h"
-#include "MeshIO.h"
-#include "OccludingContours.h"
-#include "PolyDataConversion.h"
-#include "Statistics.h"
-#include "SyntheticExperiment.h"
-#include "vtkVIMLOPDepthVisibility.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/MeshIO.h>
+#include <vimlop/Core/OccludingContours.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Core/Statistics.h>
+#include <vimlop/Core/SyntheticExperiment.h>
+#include <vimlop/Rendering/vtkVIMLOPDepthVisibility.h>
 
 #include <vtkNew.h>
 #include <vtkPolyData.h>

@@ -1,6 +1,6 @@
 // Fuzzes the JSON pose file reader (template poses, warped poses).
-#include "Error.h"
-#include "FramePoseIO.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/FramePoseIO.h>
 #include "FuzzTemporaryFile.h"
 
 #include <cstdlib>

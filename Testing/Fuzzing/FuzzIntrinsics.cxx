@@ -1,7 +1,7 @@
 // Fuzzes the intrinsics reader (both layouts, every FileStorage format).
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 #include "FuzzTemporaryFile.h"
-#include "IntrinsicsIO.h"
+#include <vimlop/Video/IntrinsicsIO.h>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

@@ -4,8 +4,8 @@
 // reads. The server must neither crash nor stall, must close the connection,
 // and must have sent exactly the published TRANSFORM messages, each with a
 // valid OpenIGTLink header and CRC.
-#include "Error.h"
-#include "PoseStreamServer.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Server/PoseStreamServer.h>
 
 #include <igtlMessageHeader.h>
 #include <igtlTransformMessage.h>

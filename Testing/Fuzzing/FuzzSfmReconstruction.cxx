@@ -1,7 +1,7 @@
 // Fuzzes the reader of VIMLOP's SfM files (vimlop sfm's output).
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 #include "FuzzTemporaryFile.h"
-#include "SfmReconstructionIO.h"
+#include <vimlop/Video/SfmReconstructionIO.h>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

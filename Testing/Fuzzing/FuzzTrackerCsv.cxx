@@ -1,7 +1,7 @@
 // Fuzzes the tracker CSV reader and the interpolation of what it accepts.
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 #include "FuzzTemporaryFile.h"
-#include "TrackerTrajectory.h"
+#include <vimlop/Video/TrackerTrajectory.h>
 
 #include <cmath>
 #include <cstdlib>

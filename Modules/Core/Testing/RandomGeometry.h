@@ -3,8 +3,8 @@
 
 // Random rotations, covariances and transforms for property tests.
 
-#include "Rotation.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <Eigen/Dense>
 

@@ -1,4 +1,4 @@
-#include "AnatomicalConstraint.h"
+#include <vimlop/Core/AnatomicalConstraint.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

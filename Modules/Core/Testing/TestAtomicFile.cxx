@@ -1,5 +1,5 @@
-#include "AtomicFile.h"
-#include "Error.h"
+#include <vimlop/Core/AtomicFile.h>
+#include <vimlop/Core/Error.h>
 
 #include <gtest/gtest.h>
 

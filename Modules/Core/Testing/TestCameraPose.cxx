@@ -1,6 +1,6 @@
-#include "CameraPose.h"
-#include "Error.h"
-#include "Rotation.h"
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-#include "CanonicalPoses.h"
-#include "Error.h"
+#include <vimlop/Core/CanonicalPoses.h>
+#include <vimlop/Core/Error.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-#include "ChiSquare.h"
-#include "Error.h"
+#include <vimlop/Core/ChiSquare.h>
+#include <vimlop/Core/Error.h>
 
 #include <gtest/gtest.h>
 

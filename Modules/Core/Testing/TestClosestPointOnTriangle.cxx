@@ -1,4 +1,4 @@
-#include "ClosestPointOnTriangle.h"
+#include <vimlop/Core/ClosestPointOnTriangle.h>
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "ContourMatcher.h"
+#include <vimlop/Core/ContourMatcher.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "ConvergenceCriteria.h"
-#include "Error.h"
-#include "Rotation.h"
+#include <vimlop/Core/ConvergenceCriteria.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "CorrespondenceSearch.h"
-#include "SyntheticExperiment.h"
-#include "TaskPool.h"
+#include <vimlop/Core/CorrespondenceSearch.h>
+#include <vimlop/Core/SyntheticExperiment.h>
+#include <vimlop/Core/TaskPool.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

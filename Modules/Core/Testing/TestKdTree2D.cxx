@@ -1,4 +1,4 @@
-#include "KdTree2D.h"
+#include <vimlop/Core/KdTree2D.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "ClosestPointOnTriangle.h"
-#include "Error.h"
-#include "MeshTree.h"
+#include <vimlop/Core/ClosestPointOnTriangle.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/MeshTree.h>
 #include "RandomGeometry.h"
 #include "TestMeshes.h"
 

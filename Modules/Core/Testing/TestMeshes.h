@@ -3,7 +3,7 @@
 
 // Meshes that tests build in memory, with known geometry.
 
-#include "TriangleMesh.h"
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <Eigen/Core>
 

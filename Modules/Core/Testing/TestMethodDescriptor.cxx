@@ -1,4 +1,4 @@
-#include "MethodDescriptor.h"
+#include <vimlop/Core/MethodDescriptor.h>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-#include "Error.h"
-#include "MultiStartRegistration.h"
-#include "RegistrationMetrics.h"
-#include "Rotation.h"
-#include "SyntheticExperiment.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/MultiStartRegistration.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

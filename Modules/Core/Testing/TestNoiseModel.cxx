@@ -1,6 +1,6 @@
-#include "Error.h"
-#include "NoiseModel.h"
-#include "RegistrationData.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/NoiseModel.h>
+#include <vimlop/Core/RegistrationData.h>
 
 #include <gtest/gtest.h>
 

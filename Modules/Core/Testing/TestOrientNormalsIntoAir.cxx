@@ -1,5 +1,5 @@
-#include "Error.h"
-#include "OrientNormalsIntoAir.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/OrientNormalsIntoAir.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-#include "ChiSquare.h"
-#include "OutlierRejection.h"
+#include <vimlop/Core/ChiSquare.h>
+#include <vimlop/Core/OutlierRejection.h>
 #include "RandomGeometry.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-#include "Error.h"
-#include "PinholeCamera.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/PinholeCamera.h>
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-#include "ClosedFormSimilarityEstimator.h"
-#include "LevenbergMarquardtPoseEstimator.h"
+#include <vimlop/Core/ClosedFormSimilarityEstimator.h>
+#include <vimlop/Core/LevenbergMarquardtPoseEstimator.h>
 #include "RandomGeometry.h"
-#include "Rotation.h"
+#include <vimlop/Core/Rotation.h>
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-#include "Error.h"
-#include "PoseUpdate.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/PoseUpdate.h>
 #include "RandomGeometry.h"
-#include "TaskPool.h"
+#include <vimlop/Core/TaskPool.h>
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "RandomDirection.h"
+#include <vimlop/Core/RandomDirection.h>
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-#include "Error.h"
-#include "RayClearance.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/RayClearance.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
-#include "Error.h"
-#include "Registration.h"
-#include "RegistrationMetrics.h"
-#include "SyntheticExperiment.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Registration.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "RegistrationSummary.h"
+#include <vimlop/Core/RegistrationSummary.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 #include "RandomGeometry.h"
-#include "SimilarityEstimation.h"
+#include <vimlop/Core/SimilarityEstimation.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "Error.h"
-#include "Rotation.h"
-#include "SimilarityTransform.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/SimilarityTransform.h>
 
 #include <gtest/gtest.h>
 

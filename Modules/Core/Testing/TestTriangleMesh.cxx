@@ -1,6 +1,6 @@
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 #include "TestMeshes.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <Eigen/Dense>
 

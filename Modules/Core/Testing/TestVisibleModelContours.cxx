@@ -1,7 +1,7 @@
-#include "MeshTreeVisibility.h"
-#include "RegistrationResult.h"
+#include <vimlop/Core/MeshTreeVisibility.h>
+#include <vimlop/Core/RegistrationResult.h>
 #include "TestMeshes.h"
-#include "VisibleModelContours.h"
+#include <vimlop/Core/VisibleModelContours.h>
 
 #include <gtest/gtest.h>
 

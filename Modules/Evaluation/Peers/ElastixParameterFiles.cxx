@@ -1,4 +1,4 @@
-#include "ElastixParameterFiles.h"
+#include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
 
 #include <dlfcn.h>
 

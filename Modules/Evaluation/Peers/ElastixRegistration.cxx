@@ -1,7 +1,7 @@
-#include "ElastixRegistration.h"
+#include <vimlop/Evaluation/Peers/ElastixRegistration.h>
 
-#include "CTVolumeIO.h"
-#include "Error.h"
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Core/Error.h>
 
 #include <chrono>
 #include <cstdio>

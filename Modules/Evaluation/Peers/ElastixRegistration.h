@@ -1,7 +1,7 @@
 #ifndef vimlop_ElastixRegistration_h
 #define vimlop_ElastixRegistration_h
 
-#include "CTVolume.h"
+#include <vimlop/Imaging/CTVolume.h>
 
 #include <array>
 #include <string>

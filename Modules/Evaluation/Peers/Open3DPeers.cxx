@@ -1,6 +1,6 @@
-#include "Open3DPeers.h"
+#include <vimlop/Evaluation/Peers/Open3DPeers.h>
 
-#include "Error.h"
+#include <vimlop/Core/Error.h>
 
 #ifdef VIMLOP_HAVE_OPEN3D
 #include <open3d/geometry/PointCloud.h>

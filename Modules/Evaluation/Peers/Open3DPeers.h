@@ -1,8 +1,8 @@
 #ifndef vimlop_Open3DPeers_h
 #define vimlop_Open3DPeers_h
 
-#include "SimilarityTransform.h"
-#include "TriangleMesh.h"
+#include <vimlop/Core/SimilarityTransform.h>
+#include <vimlop/Core/TriangleMesh.h>
 
 #include <Eigen/Core>
 

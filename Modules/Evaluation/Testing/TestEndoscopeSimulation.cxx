@@ -1,5 +1,5 @@
-#include "EndoscopeSimulation.h"
-#include "Error.h"
+#include <vimlop/Evaluation/EndoscopeSimulation.h>
+#include <vimlop/Core/Error.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

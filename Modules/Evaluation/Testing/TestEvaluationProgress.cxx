@@ -1,6 +1,6 @@
-#include "Error.h"
-#include "EvaluationProgress.h"
-#include "ProgressNoteStream.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Evaluation/ProgressNoteStream.h>
 
 #include <gtest/gtest.h>
 

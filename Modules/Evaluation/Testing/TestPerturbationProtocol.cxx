@@ -1,6 +1,6 @@
 #include "CraniumAirway.h"
-#include "Error.h"
-#include "PerturbationProtocol.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/PerturbationProtocol.h>
 
 #include <gtest/gtest.h>
 

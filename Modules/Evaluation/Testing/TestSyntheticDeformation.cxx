@@ -1,7 +1,7 @@
 #include "AirwayPhantom.h"
-#include "Error.h"
-#include "SyntheticDeformation.h"
-#include "TemplateRegistration.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/SyntheticDeformation.h>
+#include <vimlop/Imaging/TemplateRegistration.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "Error.h"
-#include "Open3DPeers.h"
-#include "SyntheticProtocol.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/Peers/Open3DPeers.h>
+#include <vimlop/Evaluation/SyntheticProtocol.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 #include "AirwayPhantom.h"
-#include "Error.h"
-#include "TemplateWarpProtocol.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/TemplateWarpProtocol.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 #include "CraniumAirway.h"
-#include "Error.h"
-#include "VideoProtocol.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/VideoProtocol.h>
 
 #include <gtest/gtest.h>
 

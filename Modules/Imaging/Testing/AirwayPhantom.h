@@ -6,7 +6,7 @@
 // registration tests include ITK-free code only, but this header is meant to
 // be usable from any test.
 
-#include "CTVolume.h"
+#include <vimlop/Imaging/CTVolume.h>
 
 #include <array>
 #include <cmath>

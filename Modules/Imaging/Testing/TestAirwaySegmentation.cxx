@@ -1,6 +1,6 @@
 #include "AirwayPhantom.h"
-#include "AirwaySegmentation.h"
-#include "Error.h"
+#include <vimlop/Imaging/AirwaySegmentation.h>
+#include <vimlop/Core/Error.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "CTVolumeIO.h"
-#include "Error.h"
-#include "Rotation.h"
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-#include "Error.h"
-#include "InVesaliusProjectReader.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/InVesaliusProjectReader.h>
 #include "InVesaliusTestFiles.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-#include "Error.h"
-#include "MeshIO.h"
-#include "PolyDataConversion.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/MeshIO.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

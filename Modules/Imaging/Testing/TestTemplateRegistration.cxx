@@ -1,7 +1,7 @@
 #include "AirwayPhantom.h"
-#include "Error.h"
-#include "TemplateRegistration.h"
-#include "VolumeCrop.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/TemplateRegistration.h>
+#include <vimlop/Imaging/VolumeCrop.h>
 
 #include <gtest/gtest.h>
 

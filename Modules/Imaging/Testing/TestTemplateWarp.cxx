@@ -1,7 +1,7 @@
-#include "DisplacementField.h"
-#include "PolyDataConversion.h"
-#include "Rotation.h"
-#include "TemplateWarp.h"
+#include <vimlop/Imaging/DisplacementField.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Imaging/TemplateWarp.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

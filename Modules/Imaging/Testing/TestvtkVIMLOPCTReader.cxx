@@ -1,5 +1,5 @@
-#include "CTVolumeIO.h"
-#include "vtkVIMLOPCTReader.h"
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Imaging/vtkVIMLOPCTReader.h>
 
 #include <gtest/gtest.h>
 

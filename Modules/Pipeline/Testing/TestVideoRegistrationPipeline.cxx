@@ -1,8 +1,8 @@
-#include "VideoRegistrationPipeline.h"
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
-#include "RegistrationMetrics.h"
+#include <vimlop/Core/RegistrationMetrics.h>
 #include "RenderedSequence.h"
-#include "SimilarityFromCameras.h"
+#include <vimlop/Pipeline/SimilarityFromCameras.h>
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-#include "VideoRegistrationPipeline.h"
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
-#include "Error.h"
-#include "RegistrationOutputs.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Pipeline/RegistrationOutputs.h>
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-#include "vtkVIMLOPVideoRegistration.h"
+#include <vimlop/Pipeline/vtkVIMLOPVideoRegistration.h>
 
-#include "FramePoseIO.h"
-#include "RegistrationMetrics.h"
-#include "RegistrationOutputs.h"
-#include "VideoRegistrationOptions.h"
-#include "vtkVIMLOPRegistration.h"
+#include <vimlop/Imaging/FramePoseIO.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Pipeline/RegistrationOutputs.h>
+#include <vimlop/Pipeline/VideoRegistrationOptions.h>
+#include <vimlop/Registration/vtkVIMLOPRegistration.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "ClosestPointOnTriangle.h"
-#include "EmbreeScene.h"
-#include "Error.h"
+#include <vimlop/Core/ClosestPointOnTriangle.h>
+#include <vimlop/Raycast/EmbreeScene.h>
+#include <vimlop/Core/Error.h>
 #include "TestMeshes.h"
 
 #include <Eigen/Dense>

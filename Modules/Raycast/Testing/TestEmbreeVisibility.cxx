@@ -1,10 +1,10 @@
-#include "EmbreeRegistrationModel.h"
-#include "EmbreeVisibility.h"
-#include "MeshTreeVisibility.h"
-#include "OccludingContours.h"
-#include "Registration.h"
-#include "RegistrationMetrics.h"
-#include "SyntheticExperiment.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Raycast/EmbreeVisibility.h>
+#include <vimlop/Core/MeshTreeVisibility.h>
+#include <vimlop/Core/OccludingContours.h>
+#include <vimlop/Core/Registration.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-#include "CameraPoseTable.h"
-#include "Error.h"
-#include "Rotation.h"
+#include <vimlop/Registration/CameraPoseTable.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 #include "CraniumAirway.h"
-#include "EmbreeRegistrationModel.h"
-#include "PolyDataConversion.h"
-#include "RegistrationInputConversion.h"
-#include "RegistrationMetrics.h"
-#include "SyntheticExperiment.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Registration/RegistrationInputConversion.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 #include "TestMeshes.h"
-#include "vtkVIMLOPRegistration.h"
+#include <vimlop/Registration/vtkVIMLOPRegistration.h>
 
 #include <gtest/gtest.h>
 

@@ -5,8 +5,8 @@
 // P1 trials (along passages, at least 2 mm from the wall) and, from the same
 // centres, views in directions drawn at random.
 
-#include "RegistrationModel.h"
-#include "SyntheticExperiment.h"
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 
 #include <Eigen/Geometry>
 

@@ -1,5 +1,5 @@
-#include "EndoscopeTrajectory.h"
-#include "Error.h"
+#include <vimlop/Rendering/EndoscopeTrajectory.h>
+#include <vimlop/Core/Error.h>
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-#include "Error.h"
-#include "Rotation.h"
-#include "vtkVIMLOPDepthRenderer.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Rendering/vtkVIMLOPDepthRenderer.h>
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,13 @@
 #include "CraniumAirway.h"
 #include "CraniumPoses.h"
-#include "EmbreeRegistrationModel.h"
-#include "EmbreeVisibility.h"
-#include "Error.h"
-#include "MeshTreeVisibility.h"
-#include "OccludingContours.h"
-#include "SyntheticExperiment.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Raycast/EmbreeVisibility.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/MeshTreeVisibility.h>
+#include <vimlop/Core/OccludingContours.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 #include "TestMeshes.h"
-#include "vtkVIMLOPDepthVisibility.h"
+#include <vimlop/Rendering/vtkVIMLOPDepthVisibility.h>
 
 #include <gtest/gtest.h>
 

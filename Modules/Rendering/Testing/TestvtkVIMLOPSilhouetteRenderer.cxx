@@ -1,11 +1,11 @@
 #include "CraniumAirway.h"
 #include "CraniumPoses.h"
-#include "EmbreeRegistrationModel.h"
-#include "Error.h"
-#include "OccludingContours.h"
-#include "SyntheticExperiment.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/OccludingContours.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 #include "TestMeshes.h"
-#include "vtkVIMLOPSilhouetteRenderer.h"
+#include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
 
 #include <gtest/gtest.h>
 

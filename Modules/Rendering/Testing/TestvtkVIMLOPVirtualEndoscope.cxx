@@ -1,8 +1,8 @@
-#include "Error.h"
-#include "Rotation.h"
-#include "TriangleMesh.h"
-#include "VTKCameraAdapter.h"
-#include "vtkVIMLOPVirtualEndoscope.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Rendering/VTKCameraAdapter.h>
+#include <vimlop/Rendering/vtkVIMLOPVirtualEndoscope.h>
 
 #include <gtest/gtest.h>
 

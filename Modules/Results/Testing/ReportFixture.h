@@ -6,12 +6,12 @@
 // (the truth off by a small known motion, reached in 8 iterations), so that
 // the pictures depend on neither the registration's numerics nor its speed.
 
-#include "EmbreeRegistrationModel.h"
-#include "PNGImageIO.h"
-#include "RegistrationRecord.h"
-#include "Rotation.h"
-#include "SurfaceView.h"
-#include "SyntheticExperiment.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Rendering/PNGImageIO.h>
+#include <vimlop/Results/RegistrationRecord.h>
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Rendering/SurfaceView.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 #include "TestMeshes.h"
 
 #include <vtkImageData.h>

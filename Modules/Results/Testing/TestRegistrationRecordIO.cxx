@@ -1,6 +1,6 @@
-#include "Error.h"
-#include "PerturbationRuns.h"
-#include "RegistrationRecordIO.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Results/PerturbationRuns.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
 #include "ReportFixture.h"
 
 #include <gtest/gtest.h>

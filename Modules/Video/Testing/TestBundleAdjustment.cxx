@@ -1,6 +1,6 @@
-#include "BundleAdjustment.h"
-#include "Error.h"
-#include "Rotation.h"
+#include <vimlop/Video/BundleAdjustment.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 
 #include <gtest/gtest.h>
 

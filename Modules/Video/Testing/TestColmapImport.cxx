@@ -1,5 +1,5 @@
-#include "ColmapImport.h"
-#include "Error.h"
+#include <vimlop/Video/ColmapImport.h>
+#include <vimlop/Core/Error.h>
 
 #include <gtest/gtest.h>
 

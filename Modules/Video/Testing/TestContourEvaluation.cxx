@@ -1,5 +1,5 @@
-#include "ContourEvaluation.h"
-#include "Error.h"
+#include <vimlop/Video/ContourEvaluation.h>
+#include <vimlop/Core/Error.h>
 
 #include <gtest/gtest.h>
 

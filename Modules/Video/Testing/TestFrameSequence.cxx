@@ -1,5 +1,5 @@
-#include "Error.h"
-#include "FrameSequence.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/FrameSequence.h>
 
 #include <gtest/gtest.h>
 

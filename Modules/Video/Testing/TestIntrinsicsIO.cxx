@@ -1,5 +1,5 @@
-#include "Error.h"
-#include "IntrinsicsIO.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/IntrinsicsIO.h>
 
 #include <gtest/gtest.h>
 

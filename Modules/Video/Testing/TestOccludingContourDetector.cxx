@@ -1,5 +1,5 @@
-#include "Error.h"
-#include "OccludingContourDetector.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/OccludingContourDetector.h>
 
 #include <gtest/gtest.h>
 

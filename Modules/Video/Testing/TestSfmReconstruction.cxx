@@ -1,6 +1,6 @@
-#include "Error.h"
-#include "SfmReconstruction.h"
-#include "SfmReconstructionIO.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/SfmReconstruction.h>
+#include <vimlop/Video/SfmReconstructionIO.h>
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-#include "Error.h"
-#include "StructureFromMotion.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/StructureFromMotion.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "Error.h"
-#include "TrackerScale.h"
-#include "TrackerTrajectory.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/TrackerScale.h>
+#include <vimlop/Video/TrackerTrajectory.h>
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,13 @@
 // Contours and structure from motion on pictures of the virtual endoscope
 // (Rendering module), against the simulation's ground truth.
 
-#include "ContourEvaluation.h"
-#include "OccludingContourDetector.h"
-#include "OccludingContours.h"
+#include <vimlop/Video/ContourEvaluation.h>
+#include <vimlop/Video/OccludingContourDetector.h>
+#include <vimlop/Core/OccludingContours.h>
 #include "RenderedSequence.h"
-#include "Rotation.h"
-#include "SimilarityEstimation.h"
-#include "StructureFromMotion.h"
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/SimilarityEstimation.h>
+#include <vimlop/Video/StructureFromMotion.h>
 
 #include <gtest/gtest.h>
 
