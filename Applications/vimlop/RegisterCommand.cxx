@@ -3,15 +3,12 @@
 #include "CommandLine.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/FramePoseIO.h>
-#include <vimlop/Video/IntrinsicsIO.h>
 #include <vimlop/Rendering/OffscreenRendering.h>
 #include "PipelineFlags.h"
 #include <vimlop/Server/PoseServing.h>
 #include "PoseServingFlags.h"
 #include <vimlop/Pipeline/RegistrationOutputs.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
-#include <vimlop/Video/TrackerScale.h>
-#include <vimlop/Video/VideoInput.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
 #include <CLI/CLI.hpp>
@@ -23,8 +20,8 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <optional>
 #include <sstream>
+#include <tuple>
 
 namespace vimlop
 {
@@ -92,14 +89,8 @@ struct RegisterOptions
   PoseServingOptions serving;
 };
 
-/// --init: manual:POSE.json, canonical or canonical:POSES.json.
-struct InitChoice
-{
-  StartMode mode = StartMode::Canonical;
-  std::string file;
-};
-
-InitChoice parseInit(const std::string& text)
+/// --init: manual:POSE.json, canonical or canonical:POSES.json, as a mode and a pose file.
+std::pair<StartMode, std::string> parseInit(const std::string& text)
 {
   if (text.rfind("manual:", 0) == 0 && text.size() > 7)
   {
@@ -147,30 +138,21 @@ void runRegister(RegisterOptions o)
   {
     throw Error("'" + o.out + "': exists; choose another --out or add --force to replace it");
   }
-  const InitChoice init = parseInit(o.init);
-  const std::string colmapFolder = parseSfm(o.sfm);
+  VideoRegistrationInputs inputs;
+  inputs.meshPath = o.mesh;
+  inputs.ctPath = o.ct;
+  inputs.framesPath = o.frames.empty() ? o.video : o.frames;
+  inputs.maxFrames = o.maxFrames;
+  inputs.intrinsicsPath = o.intrinsics;
+  inputs.colmapFolder = parseSfm(o.sfm);
+  inputs.trackerPath = o.tracker;
+  inputs.initialScale = o.scale;
+  inputs.framesPerSecond = o.fps;
+  inputs.timeOffsetS = o.timeOffsetS;
+  std::tie(inputs.startMode, inputs.startPosesPath) = parseInit(o.init);
   if (o.tracker.empty() && !(o.scale > 0.0))
   {
     throw Error("give --tracker CSV or --scale S: SfM alone has no metric scale");
-  }
-  std::optional<TrackerTrajectory> tracker;
-  if (!o.tracker.empty())
-  {
-    std::vector<std::string> warnings;
-    tracker = TrackerTrajectory::readCsv(o.tracker, &warnings);
-    for (const std::string& w : warnings)
-    {
-      std::cerr << "vimlop: warning: " << w << "\n";
-    }
-  }
-  std::vector<FramePose> initPoses;
-  if (!init.file.empty())
-  {
-    initPoses = readFramePoses(init.file);
-    if (initPoses.empty())
-    {
-      throw Error("'" + init.file + "': holds no pose");
-    }
   }
   const std::vector<FramePose> truthPoses =
     o.truth.empty() ? std::vector<FramePose>() : readFramePoses(o.truth);
@@ -181,42 +163,7 @@ void runRegister(RegisterOptions o)
   pipeline.setProgress([](const std::string&, double) { return !interrupted; });
   try
   {
-    const std::string framesPath = o.frames.empty() ? o.video : o.frames;
-    pipeline.loadFrames(framesPath, readIntrinsics(o.intrinsics), o.maxFrames, o.intrinsics);
-    if (tracker)
-    {
-      checkTrackerOverlap(*tracker, frameTimesS(pipeline.numberOfFrames(), o.fps, o.timeOffsetS));
-    }
-    pipeline.loadModel(o.mesh, o.ct);
-    pipeline.detectContours();
-    pipeline.reconstruct(colmapFolder);
-    pipeline.estimateInitialScale(tracker ? &*tracker : nullptr, o.fps, o.timeOffsetS, o.scale);
-    pipeline.makeData();
-    if (init.mode == StartMode::Manual)
-    {
-      try
-      {
-        pipeline.makeManualStart(initPoses.front());
-      }
-      catch (const Error& e)
-      {
-        throw Error("'" + init.file + "': " + e.what());
-      }
-    }
-    else if (init.file.empty())
-    {
-      pipeline.makeCanonicalStarts();
-    }
-    else
-    {
-      std::vector<CameraPose> poses;
-      for (const FramePose& p : initPoses)
-      {
-        poses.push_back(p.cameraToWorld);
-      }
-      pipeline.makeCanonicalStarts(&poses, init.file);
-    }
-    pipeline.run();
+    pipeline.run(inputs);
   }
   catch (const PipelineCancelled&)
   {

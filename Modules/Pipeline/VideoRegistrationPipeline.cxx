@@ -5,7 +5,10 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Imaging/ModelLoading.h>
+#include <vimlop/Imaging/FramePoseIO.h>
+#include <vimlop/Video/IntrinsicsIO.h>
 #include <vimlop/Video/OccludingContourDetector.h>
+#include <vimlop/Video/TrackerScale.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Video/VideoInput.h>
 #include <vimlop/Pipeline/VideoRegistrationData.h>
@@ -387,6 +390,76 @@ void VideoRegistrationPipeline::run()
   outcome.failureThresholdPx = multi.failureContourErrorPx;
   outcome.failure = isFlaggedAsFailure(outcome.best, multi);
   d.Outcome = std::move(outcome);
+}
+
+void VideoRegistrationPipeline::run(const VideoRegistrationInputs& in)
+{
+  Internals& d = *this->Impl;
+  // The small files first, so that a bad one fails before the long work.
+  std::optional<TrackerTrajectory> tracker;
+  if (!in.trackerPath.empty())
+  {
+    std::vector<std::string> warnings;
+    tracker = TrackerTrajectory::readCsv(in.trackerPath, &warnings);
+    for (const std::string& w : warnings)
+    {
+      d.Warn(w);
+    }
+  }
+  else if (!(in.initialScale > 0.0))
+  {
+    throw Error("give a tracker recording or an initial scale: SfM alone has no metric scale");
+  }
+  std::vector<FramePose> startPoses;
+  if (!in.startPosesPath.empty())
+  {
+    startPoses = readFramePoses(in.startPosesPath);
+    if (startPoses.empty())
+    {
+      throw Error("'" + in.startPosesPath + "': holds no pose");
+    }
+  }
+  else if (in.startMode == StartMode::Manual)
+  {
+    throw Error("a manual start needs a pose file");
+  }
+
+  this->loadFrames(in.framesPath, readIntrinsics(in.intrinsicsPath), in.maxFrames, in.intrinsicsPath);
+  if (tracker)
+  {
+    checkTrackerOverlap(*tracker, frameTimesS(d.Frames.size(), in.framesPerSecond, in.timeOffsetS));
+  }
+  this->loadModel(in.meshPath, in.meshPath.empty() ? in.ctPath : std::string());
+  this->detectContours();
+  this->reconstruct(in.colmapFolder);
+  this->estimateInitialScale(
+    tracker ? &*tracker : nullptr, in.framesPerSecond, in.timeOffsetS, in.initialScale);
+  this->makeData();
+  if (in.startMode == StartMode::Manual)
+  {
+    try
+    {
+      this->makeManualStart(startPoses.front());
+    }
+    catch (const Error& e)
+    {
+      throw Error("'" + in.startPosesPath + "': " + e.what());
+    }
+  }
+  else if (startPoses.empty())
+  {
+    this->makeCanonicalStarts();
+  }
+  else
+  {
+    std::vector<CameraPose> poses;
+    for (const FramePose& p : startPoses)
+    {
+      poses.push_back(p.cameraToWorld);
+    }
+    this->makeCanonicalStarts(&poses, in.startPosesPath);
+  }
+  this->run();
 }
 
 const TriangleMesh& VideoRegistrationPipeline::mesh() const

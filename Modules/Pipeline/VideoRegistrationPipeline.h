@@ -12,6 +12,7 @@
 #include <vimlop/Video/SfmReconstruction.h>
 #include <vimlop/Video/TrackerTrajectory.h>
 #include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Pipeline/VideoRegistrationInputs.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
 
 #include <functional>
@@ -23,13 +24,6 @@
 
 namespace vimlop
 {
-
-/// @brief Where the registration starts (V13).
-enum class StartMode
-{
-  Manual,   ///< the camera-to-CT pose of one frame, given by the user (V13 a)
-  Canonical ///< every canonical pose along the airway, a multi-start (V13 b)
-};
 
 /**
  * @brief The main job as a library: video frames and a CT airway model in,
@@ -133,6 +127,14 @@ public:
   /// Starts given directly (SfM frame to CT frame), e.g. by an embedding program.
   void setStarts(const std::vector<SimilarityTransform>& startsSfmToCT, StartMode mode);
   ///@}
+
+  /**
+   * @brief Stages 1-8 on `inputs`: checks the small files first (tracker,
+   * start poses), then loads, detects, reconstructs, scales, makes the data
+   * and the starts, and registers.
+   * @throws vimlop::Error naming the file or stage that failed; PipelineCancelled.
+   */
+  void run(const VideoRegistrationInputs& inputs);
 
   /**
    * 8. Registers from every start (the multi-start; a single start uses every

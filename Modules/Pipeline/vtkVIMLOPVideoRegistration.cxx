@@ -1,8 +1,6 @@
 #include <vimlop/Pipeline/vtkVIMLOPVideoRegistration.h>
 
 #include <vimlop/Core/Error.h>
-#include <vimlop/Imaging/FramePoseIO.h>
-#include <vimlop/Video/IntrinsicsIO.h>
 #include <vimlop/Registration/RegistrationOutputConversion.h>
 #include <vimlop/Pipeline/RegistrationOutputs.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
@@ -16,7 +14,6 @@
 #include <vtkTransform.h>
 
 #include <exception>
-#include <optional>
 
 vtkStandardNewMacro(vtkVIMLOPVideoRegistration);
 
@@ -150,49 +147,21 @@ int vtkVIMLOPVideoRegistration::RequestData(
     {
       throw vimlop::Error("set FramesPath and IntrinsicsFileName");
     }
-    std::optional<vimlop::TrackerTrajectory> tracker;
-    if (!this->TrackerFileName.empty())
-    {
-      std::vector<std::string> warnings;
-      tracker = vimlop::TrackerTrajectory::readCsv(this->TrackerFileName, &warnings);
-      for (const std::string& w : warnings)
-      {
-        vtkWarningMacro(<< w);
-      }
-    }
-    const std::vector<vimlop::FramePose> startPoses = this->StartPosesFileName.empty()
-      ? std::vector<vimlop::FramePose>()
-      : vimlop::readFramePoses(this->StartPosesFileName);
-    if (this->StartFromManualPose && startPoses.empty())
-    {
-      throw vimlop::Error("StartFromManualPose needs a StartPosesFileName holding a pose");
-    }
-    pipeline->loadFrames(this->FramesPath, vimlop::readIntrinsics(this->IntrinsicsFileName),
-      this->MaxFrames, this->IntrinsicsFileName);
-    pipeline->loadModel(this->MeshFileName, this->MeshFileName.empty() ? this->CTFileName : "");
-    pipeline->detectContours();
-    pipeline->reconstruct(this->ColmapFolder);
-    pipeline->estimateInitialScale(
-      tracker ? &*tracker : nullptr, this->FramesPerSecond, this->TimeOffset, this->InitialScale);
-    pipeline->makeData();
-    if (this->StartFromManualPose)
-    {
-      pipeline->makeManualStart(startPoses.front());
-    }
-    else if (startPoses.empty())
-    {
-      pipeline->makeCanonicalStarts();
-    }
-    else
-    {
-      std::vector<vimlop::CameraPose> poses;
-      for (const vimlop::FramePose& p : startPoses)
-      {
-        poses.push_back(p.cameraToWorld);
-      }
-      pipeline->makeCanonicalStarts(&poses, this->StartPosesFileName);
-    }
-    pipeline->run();
+    vimlop::VideoRegistrationInputs inputs;
+    inputs.meshPath = this->MeshFileName;
+    inputs.ctPath = this->CTFileName;
+    inputs.framesPath = this->FramesPath;
+    inputs.maxFrames = this->MaxFrames;
+    inputs.intrinsicsPath = this->IntrinsicsFileName;
+    inputs.colmapFolder = this->ColmapFolder;
+    inputs.trackerPath = this->TrackerFileName;
+    inputs.initialScale = this->InitialScale;
+    inputs.framesPerSecond = this->FramesPerSecond;
+    inputs.timeOffsetS = this->TimeOffset;
+    inputs.startMode =
+      this->StartFromManualPose ? vimlop::StartMode::Manual : vimlop::StartMode::Canonical;
+    inputs.startPosesPath = this->StartPosesFileName;
+    pipeline->run(inputs);
   }
   catch (const vimlop::PipelineCancelled&)
   {

@@ -1,0 +1,48 @@
+#ifndef vimlop_VideoRegistrationInputs_h
+#define vimlop_VideoRegistrationInputs_h
+
+#include <string>
+
+namespace vimlop
+{
+
+/// @brief Where the registration starts (V13).
+enum class StartMode
+{
+  Manual,   ///< the camera-to-CT pose of one frame, given by the user (V13 a)
+  Canonical ///< every canonical pose along the airway, a multi-start (V13 b)
+};
+
+/**
+ * @brief The inputs of the main job as files, what `vimlop register` and
+ * vtkVIMLOPVideoRegistration take (see runVideoRegistration()).
+ */
+struct VideoRegistrationInputs
+{
+  /// The model: an airway mesh (CT frame, normals into the air) or, when it
+  /// is empty, a CT volume whose airway is segmented.
+  std::string meshPath;
+  std::string ctPath;
+  /// The video: a folder of pictures or a video file, at most `maxFrames` of
+  /// it (default 1000), and its intrinsics (OpenCV YAML/JSON/XML).
+  std::string framesPath;
+  int maxFrames = 1000;
+  std::string intrinsicsPath;
+  /// Structure from motion: empty for the built-in one, else a COLMAP sparse model folder.
+  std::string colmapFolder;
+  /// V14: the tracker CSV, or the initial scale in mm per SfM unit (wins
+  /// when positive); frame f is at `timeOffsetS + f / framesPerSecond` on
+  /// the tracker's clock (defaults 0 s and 30 fps).
+  std::string trackerPath;
+  double initialScale = 0.0;
+  double framesPerSecond = 30.0;
+  double timeOffsetS = 0.0;
+  /// V13: canonical starts (generated along the airway, or the poses of
+  /// `startPosesPath`), or a manual start (the first pose of `startPosesPath`).
+  StartMode startMode = StartMode::Canonical;
+  std::string startPosesPath;
+};
+
+} // namespace vimlop
+
+#endif
