@@ -171,14 +171,6 @@ void runRegister(RegisterOptions o)
     throw ExitRequest{ 130 };
   }
   const RegistrationResult& result = pipeline.result();
-  const double scaleChange = result.sfmToCT.scale / pipeline.initialScale();
-  if (scaleChange > 0.98 * o.pipeline.scaleBoundFactor ||
-    scaleChange < 1.02 / o.pipeline.scaleBoundFactor)
-  {
-    std::cerr << "vimlop: warning: the registration ended at its scale bound (scale "
-              << result.sfmToCT.scale << ", initial " << pipeline.initialScale()
-              << "): the tracker's scale may be wrong\n";
-  }
   if (interrupted)
   {
     std::cerr << "vimlop: interrupted; no result was written\n";

@@ -97,6 +97,21 @@ struct VideoRegistrationPipeline::Internals
     }
   }
 
+  /// A registration that ends at its scale bound was probably held there: the
+  /// initial scale (the tracker's) is likely wrong.
+  void warnAtScaleBound() const
+  {
+    const double scale = this->Outcome->best.sfmToCT.scale;
+    const double change = scale / this->Scale;
+    if (change > 0.98 * this->Opts.scaleBoundFactor || change < 1.02 / this->Opts.scaleBoundFactor)
+    {
+      std::ostringstream text;
+      text << "the registration ended at its scale bound (scale " << scale << ", initial "
+           << this->Scale << "): the tracker's scale may be wrong";
+      this->Warn(text.str());
+    }
+  }
+
   template <typename T>
   const T& need(const std::optional<T>& value, const char* what) const
   {
@@ -362,6 +377,7 @@ void VideoRegistrationPipeline::run()
       d.progress("registration", 1.0); // a cancellation shows as PipelineCancelled
       throw;
     }
+    d.warnAtScaleBound();
     return;
   }
   // A single start uses every thread inside the registration instead.
@@ -390,6 +406,7 @@ void VideoRegistrationPipeline::run()
   outcome.failureThresholdPx = multi.failureContourErrorPx;
   outcome.failure = isFlaggedAsFailure(outcome.best, multi);
   d.Outcome = std::move(outcome);
+  d.warnAtScaleBound();
 }
 
 void VideoRegistrationPipeline::run(const VideoRegistrationInputs& in)
