@@ -59,4 +59,15 @@ void PinholeCamera::validate() const
   }
 }
 
+PinholeCamera PinholeCamera::simulatedEndoscope()
+{
+  PinholeCamera k;
+  k.fx = k.fy = 200.0;
+  k.cx = 159.5;
+  k.cy = 119.5;
+  k.widthPx = 320;
+  k.heightPx = 240;
+  return k;
+}
+
 } // namespace vimlop

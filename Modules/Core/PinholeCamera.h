@@ -59,6 +59,13 @@ struct PinholeCamera
   static PinholeCamera fromMatrix(const Eigen::Matrix3d& k, int widthPx, int heightPx);
 
   /**
+   * @brief The camera of VIMLOP's simulations (P1's cameras, the virtual
+   * endoscope): 320 x 240 pixels, fx = fy = 200 (77° x 62°), principal point
+   * at the centre.
+   */
+  static PinholeCamera simulatedEndoscope();
+
+  /**
    * @brief Checks that the intrinsics are usable.
    * @throws vimlop::Error naming the first problem (non-positive focal length
    * or image size, non-finite value, principal point far outside the image).

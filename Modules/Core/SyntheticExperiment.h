@@ -31,7 +31,7 @@ struct SyntheticOptions
   double misalignMinDeg = 2.0;
   double misalignMaxDeg = 3.0;
   /// The endoscope: 320 x 240 pixels, fx = fy = 200 (a 77° x 62° field of view).
-  PinholeCamera intrinsics = defaultIntrinsics();
+  PinholeCamera intrinsics = PinholeCamera::simulatedEndoscope();
   /// Spacing of the cameras along their path, mm (default 0.75).
   double cameraStepMm = 1.5;
   /// Least distance of every camera to the wall, mm (default 2: the radius of a 4 mm endoscope).
@@ -41,8 +41,6 @@ struct SyntheticOptions
   /// Extra Gaussian noise on video contour positions, pixels (default 0: the
   /// contours are the model's at the true poses, as in the paper).
   double contourNoisePx = 0.0;
-
-  static PinholeCamera defaultIntrinsics();
 };
 
 /// @brief One synthetic trial: data in a misaligned SfM frame and its ground truth.

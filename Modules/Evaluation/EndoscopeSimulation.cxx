@@ -20,17 +20,6 @@
 namespace vimlop
 {
 
-PinholeCamera EndoscopeSimulationOptions::defaultIntrinsics()
-{
-  PinholeCamera k;
-  k.fx = k.fy = 200.0;
-  k.cx = 159.5;
-  k.cy = 119.5;
-  k.widthPx = 320;
-  k.heightPx = 240;
-  return k;
-}
-
 SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
   const EndoscopeSimulationOptions& o, const EvaluationProgress& progress)
 {

@@ -26,7 +26,7 @@ struct EndoscopeSimulationOptions
   /// Seed of the path, the texture, the picture noise and the tracker noise (default 1).
   std::uint64_t seed = 1;
   /// The endoscope camera (default 320 x 240 pixels, fx = fy = 200: 77° x 62°).
-  PinholeCamera intrinsics = defaultIntrinsics();
+  PinholeCamera intrinsics = PinholeCamera::simulatedEndoscope();
   /// The path: frames, step, clearance, sway (frames and intrinsics are set from above).
   EndoscopeTrajectoryOptions trajectory;
   /// Video frame rate, frames per second (default 30).
@@ -41,9 +41,6 @@ struct EndoscopeSimulationOptions
   /// Defaults 0.5 px and 1.5 grey levels.
   double blurSigmaPx = 0.5;
   double noiseSigma = 1.5;
-
-  /// @brief 320 x 240 pixels, fx = fy = 200, principal point at the centre.
-  static PinholeCamera defaultIntrinsics();
 };
 
 /// @brief A simulated sequence and its ground truth.

@@ -91,7 +91,7 @@ int main(int argc, char** argv)
     const TriangleMesh mesh = toTriangleMesh(readPolyData(meshPath));
     const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
     const std::vector<CameraPose> poses = posesInside(model, trials);
-    const PinholeCamera k = SyntheticOptions::defaultIntrinsics();
+    const PinholeCamera k = PinholeCamera::simulatedEndoscope();
     vtkNew<vtkVIMLOPDepthVisibility> zbuffer;
     zbuffer->SetMesh(mesh);
     zbuffer->SetSupersampling(supersampling);

@@ -217,7 +217,7 @@ TEST(NumericalRobustness, CameraOnTheSurface)
     data.pointCovariances.push_back(0.04 * Eigen::Matrix3d::Identity());
   }
   VideoFrame frame;
-  frame.intrinsics = SyntheticOptions::defaultIntrinsics();
+  frame.intrinsics = PinholeCamera::simulatedEndoscope();
   frame.cameraToSfm = CameraPose::lookAt({ 0, 0, 10 }, { 0, 0, 0 }, { 0, 1, 0 });
   data.frames.push_back(frame);
   RegistrationOptions options = optionsFor(RegistrationMethod::IMLP);

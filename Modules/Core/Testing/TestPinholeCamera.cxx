@@ -88,3 +88,15 @@ TEST(PinholeCamera, ValidateNamesTheProblem)
   camera.cx = 5000.0;
   EXPECT_THROW(camera.validate(), Error);
 }
+
+TEST(PinholeCamera, TheSimulatedEndoscopeIsValidWithItsPrincipalPointAtTheCentre)
+{
+  const PinholeCamera k = PinholeCamera::simulatedEndoscope();
+  EXPECT_NO_THROW(k.validate());
+  EXPECT_EQ(k.widthPx, 320);
+  EXPECT_EQ(k.heightPx, 240);
+  EXPECT_DOUBLE_EQ(k.cx, 0.5 * (k.widthPx - 1));
+  EXPECT_DOUBLE_EQ(k.cy, 0.5 * (k.heightPx - 1));
+  // 77 degrees across: 2 atan(160 / 200).
+  EXPECT_NEAR(2.0 * std::atan(0.5 * k.widthPx / k.fx) * 180.0 / M_PI, 77.3, 0.1);
+}

@@ -164,7 +164,7 @@ TEST(Registration, AnatomicalConstraintKeepsCamerasInside)
     data.pointCovariances.push_back(0.04 * Eigen::Matrix3d::Identity());
   }
   VideoFrame frame;
-  frame.intrinsics = SyntheticOptions::defaultIntrinsics();
+  frame.intrinsics = PinholeCamera::simulatedEndoscope();
   frame.cameraToSfm = CameraPose::lookAt({ 0, 0, 9.5 }, { 0, 0, 0 }, { 0, 1, 0 });
   data.frames.push_back(frame);
 

@@ -19,7 +19,7 @@ TEST(EmbreeVisibility, AgreesWithTheExactReferenceOnContourSamples)
   auto scene = std::make_shared<EmbreeScene>(mesh);
   const EmbreeVisibility embree(scene);
   const MeshTreeVisibility reference(std::make_shared<MeshTree>(mesh));
-  const PinholeCamera k = SyntheticOptions::defaultIntrinsics();
+  const PinholeCamera k = PinholeCamera::simulatedEndoscope();
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-8.0, 8.0);
   size_t total = 0;

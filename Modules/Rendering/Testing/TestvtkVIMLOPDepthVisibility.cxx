@@ -31,7 +31,7 @@ struct Agreement
 Agreement compare(const TriangleMesh& mesh, const ContourVisibility& reference,
   const ContourVisibility& tested, const std::vector<CameraPose>& poses)
 {
-  const PinholeCamera k = SyntheticOptions::defaultIntrinsics();
+  const PinholeCamera k = PinholeCamera::simulatedEndoscope();
   Agreement a;
   for (const CameraPose& pose : poses)
   {
@@ -100,7 +100,7 @@ TEST(vtkVIMLOPDepthVisibility, ReportsMisuse)
   const std::vector<Eigen::Vector3d> points = { { 0, 0, 10 } };
   try
   {
-    depth->classify(SyntheticOptions::defaultIntrinsics(), CameraPose(), points, visible);
+    depth->classify(PinholeCamera::simulatedEndoscope(), CameraPose(), points, visible);
     FAIL();
   }
   catch (const Error& e)
@@ -117,6 +117,6 @@ TEST(vtkVIMLOPDepthVisibility, ReportsMisuse)
     EXPECT_STREQ(e.what(), "depth visibility: the mesh has no faces");
   }
   // No points: nothing to render, nothing to classify.
-  depth->classify(SyntheticOptions::defaultIntrinsics(), CameraPose(), {}, visible);
+  depth->classify(PinholeCamera::simulatedEndoscope(), CameraPose(), {}, visible);
   EXPECT_TRUE(visible.empty());
 }

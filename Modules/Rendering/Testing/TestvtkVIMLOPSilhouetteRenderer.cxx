@@ -63,7 +63,7 @@ struct PixelAgreement
 PixelAgreement compare(const RegistrationModel& model, vtkVIMLOPSilhouetteRenderer* renderer,
   const std::vector<CameraPose>& poses)
 {
-  const PinholeCamera k = SyntheticOptions::defaultIntrinsics();
+  const PinholeCamera k = PinholeCamera::simulatedEndoscope();
   PixelAgreement a;
   for (const CameraPose& pose : poses)
   {
@@ -121,7 +121,7 @@ TEST(vtkVIMLOPSilhouetteRenderer, DrawsTheOutlineOfABlob)
   const double r = 5.0;
   const Eigen::Vector3d centre(1.0, -2.0, 40.0);
   const TriangleMesh blob = fixtures::makeSphere(r, 4, centre, /*outward=*/true);
-  const PinholeCamera k = SyntheticOptions::defaultIntrinsics();
+  const PinholeCamera k = PinholeCamera::simulatedEndoscope();
   vtkNew<vtkVIMLOPSilhouetteRenderer> renderer;
   renderer->SetMesh(blob);
   vtkSmartPointer<vtkImageData> mask = renderer->RenderContours(k, CameraPose());
@@ -187,7 +187,7 @@ TEST(vtkVIMLOPSilhouetteRenderer, ReportsMisuse)
   vtkNew<vtkVIMLOPSilhouetteRenderer> renderer;
   try
   {
-    renderer->RenderContours(SyntheticOptions::defaultIntrinsics(), CameraPose());
+    renderer->RenderContours(PinholeCamera::simulatedEndoscope(), CameraPose());
     FAIL();
   }
   catch (const Error& e)
