@@ -1,0 +1,262 @@
+#include <vimlop/Video/SfmReconstructor.h>
+
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Statistics.h>
+#include <vimlop/Video/SfmGeometry.h>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
+namespace vimlop::detail
+{
+
+namespace
+{
+
+class UnionFind
+{
+public:
+  explicit UnionFind(int n)
+    : Parent(static_cast<size_t>(n))
+  {
+    std::iota(this->Parent.begin(), this->Parent.end(), 0);
+  }
+  int find(int a)
+  {
+    while (this->Parent[a] != a)
+    {
+      this->Parent[a] = this->Parent[this->Parent[a]];
+      a = this->Parent[a];
+    }
+    return a;
+  }
+  void unite(int a, int b)
+  {
+    a = this->find(a);
+    b = this->find(b);
+    if (a != b)
+    {
+      this->Parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+
+private:
+  std::vector<int> Parent;
+};
+
+/// Mutual nearest neighbours that pass the ratio test both ways.
+std::vector<std::pair<int, int>> matchDescriptors(const cv::Mat& a, const cv::Mat& b, double ratio)
+{
+  std::vector<std::pair<int, int>> result;
+  if (a.rows < 2 || b.rows < 2)
+  {
+    return result;
+  }
+  cv::BFMatcher matcher(cv::NORM_L2);
+  std::vector<std::vector<cv::DMatch>> forward;
+  std::vector<std::vector<cv::DMatch>> backward;
+  matcher.knnMatch(a, b, forward, 2);
+  matcher.knnMatch(b, a, backward, 2);
+  std::vector<int> bestBackward(static_cast<size_t>(b.rows), -1);
+  for (const std::vector<cv::DMatch>& m : backward)
+  {
+    if (m.size() == 2 && m[0].distance < ratio * m[1].distance)
+    {
+      bestBackward[static_cast<size_t>(m[0].queryIdx)] = m[0].trainIdx;
+    }
+  }
+  for (const std::vector<cv::DMatch>& m : forward)
+  {
+    if (m.size() == 2 && m[0].distance < ratio * m[1].distance &&
+      bestBackward[static_cast<size_t>(m[0].trainIdx)] == m[0].queryIdx)
+    {
+      result.emplace_back(m[0].queryIdx, m[0].trainIdx);
+    }
+  }
+  return result;
+}
+
+} // namespace
+
+void SfmReconstructor::detect()
+{
+  const cv::Ptr<cv::SIFT> sift =
+    cv::SIFT::create(this->O.maxFeatures, 3, this->O.contrastThreshold, 10.0, 1.6);
+  std::vector<double> counts;
+  for (const cv::Mat& frame : this->Frames)
+  {
+    cv::Mat grey;
+    if (frame.channels() == 3 && this->O.channel == StructureFromMotion::Channel::Green)
+    {
+      cv::extractChannel(frame, grey, 1);
+    }
+    else if (frame.channels() == 3)
+    {
+      cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
+    }
+    else
+    {
+      grey = frame;
+    }
+    FrameFeatures f;
+    sift->detectAndCompute(grey, cv::noArray(), f.keypoints, f.descriptors);
+    counts.push_back(static_cast<double>(f.keypoints.size()));
+    if (static_cast<int>(f.keypoints.size()) < this->O.minFeatures)
+    {
+      f.keypoints.clear();
+      f.descriptors = cv::Mat();
+    }
+    this->Features.push_back(std::move(f));
+  }
+  const Summary s = summarize(counts);
+  this->say("SIFT features per frame: median " + std::to_string(static_cast<int>(s.median)));
+  int usable = 0;
+  for (const FrameFeatures& f : this->Features)
+  {
+    usable += !f.keypoints.empty();
+  }
+  if (usable < 2)
+  {
+    throw Error("SfM cannot initialise: the frames have too little texture (median " +
+      std::to_string(static_cast<int>(s.median)) + " SIFT features per frame; at least " +
+      std::to_string(this->O.minFeatures) + " needed in two frames)");
+  }
+}
+
+void SfmReconstructor::match()
+{
+  const cv::Mat k = cameraMatrix(this->K);
+  const int n = static_cast<int>(this->Frames.size());
+  for (int i = 0; i < n; ++i)
+  {
+    for (int j = i + 1; j < n && j <= i + this->O.matchWindow; ++j)
+    {
+      const std::vector<std::pair<int, int>> candidates = matchDescriptors(
+        this->Features[i].descriptors, this->Features[j].descriptors, this->O.ratio);
+      if (static_cast<int>(candidates.size()) < this->O.minPairMatches)
+      {
+        continue;
+      }
+      std::vector<cv::Point2d> a;
+      std::vector<cv::Point2d> b;
+      std::vector<double> motion;
+      for (const auto& [p, q] : candidates)
+      {
+        a.push_back(this->Features[i].keypoints[p].pt);
+        b.push_back(this->Features[j].keypoints[q].pt);
+        motion.push_back(cv::norm(a.back() - b.back()));
+      }
+      // Frames that hardly differ carry no epipolar geometry (any essential
+      // matrix fits them); remember that they were seen, for the message.
+      const double medianMotion = summarize(motion).median;
+      this->LargestMotionPx = std::max(this->LargestMotionPx, medianMotion);
+      if (medianMotion < this->O.minMotionPx)
+      {
+        ++this->StaticPairs;
+        continue;
+      }
+      cv::Mat mask;
+      const cv::Mat e =
+        cv::findEssentialMat(a, b, k, cv::RANSAC, 0.999, this->O.essentialThresholdPx, mask);
+      if (e.rows != 3 || e.cols != 3)
+      {
+        continue; // degenerate (several solutions or none)
+      }
+      PairMatches pair;
+      pair.first = i;
+      pair.second = j;
+      pair.essential = e;
+      for (size_t m = 0; m < candidates.size(); ++m)
+      {
+        if (mask.at<unsigned char>(static_cast<int>(m)))
+        {
+          pair.matches.push_back(candidates[m]);
+        }
+      }
+      if (static_cast<int>(pair.matches.size()) >= this->O.minPairMatches)
+      {
+        this->Pairs.push_back(std::move(pair));
+      }
+    }
+  }
+  this->say(std::to_string(this->Pairs.size()) + " frame pairs with verified matches");
+  if (this->Pairs.empty() && this->StaticPairs > 0)
+  {
+    char text[300];
+    std::snprintf(text, sizeof(text),
+      "SfM cannot initialise: the camera hardly moves (features move by at most %.2f px "
+      "between the frames compared, at least %.2f px needed)",
+      this->LargestMotionPx, this->O.minMotionPx);
+    throw Error(text);
+  }
+  if (this->Pairs.empty())
+  {
+    throw Error("SfM cannot initialise: no two frames share " +
+      std::to_string(this->O.minPairMatches) +
+      " verified feature matches (too little texture, or frames that do not overlap)");
+  }
+}
+
+void SfmReconstructor::buildTracks()
+{
+  std::vector<int> offset(this->Frames.size() + 1, 0);
+  for (size_t f = 0; f < this->Frames.size(); ++f)
+  {
+    offset[f + 1] = offset[f] + static_cast<int>(this->Features[f].keypoints.size());
+  }
+  UnionFind sets(offset.back());
+  for (const PairMatches& pair : this->Pairs)
+  {
+    for (const auto& [a, b] : pair.matches)
+    {
+      sets.unite(offset[pair.first] + a, offset[pair.second] + b);
+    }
+  }
+  std::map<int, std::vector<std::pair<int, int>>> groups;
+  for (size_t f = 0; f < this->Frames.size(); ++f)
+  {
+    for (int k = 0; k < static_cast<int>(this->Features[f].keypoints.size()); ++k)
+    {
+      groups[sets.find(offset[f] + k)].emplace_back(static_cast<int>(f), k);
+    }
+  }
+  int conflicting = 0;
+  for (auto& [root, features] : groups)
+  {
+    if (features.size() < 2)
+    {
+      continue;
+    }
+    // A track with two features in one frame joined a mismatch: drop it.
+    bool conflict = false;
+    for (size_t a = 1; a < features.size() && !conflict; ++a)
+    {
+      conflict = features[a].first == features[a - 1].first;
+    }
+    if (conflict)
+    {
+      ++conflicting;
+      continue;
+    }
+    Track t;
+    t.features = std::move(features);
+    this->Tracks.push_back(std::move(t));
+  }
+  this->TrackOf.assign(this->Frames.size(), std::map<int, int>());
+  for (size_t t = 0; t < this->Tracks.size(); ++t)
+  {
+    for (const auto& [frame, keypoint] : this->Tracks[t].features)
+    {
+      this->TrackOf[frame][keypoint] = static_cast<int>(t);
+    }
+  }
+  this->say(std::to_string(this->Tracks.size()) + " tracks (" + std::to_string(conflicting) +
+    " dropped for conflicts)");
+}
+
+} // namespace vimlop::detail
