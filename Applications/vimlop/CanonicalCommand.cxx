@@ -1,10 +1,10 @@
 #include "CanonicalCommand.h"
 
 #include <vimlop/Core/CanonicalPoses.h>
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Imaging/ModelLoading.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
 #include <CLI/CLI.hpp>
 

@@ -1,13 +1,13 @@
 #include "EvaluateCommand.h"
 
 #include "CommandLine.h"
+#include "TerminalEvaluationProgress.h"
+#include <vimlop/Evaluation/PerturbationProtocol.h>
+#include <vimlop/Evaluation/SyntheticProtocol.h>
+#include <vimlop/Evaluation/VideoProtocol.h>
 #include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Rendering/OffscreenRendering.h>
-#include <vimlop/Evaluation/PerturbationProtocol.h>
 #include <vimlop/Report/RegistrationReport.h>
-#include <vimlop/Evaluation/SyntheticProtocol.h>
-#include "TerminalEvaluationProgress.h"
-#include <vimlop/Evaluation/VideoProtocol.h>
 
 #include <CLI/CLI.hpp>
 

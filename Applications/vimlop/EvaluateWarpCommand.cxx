@@ -1,10 +1,10 @@
 #include "EvaluateWarpCommand.h"
 
-#include <vimlop/Imaging/CTVolumeIO.h>
-#include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
-#include <vimlop/Core/Error.h>
-#include <vimlop/Evaluation/TemplateWarpProtocol.h>
 #include "TerminalProgress.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
+#include <vimlop/Evaluation/TemplateWarpProtocol.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 
 #include <CLI/CLI.hpp>
 

@@ -1,10 +1,10 @@
 #include "InfoCommand.h"
 
-#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Core/Error.h>
-#include <vimlop/Video/IntrinsicsIO.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/MeshIO.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Video/IntrinsicsIO.h>
 
 #include <CLI/CLI.hpp>
 

@@ -1,15 +1,15 @@
 #include "RegisterCommand.h"
 
 #include "CommandLine.h"
+#include "PipelineFlags.h"
+#include "PoseServingFlags.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/FramePoseIO.h>
-#include <vimlop/Rendering/OffscreenRendering.h>
-#include "PipelineFlags.h"
-#include <vimlop/Server/PoseServing.h>
-#include "PoseServingFlags.h"
 #include <vimlop/Pipeline/RegistrationOutputs.h>
-#include <vimlop/Results/RegistrationRecordIO.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
+#include <vimlop/Rendering/OffscreenRendering.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
+#include <vimlop/Server/PoseServing.h>
 
 #include <CLI/CLI.hpp>
 

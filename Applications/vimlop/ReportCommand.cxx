@@ -3,9 +3,9 @@
 #include "CommandLine.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Rendering/OffscreenRendering.h>
+#include <vimlop/Report/RegistrationReport.h>
 #include <vimlop/Results/PerturbationRuns.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
-#include <vimlop/Report/RegistrationReport.h>
 
 #include <CLI/CLI.hpp>
 

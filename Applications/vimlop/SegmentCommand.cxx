@@ -1,11 +1,11 @@
 #include "SegmentCommand.h"
 
+#include "TerminalProgress.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Imaging/AirwaySurface.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
-#include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/MeshIO.h>
-#include "TerminalProgress.h"
 
 #include <CLI/CLI.hpp>
 

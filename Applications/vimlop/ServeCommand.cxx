@@ -1,8 +1,8 @@
 #include "ServeCommand.h"
 
+#include "PoseServingFlags.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/FramePoseIO.h>
-#include "PoseServingFlags.h"
 #include <vimlop/Results/RegistrationRecordIO.h>
 
 #include <CLI/CLI.hpp>

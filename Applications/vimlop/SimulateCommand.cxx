@@ -1,11 +1,11 @@
 #include "SimulateCommand.h"
 
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
-#include <vimlop/Evaluation/EndoscopeSimulation.h>
-#include <vimlop/Core/Error.h>
-#include <vimlop/Imaging/ModelLoading.h>
-#include <vimlop/Rendering/OffscreenRendering.h>
 #include "TerminalEvaluationProgress.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/EndoscopeSimulation.h>
+#include <vimlop/Imaging/ModelLoading.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Rendering/OffscreenRendering.h>
 
 #include <CLI/CLI.hpp>
 

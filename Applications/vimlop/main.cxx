@@ -5,7 +5,6 @@
 #include "CanonicalCommand.h"
 #include "CommandLine.h"
 #include "ContoursCommand.h"
-#include <vimlop/Core/Error.h>
 #include "EvaluateCommand.h"
 #include "EvaluateWarpCommand.h"
 #include "InfoCommand.h"
@@ -16,6 +15,7 @@
 #include "SfmCommand.h"
 #include "SimulateCommand.h"
 #include "WarpCommand.h"
+#include <vimlop/Core/Error.h>
 
 #include <CLI/CLI.hpp>
 

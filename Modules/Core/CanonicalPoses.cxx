@@ -2,11 +2,11 @@
 
 #include <vimlop/Core/Error.h>
 
+#include <Eigen/Geometry>
 #include <vimlop/Core/MeshTree.h>
 #include <vimlop/Core/RayClearance.h>
 #include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/SurfaceLocator.h>
-#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>

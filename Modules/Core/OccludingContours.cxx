@@ -16,7 +16,8 @@ namespace
 class SegmentSampler
 {
 public:
-  SegmentSampler(const PinholeCamera& k, const CameraPose& cameraToCT, const OccludingContourOptions& o)
+  SegmentSampler(
+    const PinholeCamera& k, const CameraPose& cameraToCT, const OccludingContourOptions& o)
     : K(k)
     , Centre(cameraToCT.centre)
     , ToCamera(cameraToCT.rotation.transpose())
@@ -66,7 +67,8 @@ public:
       return;
     }
     const PinholeCamera& k = this->K;
-    const double lengthPx = (k.project(ac + t0 * (bc - ac)) - k.project(ac + t1 * (bc - ac))).norm();
+    const double lengthPx =
+      (k.project(ac + t0 * (bc - ac)) - k.project(ac + t1 * (bc - ac))).norm();
     const int count = std::max(1, static_cast<int>(std::ceil(lengthPx / this->Spacing)));
     for (int s = 0; s < count; ++s)
     {
@@ -107,8 +109,8 @@ private:
   Eigen::Vector4d Planes[5];
 };
 
-void meshEdgeContours(const TriangleMesh& mesh, const Eigen::Vector3d& c, const SegmentSampler& sampler,
-  std::vector<ModelContourPoint>& samples)
+void meshEdgeContours(const TriangleMesh& mesh, const Eigen::Vector3d& c,
+  const SegmentSampler& sampler, std::vector<ModelContourPoint>& samples)
 {
   const int nf = mesh.numberOfFaces();
   // +1 facing the camera, -1 facing away, 0 for zero-area faces (never contours).
@@ -126,7 +128,8 @@ void meshEdgeContours(const TriangleMesh& mesh, const Eigen::Vector3d& c, const 
     {
       continue;
     }
-    const Eigen::Vector3d n = (mesh.faceNormals()[edge.face0] + mesh.faceNormals()[edge.face1]).normalized();
+    const Eigen::Vector3d n =
+      (mesh.faceNormals()[edge.face0] + mesh.faceNormals()[edge.face1]).normalized();
     sampler.sample(mesh.vertices()[edge.vertex0], mesh.vertices()[edge.vertex1], n, n, e, samples);
   }
 }
@@ -162,7 +165,8 @@ void interpolatedNormalContours(const TriangleMesh& mesh, const Eigen::Vector3d&
     }
     if (found == 2)
     {
-      sampler.sample(crossing[0], crossing[1], normal[0], normal[1], mesh.faceEdges()[f][0], samples);
+      sampler.sample(
+        crossing[0], crossing[1], normal[0], normal[1], mesh.faceEdges()[f][0], samples);
     }
   }
 }

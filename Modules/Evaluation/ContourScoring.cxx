@@ -1,7 +1,7 @@
 #include <vimlop/Evaluation/ContourScoring.h>
 
-#include <vimlop/Video/ContourEvaluation.h>
 #include <vimlop/Core/VisibleModelContours.h>
+#include <vimlop/Video/ContourEvaluation.h>
 
 namespace vimlop
 {

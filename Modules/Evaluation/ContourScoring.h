@@ -2,9 +2,9 @@
 #define vimlop_ContourScoring_h
 
 #include <vimlop/Core/ContourPoint.h>
+#include <vimlop/Core/RegistrationModel.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 #include <vimlop/Video/OccludingContourDetector.h>
-#include <vimlop/Core/RegistrationModel.h>
 
 #include <vector>
 

@@ -1,9 +1,9 @@
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 
 #include <vimlop/Core/Error.h>
-#include <vimlop/Video/IntrinsicsIO.h>
 #include <vimlop/Rendering/MucosaTexture.h>
 #include <vimlop/Rendering/vtkVIMLOPVirtualEndoscope.h>
+#include <vimlop/Video/IntrinsicsIO.h>
 
 #include <vtkNew.h>
 

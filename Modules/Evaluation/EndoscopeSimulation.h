@@ -3,10 +3,10 @@
 
 #include <vimlop/Core/CameraPose.h>
 #include <vimlop/Core/DepthMap.h>
-#include <vimlop/Rendering/EndoscopeTrajectory.h>
-#include <vimlop/Evaluation/EvaluationProgress.h>
 #include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Rendering/EndoscopeTrajectory.h>
 #include <vimlop/Video/TrackerTrajectory.h>
 
 #include <opencv2/core/mat.hpp>

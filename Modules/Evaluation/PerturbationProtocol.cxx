@@ -1,12 +1,12 @@
 #include <vimlop/Evaluation/PerturbationProtocol.h>
 
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/MultiStartRegistration.h>
 #include <vimlop/Core/Registration.h>
-#include <vimlop/Evaluation/SimulatedVideoCase.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TaskPool.h>
+#include <vimlop/Evaluation/SimulatedVideoCase.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
 #include <cmath>
 #include <limits>

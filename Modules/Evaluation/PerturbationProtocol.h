@@ -1,10 +1,10 @@
 #ifndef vimlop_PerturbationProtocol_h
 #define vimlop_PerturbationProtocol_h
 
-#include <vimlop/Evaluation/EvaluationProgress.h>
-#include <vimlop/Results/PerturbationRuns.h>
 #include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Evaluation/EvaluationProgress.h>
 #include <vimlop/Evaluation/VideoProtocol.h>
+#include <vimlop/Results/PerturbationRuns.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,18 +1,18 @@
 #include <vimlop/Evaluation/SimulatedVideoCase.h>
 
 #include <vimlop/Core/AnatomicalConstraint.h>
-#include <vimlop/Video/ColmapImport.h>
-#include <vimlop/Video/ColmapRunner.h>
 #include <vimlop/Core/Error.h>
-#include <vimlop/Evaluation/ProgressNoteStream.h>
 #include <vimlop/Core/RandomDirection.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Rotation.h>
-#include <vimlop/Pipeline/SimilarityFromCameras.h>
 #include <vimlop/Core/Statistics.h>
+#include <vimlop/Evaluation/ProgressNoteStream.h>
+#include <vimlop/Pipeline/SimilarityFromCameras.h>
+#include <vimlop/Pipeline/VideoRegistrationData.h>
+#include <vimlop/Video/ColmapImport.h>
+#include <vimlop/Video/ColmapRunner.h>
 #include <vimlop/Video/StructureFromMotion.h>
 #include <vimlop/Video/TrackerScale.h>
-#include <vimlop/Pipeline/VideoRegistrationData.h>
 
 #include <opencv2/imgcodecs.hpp>
 

@@ -1,12 +1,12 @@
 #ifndef vimlop_SimulatedVideoCase_h
 #define vimlop_SimulatedVideoCase_h
 
+#include <vimlop/Core/RegistrationData.h>
 #include <vimlop/Evaluation/ContourScoring.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
-#include <vimlop/Core/RegistrationData.h>
-#include <vimlop/Video/SfmReconstruction.h>
 #include <vimlop/Evaluation/VideoProtocol.h>
+#include <vimlop/Video/SfmReconstruction.h>
 
 #include <random>
 #include <vector>

@@ -1,12 +1,12 @@
 #include <vimlop/Evaluation/SyntheticProtocol.h>
 
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Core/Error.h>
-#include <vimlop/Evaluation/Peers/Open3DPeers.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Statistics.h>
+#include <vimlop/Evaluation/Peers/Open3DPeers.h>
 #include <vimlop/Evaluation/TrialSaving.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
 #include <algorithm>
 #include <chrono>

@@ -1,9 +1,9 @@
 #ifndef vimlop_SyntheticProtocol_h
 #define vimlop_SyntheticProtocol_h
 
-#include <vimlop/Evaluation/EvaluationProgress.h>
 #include <vimlop/Core/SyntheticExperiment.h>
 #include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Evaluation/EvaluationProgress.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,11 +1,11 @@
 #include <vimlop/Evaluation/TemplateWarpProtocol.h>
 
-#include <vimlop/Imaging/AirwaySegmentation.h>
-#include <vimlop/Imaging/AirwaySurface.h>
+#include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
 #include <vimlop/Evaluation/Peers/ElastixRegistration.h>
-#include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/SyntheticDeformation.h>
+#include <vimlop/Imaging/AirwaySegmentation.h>
+#include <vimlop/Imaging/AirwaySurface.h>
 #include <vimlop/Imaging/TemplateRegistration.h>
 #include <vimlop/Imaging/VolumeCrop.h>
 

@@ -1,8 +1,8 @@
 #ifndef vimlop_TemplateWarpProtocol_h
 #define vimlop_TemplateWarpProtocol_h
 
-#include <vimlop/Imaging/CTVolume.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Imaging/CTVolume.h>
 #include <vimlop/Imaging/TemplateRegistration.h>
 
 #include <nlohmann/json.hpp>

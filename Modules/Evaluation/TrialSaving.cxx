@@ -2,8 +2,8 @@
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Rendering/PNGImageIO.h>
-#include <vimlop/Results/RegistrationRecordIO.h>
 #include <vimlop/Rendering/SurfaceView.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
 
 #include <vtkImageData.h>
 

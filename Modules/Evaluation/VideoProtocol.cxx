@@ -1,11 +1,11 @@
 #include <vimlop/Evaluation/VideoProtocol.h>
 
 #include <vimlop/Core/CanonicalStarts.h>
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/MultiStartRegistration.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Evaluation/SimulatedVideoCase.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
 #include <chrono>
 #include <random>

@@ -1,10 +1,10 @@
 #ifndef vimlop_VideoProtocol_h
 #define vimlop_VideoProtocol_h
 
+#include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Evaluation/ContourScoring.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
-#include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
 #include <nlohmann/json.hpp>

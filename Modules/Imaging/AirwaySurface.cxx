@@ -1,8 +1,8 @@
 #include <vimlop/Imaging/AirwaySurface.h>
 
 #include <vimlop/Core/Error.h>
-#include <vimlop/Imaging/PolyDataConversion.h>
 #include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
 
 #include <vtkCellArray.h>
 #include <vtkCleanPolyData.h>

@@ -335,7 +335,8 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
   }
   if (voxels > MaxVoxels)
   {
-    fail(path, "the header promises more than " + std::to_string(MaxVoxels) +
+    fail(path,
+      "the header promises more than " + std::to_string(MaxVoxels) +
         " voxels; refusing to allocate it");
   }
   if (io->GetNumberOfComponents() != 1)

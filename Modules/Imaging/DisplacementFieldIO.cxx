@@ -1,8 +1,8 @@
 // ITK translation unit: no Eigen here (see CTVolume.h).
 #include <vimlop/Imaging/DisplacementFieldIO.h>
 
-#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/ITKImageIOFactories.h>
 
 #include <itkImage.h>

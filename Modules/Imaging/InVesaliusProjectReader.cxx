@@ -124,7 +124,8 @@ std::map<std::string, std::string> readMembers(const std::string& path)
       char chunk[1 << 16];
       for (std::uint64_t left = size; left > 0;)
       {
-        const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(left, sizeof(chunk)));
+        const std::size_t n =
+          static_cast<std::size_t>(std::min<std::uint64_t>(left, sizeof(chunk)));
         if (!readExactly(file.get(), chunk, n))
         {
           fail(path, "archive is truncated inside '" + name + "'");

@@ -1,11 +1,11 @@
 #include <vimlop/Imaging/ModelLoading.h>
 
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/OrientNormalsIntoAir.h>
 #include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Imaging/AirwaySurface.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
-#include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/MeshIO.h>
-#include <vimlop/Core/OrientNormalsIntoAir.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
 
 #include <vtkPolyData.h>
@@ -41,8 +41,8 @@ TriangleMesh segmentAirwayMesh(const std::string& ctPath)
   const CTVolume ct = readCTVolume(ctPath);
   const AirwaySegmentation airway = AirwaySegmentation::compute(ct, AirwaySegmentation::Options());
   const AirwaySurface surface = AirwaySurface::compute(airway.label, AirwaySurface::Options());
-  std::cerr << "vimlop: segmented the airway of '" << ctPath << "': " << surface.triangles << " triangles, "
-            << surface.enclosedVolumeMm3 / 1000.0 << " cm^3\n";
+  std::cerr << "vimlop: segmented the airway of '" << ctPath << "': " << surface.triangles
+            << " triangles, " << surface.enclosedVolumeMm3 / 1000.0 << " cm^3\n";
   return toTriangleMesh(surface.surface);
 }
 

@@ -2,8 +2,8 @@
 #define vimlop_TemplateWarp_h
 
 #include <vimlop/Core/CameraPose.h>
-#include <vimlop/Imaging/DisplacementField.h>
 #include <vimlop/Core/FramePose.h>
+#include <vimlop/Imaging/DisplacementField.h>
 
 #include "VIMLOPImagingModule.h"
 

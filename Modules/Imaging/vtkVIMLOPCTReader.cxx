@@ -1,7 +1,7 @@
 #include <vimlop/Imaging/vtkVIMLOPCTReader.h>
 
-#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/ImageDataConversion.h>
 
 #include <vtkImageData.h>

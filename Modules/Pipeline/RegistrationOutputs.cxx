@@ -1,13 +1,13 @@
 #include <vimlop/Pipeline/RegistrationOutputs.h>
 
 #include <vimlop/Core/Error.h>
-#include <vimlop/Results/RecordJson.h>
-#include <vimlop/Report/RegisteredVideo.h>
 #include <vimlop/Core/RegistrationMetrics.h>
-#include <vimlop/Results/RegistrationRecordIO.h>
-#include <vimlop/Report/RegistrationReport.h>
-#include <vimlop/Pipeline/SimilarityFromCameras.h>
 #include <vimlop/Core/Statistics.h>
+#include <vimlop/Pipeline/SimilarityFromCameras.h>
+#include <vimlop/Report/RegisteredVideo.h>
+#include <vimlop/Report/RegistrationReport.h>
+#include <vimlop/Results/RecordJson.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
 
 #include <vtkVersion.h>
 

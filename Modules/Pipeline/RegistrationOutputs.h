@@ -2,8 +2,8 @@
 #define vimlop_RegistrationOutputs_h
 
 #include <vimlop/Core/FramePose.h>
-#include <vimlop/Results/RegistrationRecord.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
+#include <vimlop/Results/RegistrationRecord.h>
 
 #include <nlohmann/json.hpp>
 

@@ -2,8 +2,8 @@
 #define vimlop_SimilarityFromCameras_h
 
 #include <vimlop/Core/CameraPose.h>
-#include <vimlop/Video/SfmReconstruction.h>
 #include <vimlop/Core/SimilarityTransform.h>
+#include <vimlop/Video/SfmReconstruction.h>
 
 #include <vector>
 

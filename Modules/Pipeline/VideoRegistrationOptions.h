@@ -2,9 +2,9 @@
 #define vimlop_VideoRegistrationOptions_h
 
 #include <vimlop/Core/CanonicalPoses.h>
-#include <vimlop/Video/ContourDetectionOptions.h>
 #include <vimlop/Core/MultiStartRegistration.h>
 #include <vimlop/Core/RegistrationOptions.h>
+#include <vimlop/Video/ContourDetectionOptions.h>
 
 namespace vimlop
 {

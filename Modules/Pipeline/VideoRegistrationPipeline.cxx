@@ -1,17 +1,17 @@
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
 #include <vimlop/Core/CanonicalStarts.h>
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Core/Error.h>
-#include <vimlop/Video/FrameSequence.h>
-#include <vimlop/Imaging/ModelLoading.h>
+#include <vimlop/Core/Registration.h>
 #include <vimlop/Imaging/FramePoseIO.h>
+#include <vimlop/Imaging/ModelLoading.h>
+#include <vimlop/Pipeline/VideoRegistrationData.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Video/IntrinsicsIO.h>
 #include <vimlop/Video/OccludingContourDetector.h>
 #include <vimlop/Video/TrackerScale.h>
-#include <vimlop/Core/Registration.h>
 #include <vimlop/Video/VideoInput.h>
-#include <vimlop/Pipeline/VideoRegistrationData.h>
 
 #include <opencv2/core/mat.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -441,7 +441,8 @@ void VideoRegistrationPipeline::run(const VideoRegistrationInputs& in)
     throw Error("a manual start needs a pose file");
   }
 
-  this->loadFrames(in.framesPath, readIntrinsics(in.intrinsicsPath), in.maxFrames, in.intrinsicsPath);
+  this->loadFrames(
+    in.framesPath, readIntrinsics(in.intrinsicsPath), in.maxFrames, in.intrinsicsPath);
   if (tracker)
   {
     checkTrackerOverlap(*tracker, frameTimesS(d.Frames.size(), in.framesPerSecond, in.timeOffsetS));

@@ -9,11 +9,11 @@
 #include <vimlop/Core/RegistrationData.h>
 #include <vimlop/Core/RegistrationModel.h>
 #include <vimlop/Core/RegistrationOptions.h>
-#include <vimlop/Video/SfmReconstruction.h>
-#include <vimlop/Video/TrackerTrajectory.h>
 #include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Pipeline/VideoRegistrationInputs.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
+#include <vimlop/Video/SfmReconstruction.h>
+#include <vimlop/Video/TrackerTrajectory.h>
 
 #include <functional>
 #include <iosfwd>

@@ -1,9 +1,9 @@
 #include <vimlop/Pipeline/vtkVIMLOPVideoRegistration.h>
 
 #include <vimlop/Core/Error.h>
-#include <vimlop/Registration/RegistrationOutputConversion.h>
 #include <vimlop/Pipeline/RegistrationOutputs.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
+#include <vimlop/Registration/RegistrationOutputConversion.h>
 
 #include <vtkDemandDrivenPipeline.h>
 #include <vtkInformation.h>

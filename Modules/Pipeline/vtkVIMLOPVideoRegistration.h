@@ -18,7 +18,7 @@ namespace vimlop
 {
 class VideoRegistrationPipeline;
 struct VideoRegistrationOptions;
-}
+} // namespace vimlop
 
 /**
  * @brief The whole main job as a VTK source: a CT (or its airway mesh) and a

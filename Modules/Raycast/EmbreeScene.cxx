@@ -187,8 +187,9 @@ bool EmbreeScene::isSegmentOccluded(
   return ray.tfar == -INFINITY;
 }
 
-void EmbreeScene::areSegmentsOccluded(const Eigen::Vector3d& from, const std::vector<Eigen::Vector3d>& to,
-  const std::vector<double>& toleranceMm, std::vector<char>& occluded) const
+void EmbreeScene::areSegmentsOccluded(const Eigen::Vector3d& from,
+  const std::vector<Eigen::Vector3d>& to, const std::vector<double>& toleranceMm,
+  std::vector<char>& occluded) const
 {
   const size_t n = to.size();
   occluded.assign(n, 0);
@@ -227,7 +228,8 @@ void EmbreeScene::areSegmentsOccluded(const Eigen::Vector3d& from, const std::ve
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   if (n > 0)
   {
-    rtcOccluded1M(this->Impl->Scene, &context, rays.data(), static_cast<unsigned>(n), sizeof(RTCRay));
+    rtcOccluded1M(
+      this->Impl->Scene, &context, rays.data(), static_cast<unsigned>(n), sizeof(RTCRay));
   }
   for (size_t i = 0; i < n; ++i)
   {

@@ -1,8 +1,8 @@
 #include <vimlop/Registration/RegistrationInputConversion.h>
 
 #include <vimlop/Core/Error.h>
-#include <vimlop/Core/OrientNormalsIntoAir.h>
 #include <vimlop/Core/NoiseModel.h>
+#include <vimlop/Core/OrientNormalsIntoAir.h>
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>

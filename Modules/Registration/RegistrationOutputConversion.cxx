@@ -1,7 +1,7 @@
 #include <vimlop/Registration/RegistrationOutputConversion.h>
 
-#include <vimlop/Registration/CameraPoseTable.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Registration/CameraPoseTable.h>
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>

@@ -1,14 +1,14 @@
 #include <vimlop/Registration/vtkVIMLOPRegistration.h>
 
 #include <vimlop/Core/CanonicalStarts.h>
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/MethodDescriptor.h>
-#include <vimlop/Rendering/OffscreenRendering.h>
 #include <vimlop/Core/Registration.h>
-#include <vimlop/Registration/RegistrationInputConversion.h>
 #include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Registration/RegistrationInputConversion.h>
 #include <vimlop/Registration/RegistrationOutputConversion.h>
+#include <vimlop/Rendering/OffscreenRendering.h>
 #include <vimlop/Rendering/vtkVIMLOPDepthVisibility.h>
 
 #include <vtkAlgorithmOutput.h>

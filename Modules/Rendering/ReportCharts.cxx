@@ -1,7 +1,7 @@
 #include <vimlop/Rendering/ReportCharts.h>
 
-#include <vimlop/Rendering/ContourOverlay.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Rendering/ContourOverlay.h>
 #include <vimlop/Rendering/WindowCapture.h>
 
 #include <vtkAutoInit.h>

@@ -2,10 +2,10 @@
 #define vtkVIMLOPVirtualEndoscope_h
 
 #include <vimlop/Core/CameraPose.h>
-#include <vimlop/Rendering/EndoscopeImage.h>
-#include <vimlop/Rendering/MucosaTexture.h>
 #include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Rendering/EndoscopeImage.h>
+#include <vimlop/Rendering/MucosaTexture.h>
 
 #include "VIMLOPRenderingModule.h"
 

@@ -1,7 +1,7 @@
 #include <vimlop/Report/RegisteredVideo.h>
 
-#include <vimlop/Rendering/ContourOverlay.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Rendering/ContourOverlay.h>
 #include <vimlop/Rendering/PNGImageIO.h>
 #include <vimlop/Rendering/SurfaceView.h>
 #include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>

@@ -1,20 +1,20 @@
 #include <vimlop/Report/RegistrationReport.h>
 
 #include <vimlop/Core/ContourMatcher.h>
-#include <vimlop/Rendering/ContourOverlay.h>
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/KdTree2D.h>
 #include <vimlop/Core/OccludingContours.h>
-#include <vimlop/Rendering/PNGImageIO.h>
-#include <vimlop/Results/RecordJson.h>
 #include <vimlop/Core/RegistrationMetrics.h>
-#include <vimlop/Results/RegistrationRecordIO.h>
-#include <vimlop/Rendering/RegistrationScene.h>
-#include <vimlop/Rendering/ReportCharts.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/VisibleModelContours.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Rendering/ContourOverlay.h>
+#include <vimlop/Rendering/PNGImageIO.h>
+#include <vimlop/Rendering/RegistrationScene.h>
+#include <vimlop/Rendering/ReportCharts.h>
 #include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
+#include <vimlop/Results/RecordJson.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
 
 #include <vtkImageData.h>
 #include <vtkNew.h>

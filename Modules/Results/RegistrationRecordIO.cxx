@@ -2,12 +2,12 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Imaging/MeshIO.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
-#include <vimlop/Results/RecordJson.h>
 #include <vimlop/Registration/RegistrationInputConversion.h>
-#include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Registration/RegistrationOutputConversion.h>
+#include <vimlop/Results/RecordJson.h>
 
 #include <nlohmann/json.hpp>
 

@@ -2,8 +2,8 @@
 #define vimlop_PoseServing_h
 
 #include <vimlop/Core/FramePose.h>
-#include <vimlop/Server/PoseStreamServer.h>
 #include <vimlop/Core/SimilarityTransform.h>
+#include <vimlop/Server/PoseStreamServer.h>
 
 #include <optional>
 #include <string>

@@ -4,7 +4,6 @@
 #include <vimlop/Core/CameraPose.h>
 #include <vimlop/Core/PinholeCamera.h>
 
-
 #include <Eigen/Core>
 
 #include <vector>

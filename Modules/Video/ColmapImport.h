@@ -3,7 +3,6 @@
 
 #include <vimlop/Video/SfmReconstruction.h>
 
-
 #include <string>
 #include <vector>
 

@@ -1,7 +1,7 @@
 #include <vimlop/Video/ColmapRunner.h>
 
-#include <vimlop/Video/ColmapImport.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Video/ColmapImport.h>
 
 #include <cstdlib>
 #include <filesystem>

@@ -3,7 +3,6 @@
 
 #include <vimlop/Core/PinholeCamera.h>
 
-
 #include <string>
 
 namespace vimlop

@@ -5,7 +5,6 @@
 #include <vimlop/Core/DepthMap.h>
 #include <vimlop/Core/ModelContourPoint.h>
 
-
 #include <vector>
 
 namespace vimlop

@@ -1,7 +1,6 @@
 #ifndef vimlop_FrameSequence_h
 #define vimlop_FrameSequence_h
 
-
 #include <opencv2/core/mat.hpp>
 
 #include <string>

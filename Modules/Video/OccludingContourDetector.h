@@ -1,8 +1,8 @@
 #ifndef vimlop_OccludingContourDetector_h
 #define vimlop_OccludingContourDetector_h
 
-#include <vimlop/Video/ContourDetectionOptions.h>
 #include <vimlop/Core/ContourPoint.h>
+#include <vimlop/Video/ContourDetectionOptions.h>
 
 #include <opencv2/core/mat.hpp>
 

@@ -3,7 +3,6 @@
 
 #include <vimlop/Video/SfmReconstruction.h>
 
-
 #include <string>
 
 /**
@@ -34,8 +33,7 @@ namespace vimlop
 
 /// @brief Writes `reconstruction` to `path` (JSON, the layout above).
 /// @throws vimlop::Error if the file cannot be written.
-void writeSfmReconstruction(
-  const SfmReconstruction& reconstruction, const std::string& path);
+void writeSfmReconstruction(const SfmReconstruction& reconstruction, const std::string& path);
 
 /**
  * @brief Reads a file written by writeSfmReconstruction().

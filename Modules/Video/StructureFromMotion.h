@@ -4,7 +4,6 @@
 #include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Video/SfmReconstruction.h>
 
-
 #include <opencv2/core/mat.hpp>
 
 #include <iosfwd>

@@ -3,7 +3,6 @@
 
 #include <vimlop/Video/TrackerTrajectory.h>
 
-
 #include <Eigen/Core>
 
 #include <string>
@@ -46,8 +45,7 @@ struct TrackerScaleResult
  * @throws vimlop::Error naming both time spans when no frame time lies
  * within the tracker's.
  */
-void checkTrackerOverlap(
-  const TrackerTrajectory& tracker, const std::vector<double>& frameTimesS);
+void checkTrackerOverlap(const TrackerTrajectory& tracker, const std::vector<double>& frameTimesS);
 
 /**
  * @brief Scales SfM so that the camera trajectory is as long as the tracked

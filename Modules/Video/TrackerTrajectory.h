@@ -1,7 +1,6 @@
 #ifndef vimlop_TrackerTrajectory_h
 #define vimlop_TrackerTrajectory_h
 
-
 #include <Eigen/Core>
 
 #include <optional>

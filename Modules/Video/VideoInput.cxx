@@ -1,7 +1,7 @@
 #include <vimlop/Video/VideoInput.h>
 
-#include <vimlop/Video/ColmapImport.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Video/ColmapImport.h>
 #include <vimlop/Video/StructureFromMotion.h>
 
 #include <opencv2/calib3d.hpp>

@@ -1,8 +1,8 @@
 #ifndef vimlop_VideoInput_h
 #define vimlop_VideoInput_h
 
-#include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Video/SfmReconstruction.h>
 #include <vimlop/Video/TrackerScale.h>
 #include <vimlop/Video/TrackerTrajectory.h>

@@ -5,15 +5,15 @@
 //
 // Usage: VIMLOPBenchmarkRegistration --mesh airway.vtp [--trials N] [--threads T] [--json out.json]
 
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Core/Error.h>
-#include <vimlop/Imaging/MeshIO.h>
 #include <vimlop/Core/MeshTree.h>
-#include <vimlop/Imaging/PolyDataConversion.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/SyntheticExperiment.h>
+#include <vimlop/Imaging/MeshIO.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
 #include <nlohmann/json.hpp>
 
@@ -45,7 +45,8 @@ struct ProblemTimes
   std::vector<double> tre;
 };
 
-ProblemTimes run(const RegistrationModel& model, const SyntheticOptions& synthetic, int trials, int threads)
+ProblemTimes run(
+  const RegistrationModel& model, const SyntheticOptions& synthetic, int trials, int threads)
 {
   ProblemTimes t;
   int totalIterations = 0;
@@ -57,7 +58,8 @@ ProblemTimes run(const RegistrationModel& model, const SyntheticOptions& synthet
     options.maxScale = 1.25;
     options.threads = threads;
     const auto start = Clock::now();
-    const RegistrationResult result = registerVideo(model, trial.data, trial.initialSfmToCT, options);
+    const RegistrationResult result =
+      registerVideo(model, trial.data, trial.initialSfmToCT, options);
     t.seconds.push_back(secondsSince(start));
     t.iterations.push_back(result.iterations);
     t.tre.push_back(targetRegistrationError(result.sfmToCT, trial.truthSfmToCT, trial.targetsCT));
@@ -89,12 +91,15 @@ nlohmann::json report(const char* name, const ProblemTimes& t)
 {
   const StageTimes& s = t.perIteration;
   std::printf("%s: median %.3f s (p95 %.3f), %.1f iterations, TRE median %.3f mm\n", name,
-    summarize(t.seconds).median, summarize(t.seconds).p95, summarize(t.iterations).median, summarize(t.tre).median);
+    summarize(t.seconds).median, summarize(t.seconds).p95, summarize(t.iterations).median,
+    summarize(t.tre).median);
   std::printf("  per iteration, ms: 3D match %.2f, contours %.2f, visibility %.2f, 2D match %.2f, "
               "outliers %.2f, update %.2f, constraint %.2f\n",
-    s.match3dMs, s.contoursMs, s.visibilityMs, s.match2dMs, s.outliersMs, s.updateMs, s.constraintMs);
+    s.match3dMs, s.contoursMs, s.visibilityMs, s.match2dMs, s.outliersMs, s.updateMs,
+    s.constraintMs);
   return { { "median_s", summarize(t.seconds).median }, { "p95_s", summarize(t.seconds).p95 },
-    { "iterations_median", summarize(t.iterations).median }, { "tre_median_mm", summarize(t.tre).median },
+    { "iterations_median", summarize(t.iterations).median },
+    { "tre_median_mm", summarize(t.tre).median },
     { "per_iteration_ms",
       { { "match3d", s.match3dMs }, { "contours", s.contoursMs }, { "visibility", s.visibilityMs },
         { "match2d", s.match2dMs }, { "outliers", s.outliersMs }, { "update", s.updateMs },
@@ -122,14 +127,16 @@ int main(int argc, char** argv)
   }
   if (meshPath.empty() || trials < 1)
   {
-    std::fprintf(stderr, "usage: %s --mesh airway.vtp [--trials N] [--threads T] [--json out.json]\n", argv[0]);
+    std::fprintf(stderr,
+      "usage: %s --mesh airway.vtp [--trials N] [--threads T] [--json out.json]\n", argv[0]);
     return 2;
   }
   try
   {
     const TriangleMesh mesh = toTriangleMesh(readPolyData(meshPath));
     const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
-    std::printf("mesh: %d triangles; %d trials per problem; threads %d\n", mesh.numberOfFaces(), trials, threads);
+    std::printf("mesh: %d triangles; %d trials per problem; threads %d\n", mesh.numberOfFaces(),
+      trials, threads);
     nlohmann::json out;
 
     SyntheticOptions p1;
@@ -148,17 +155,22 @@ int main(int argc, char** argv)
     double checksum = 0.0;
     for (int i = 0; i < queries; ++i)
     {
-      checksum += model.tree().mostLikelyPoint(trial.data.points[i], trial.data.pointCovariances[i]).cost;
+      checksum +=
+        model.tree().mostLikelyPoint(trial.data.points[i], trial.data.pointCovariances[i]).cost;
     }
     const double treeSeconds = secondsSince(start);
     start = Clock::now();
     for (int i = 0; i < queries; ++i)
     {
-      checksum -= MeshTree::mostLikelyPointBruteForce(mesh, trial.data.points[i], trial.data.pointCovariances[i]).cost;
+      checksum -= MeshTree::mostLikelyPointBruteForce(
+        mesh, trial.data.points[i], trial.data.pointCovariances[i])
+                    .cost;
     }
     const double bruteSeconds = secondsSince(start);
-    std::printf("most likely point: tree %.1f us, brute force %.1f us per query: speed-up %.0fx (checksum %.1e)\n",
-      1e6 * treeSeconds / queries, 1e6 * bruteSeconds / queries, bruteSeconds / treeSeconds, checksum);
+    std::printf("most likely point: tree %.1f us, brute force %.1f us per query: speed-up %.0fx "
+                "(checksum %.1e)\n",
+      1e6 * treeSeconds / queries, 1e6 * bruteSeconds / queries, bruteSeconds / treeSeconds,
+      checksum);
     out["mlp_tree_speedup"] = bruteSeconds / treeSeconds;
     out["mesh_triangles"] = mesh.numberOfFaces();
     if (!jsonPath.empty())

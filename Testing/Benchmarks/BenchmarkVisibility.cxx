@@ -9,13 +9,13 @@
 // Usage: VIMLOPBenchmarkVisibility --mesh airway.vtp [--trials N] [--supersampling S]
 // (needs an X display: run it under xvfb-run -a on a server)
 
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Core/Error.h>
-#include <vimlop/Imaging/MeshIO.h>
 #include <vimlop/Core/OccludingContours.h>
-#include <vimlop/Imaging/PolyDataConversion.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/SyntheticExperiment.h>
+#include <vimlop/Imaging/MeshIO.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Rendering/vtkVIMLOPDepthVisibility.h>
 
 #include <vtkNew.h>

@@ -1,9 +1,9 @@
 // Fuzzes the COLMAP model reader, text and binary. The first byte picks the
 // format (even: text, odd: binary); the rest holds cameras, images and
 // points3D separated by "=====" lines (see splitParts).
-#include <vimlop/Video/ColmapImport.h>
-#include <vimlop/Core/Error.h>
 #include "FuzzTemporaryFile.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Video/ColmapImport.h>
 
 #include <filesystem>
 

@@ -1,7 +1,7 @@
 // Fuzzes the JSON pose file reader (template poses, warped poses).
+#include "FuzzTemporaryFile.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/FramePoseIO.h>
-#include "FuzzTemporaryFile.h"
 
 #include <cstdlib>
 

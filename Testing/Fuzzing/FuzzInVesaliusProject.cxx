@@ -1,8 +1,8 @@
 // Fuzzes the .inv3 reader: tar framing, member sizes, the plist and the
 // matrix checks. Raw (non-gzip) bytes reach the tar parser directly, because
 // zlib reads uncompressed files transparently.
-#include <vimlop/Core/Error.h>
 #include "FuzzTemporaryFile.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/InVesaliusProjectReader.h>
 
 #include <vtkObject.h>

@@ -1,6 +1,6 @@
 // Fuzzes the intrinsics reader (both layouts, every FileStorage format).
-#include <vimlop/Core/Error.h>
 #include "FuzzTemporaryFile.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Video/IntrinsicsIO.h>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)

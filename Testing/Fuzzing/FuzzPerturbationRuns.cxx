@@ -1,6 +1,6 @@
 // Fuzzes the reader of perturbation-study runs (the input of report plots).
-#include <vimlop/Core/Error.h>
 #include "FuzzTemporaryFile.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Results/PerturbationRuns.h>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)

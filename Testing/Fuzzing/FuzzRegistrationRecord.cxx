@@ -2,8 +2,8 @@
 // files of the folder are written once, from a small record made here, and
 // stay valid; each input replaces result.json. The seed corpus holds the
 // result.json of that record (regenerate it with VIMLOP_FUZZ_WRITE_SEED=path).
-#include <vimlop/Core/Error.h>
 #include "FuzzTemporaryFile.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 
 #include <vtkObject.h>

@@ -1,6 +1,6 @@
 // Fuzzes the reader of VIMLOP's SfM files (vimlop sfm's output).
-#include <vimlop/Core/Error.h>
 #include "FuzzTemporaryFile.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Video/SfmReconstructionIO.h>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)

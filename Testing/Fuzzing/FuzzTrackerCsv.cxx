@@ -1,6 +1,6 @@
 // Fuzzes the tracker CSV reader and the interpolation of what it accepts.
-#include <vimlop/Core/Error.h>
 #include "FuzzTemporaryFile.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Video/TrackerTrajectory.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
-#include <vimlop/Core/AnatomicalConstraint.h>
 #include "TestMeshes.h"
+#include <vimlop/Core/AnatomicalConstraint.h>
 
 #include <gtest/gtest.h>
 

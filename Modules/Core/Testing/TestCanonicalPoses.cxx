@@ -1,6 +1,6 @@
+#include "TestMeshes.h"
 #include <vimlop/Core/CanonicalPoses.h>
 #include <vimlop/Core/Error.h>
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

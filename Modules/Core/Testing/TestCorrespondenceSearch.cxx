@@ -1,7 +1,7 @@
+#include "TestMeshes.h"
 #include <vimlop/Core/CorrespondenceSearch.h>
 #include <vimlop/Core/SyntheticExperiment.h>
 #include <vimlop/Core/TaskPool.h>
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

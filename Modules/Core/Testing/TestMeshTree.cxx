@@ -1,8 +1,8 @@
+#include "RandomGeometry.h"
+#include "TestMeshes.h"
 #include <vimlop/Core/ClosestPointOnTriangle.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/MeshTree.h>
-#include "RandomGeometry.h"
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

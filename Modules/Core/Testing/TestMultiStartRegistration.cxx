@@ -1,9 +1,9 @@
+#include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/MultiStartRegistration.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/SyntheticExperiment.h>
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // Numerical robustness of the registration (issue 9): degenerate meshes and
 // data either register or end with a termination reason that says why, and
 // no NaN reaches a result.
+#include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/SyntheticExperiment.h>
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

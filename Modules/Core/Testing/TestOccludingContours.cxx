@@ -1,5 +1,5 @@
-#include <vimlop/Core/OccludingContours.h>
 #include "TestMeshes.h"
+#include <vimlop/Core/OccludingContours.h>
 
 #include <gtest/gtest.h>
 
@@ -98,7 +98,8 @@ TEST(OccludingContours, InterpolatedNormalsTraceTheSmoothOutline)
   const auto edges = extractOccludingContours(blob, k, CameraPose());
   ASSERT_GT(smooth.size(), 100u);
   const Eigen::Vector2d centrePixel = k.project(centre);
-  auto meanTangency = [](const std::vector<ModelContourPoint>& samples) {
+  auto meanTangency = [](const std::vector<ModelContourPoint>& samples)
+  {
     double sum = 0.0;
     for (const ModelContourPoint& p : samples)
     {

@@ -1,6 +1,6 @@
+#include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/OrientNormalsIntoAir.h>
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

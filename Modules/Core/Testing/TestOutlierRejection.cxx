@@ -1,6 +1,6 @@
+#include "RandomGeometry.h"
 #include <vimlop/Core/ChiSquare.h>
 #include <vimlop/Core/OutlierRejection.h>
-#include "RandomGeometry.h"
 
 #include <gtest/gtest.h>
 

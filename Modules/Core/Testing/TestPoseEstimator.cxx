@@ -1,6 +1,6 @@
+#include "RandomGeometry.h"
 #include <vimlop/Core/ClosedFormSimilarityEstimator.h>
 #include <vimlop/Core/LevenbergMarquardtPoseEstimator.h>
-#include "RandomGeometry.h"
 #include <vimlop/Core/Rotation.h>
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
+#include "RandomGeometry.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/PoseUpdate.h>
-#include "RandomGeometry.h"
 #include <vimlop/Core/TaskPool.h>
 
 #include <gtest/gtest.h>

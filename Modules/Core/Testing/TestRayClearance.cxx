@@ -1,6 +1,6 @@
+#include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/RayClearance.h>
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

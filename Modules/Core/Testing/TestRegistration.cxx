@@ -1,8 +1,8 @@
+#include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/SyntheticExperiment.h>
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

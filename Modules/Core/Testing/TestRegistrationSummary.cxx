@@ -1,5 +1,5 @@
-#include <vimlop/Core/RegistrationSummary.h>
 #include "TestMeshes.h"
+#include <vimlop/Core/RegistrationSummary.h>
 
 #include <gtest/gtest.h>
 

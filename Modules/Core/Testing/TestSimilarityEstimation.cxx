@@ -1,5 +1,5 @@
-#include <vimlop/Core/Error.h>
 #include "RandomGeometry.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Core/SimilarityEstimation.h>
 
 #include <gtest/gtest.h>

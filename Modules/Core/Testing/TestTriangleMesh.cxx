@@ -1,5 +1,5 @@
-#include <vimlop/Core/Error.h>
 #include "TestMeshes.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Core/TriangleMesh.h>
 
 #include <Eigen/Dense>

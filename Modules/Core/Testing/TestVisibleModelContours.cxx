@@ -1,6 +1,6 @@
+#include "TestMeshes.h"
 #include <vimlop/Core/MeshTreeVisibility.h>
 #include <vimlop/Core/RegistrationResult.h>
-#include "TestMeshes.h"
 #include <vimlop/Core/VisibleModelContours.h>
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 #include <vimlop/Evaluation/Peers/ElastixRegistration.h>
 
-#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 
 #include <chrono>
 #include <cstdio>

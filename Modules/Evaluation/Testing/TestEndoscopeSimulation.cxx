@@ -1,6 +1,6 @@
-#include <vimlop/Evaluation/EndoscopeSimulation.h>
-#include <vimlop/Core/Error.h>
 #include "TestMeshes.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/EndoscopeSimulation.h>
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
+#include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/Peers/Open3DPeers.h>
 #include <vimlop/Evaluation/SyntheticProtocol.h>
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

@@ -6,11 +6,11 @@
 // with the defaults of `vimlop segment` (about 2 s): the model of the tests
 // that need a real airway.
 
+#include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Imaging/AirwaySurface.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
-#include <vimlop/Core/TriangleMesh.h>
 
 #include <vtkPolyData.h>
 

@@ -1,11 +1,11 @@
 // The nasal airway of the real head CT that Debian's invesalius-examples
 // ships (installed by CMake/install-dependencies.sh).
+#include <vimlop/Core/ClosestPointOnTriangle.h>
+#include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Imaging/AirwaySurface.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
-#include <vimlop/Core/ClosestPointOnTriangle.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
-#include <vimlop/Core/TriangleMesh.h>
 
 #include <gtest/gtest.h>
 

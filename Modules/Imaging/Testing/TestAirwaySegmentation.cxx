@@ -1,6 +1,6 @@
 #include "AirwayPhantom.h"
-#include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/AirwaySegmentation.h>
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 #include "AirwayPhantom.h"
-#include <vimlop/Imaging/AirwaySurface.h>
 #include <vimlop/Core/Error.h>
-#include <vimlop/Imaging/PolyDataConversion.h>
 #include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Imaging/AirwaySurface.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Rotation.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 
 #include <gtest/gtest.h>
 

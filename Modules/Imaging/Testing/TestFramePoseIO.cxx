@@ -1,7 +1,7 @@
-#include <vimlop/Imaging/DisplacementFieldIO.h>
 #include <vimlop/Core/Error.h>
-#include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Core/Rotation.h>
+#include <vimlop/Imaging/DisplacementFieldIO.h>
+#include <vimlop/Imaging/FramePoseIO.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
+#include "InVesaliusTestFiles.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/InVesaliusProjectReader.h>
-#include "InVesaliusTestFiles.h"
 
 #include <gtest/gtest.h>
 
@@ -166,9 +166,11 @@ TEST(InVesaliusProjectReader, HeadersPromisingHugeMembersAllocateNothing)
   std::string header = fixtures::tarMember("matrix.dat", std::string(1024, 'x')).substr(0, 512);
   std::snprintf(&header[124], 12, "%011llo", 3ull << 30);
   header[135] = ' ';
-  const std::string path = fixtures::writeProject(out + "/promises.inv3", { { "main.plist", fixtures::plist(2, 2, 2) } });
+  const std::string path =
+    fixtures::writeProject(out + "/promises.inv3", { { "main.plist", fixtures::plist(2, 2, 2) } });
   // Rewrite with the forged member appended after main.plist.
-  std::string tar = fixtures::tarMember("main.plist", fixtures::plist(2, 2, 2)) + header + std::string(1024, 'x');
+  std::string tar =
+    fixtures::tarMember("main.plist", fixtures::plist(2, 2, 2)) + header + std::string(1024, 'x');
   gzFile file = gzopen(path.c_str(), "wb");
   gzwrite(file, tar.data(), static_cast<unsigned>(tar.size()));
   gzclose(file);

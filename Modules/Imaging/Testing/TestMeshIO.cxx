@@ -1,7 +1,7 @@
+#include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/MeshIO.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

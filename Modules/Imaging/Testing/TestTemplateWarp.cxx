@@ -1,8 +1,8 @@
+#include "TestMeshes.h"
+#include <vimlop/Core/Rotation.h>
 #include <vimlop/Imaging/DisplacementField.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
-#include <vimlop/Core/Rotation.h>
 #include <vimlop/Imaging/TemplateWarp.h>
-#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
-#include <vimlop/Core/RegistrationMetrics.h>
 #include "RenderedSequence.h"
+#include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Pipeline/SimilarityFromCameras.h>
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 #include <vimlop/Pipeline/vtkVIMLOPVideoRegistration.h>
 
-#include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Pipeline/RegistrationOutputs.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
 #include <vimlop/Registration/vtkVIMLOPRegistration.h>
@@ -103,7 +103,8 @@ TEST(vtkVIMLOPVideoRegistration, ItsDefaultsAreThoseOfTheRegistrationFilterAndTh
   // The registration filter's options, in result.json's layout, are the pipeline's.
   VideoRegistrationOptions filterOptions;
   filterOptions.registration = filter->GetRegistrationOptions();
-  EXPECT_EQ(registrationOptionsJson(filterOptions).dump(), registrationOptionsJson(defaults).dump());
+  EXPECT_EQ(
+    registrationOptionsJson(filterOptions).dump(), registrationOptionsJson(defaults).dump());
   EXPECT_DOUBLE_EQ(filter->GetFailureThresholdPx(), defaults.multiStart.failureContourErrorPx);
 }
 

@@ -1,7 +1,7 @@
-#include <vimlop/Core/ClosestPointOnTriangle.h>
-#include <vimlop/Raycast/EmbreeScene.h>
-#include <vimlop/Core/Error.h>
 #include "TestMeshes.h"
+#include <vimlop/Core/ClosestPointOnTriangle.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Raycast/EmbreeScene.h>
 
 #include <Eigen/Dense>
 

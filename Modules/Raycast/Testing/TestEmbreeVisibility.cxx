@@ -1,11 +1,11 @@
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
-#include <vimlop/Raycast/EmbreeVisibility.h>
+#include "TestMeshes.h"
 #include <vimlop/Core/MeshTreeVisibility.h>
 #include <vimlop/Core/OccludingContours.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/SyntheticExperiment.h>
-#include "TestMeshes.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Raycast/EmbreeVisibility.h>
 
 #include <gtest/gtest.h>
 

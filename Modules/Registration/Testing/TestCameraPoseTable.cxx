@@ -1,6 +1,6 @@
-#include <vimlop/Registration/CameraPoseTable.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Rotation.h>
+#include <vimlop/Registration/CameraPoseTable.h>
 
 #include <gtest/gtest.h>
 

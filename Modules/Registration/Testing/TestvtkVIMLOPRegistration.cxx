@@ -1,10 +1,10 @@
 #include "CraniumAirway.h"
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
-#include <vimlop/Imaging/PolyDataConversion.h>
-#include <vimlop/Registration/RegistrationInputConversion.h>
+#include "TestMeshes.h"
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/SyntheticExperiment.h>
-#include "TestMeshes.h"
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Registration/RegistrationInputConversion.h>
 #include <vimlop/Registration/vtkVIMLOPRegistration.h>
 
 #include <gtest/gtest.h>
@@ -462,7 +462,8 @@ TEST(vtkVIMLOPRegistration, OptionsDefaultToCoreAndArePrinted)
   EXPECT_DOUBLE_EQ(covariance[1], 0.0);
   EXPECT_DOUBLE_EQ(covariance[2], 1.0);
   EXPECT_FALSE(registration->GetStartFromCanonicalPoses());
-  EXPECT_DOUBLE_EQ(registration->GetFailureThresholdPx(), MultiStartOptions().failureContourErrorPx);
+  EXPECT_DOUBLE_EQ(
+    registration->GetFailureThresholdPx(), MultiStartOptions().failureContourErrorPx);
   EXPECT_EQ(registration->GetVisibilityBackend(), vtkVIMLOPRegistration::VisibilityBackend::Embree);
 
   const vtkMTimeType before = registration->GetMTime();
@@ -538,8 +539,8 @@ TEST(vtkVIMLOPRegistration, CanonicalStartsWithoutAnInitialScaleAreAnError)
   EventLog log;
   observe(registration, log);
   registration->Update();
-  EXPECT_NE(log.error.find("canonical starts need InitialScale (mm per SfM unit)"),
-    std::string::npos)
+  EXPECT_NE(
+    log.error.find("canonical starts need InitialScale (mm per SfM unit)"), std::string::npos)
     << log.error;
   EXPECT_FALSE(registration->GetFlaggedAsFailure());
 }

@@ -1,6 +1,6 @@
-#include <vimlop/Rendering/EndoscopeTrajectory.h>
-#include <vimlop/Core/Error.h>
 #include "TestMeshes.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Rendering/EndoscopeTrajectory.h>
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 #include "CraniumAirway.h"
 #include "CraniumPoses.h"
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
-#include <vimlop/Raycast/EmbreeVisibility.h>
+#include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/MeshTreeVisibility.h>
 #include <vimlop/Core/OccludingContours.h>
 #include <vimlop/Core/SyntheticExperiment.h>
-#include "TestMeshes.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Raycast/EmbreeVisibility.h>
 #include <vimlop/Rendering/vtkVIMLOPDepthVisibility.h>
 
 #include <gtest/gtest.h>

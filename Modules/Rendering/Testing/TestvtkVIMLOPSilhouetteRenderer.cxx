@@ -1,10 +1,10 @@
 #include "CraniumAirway.h"
 #include "CraniumPoses.h"
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/OccludingContours.h>
 #include <vimlop/Core/SyntheticExperiment.h>
-#include "TestMeshes.h"
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
 
 #include <gtest/gtest.h>

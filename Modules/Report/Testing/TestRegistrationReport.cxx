@@ -5,13 +5,13 @@
 // purpose, run the test with VIMLOP_UPDATE_BASELINES=1 in the environment:
 // it then writes the new pictures there (check them before committing).
 
-#include <vimlop/Rendering/ContourOverlay.h>
-#include <vimlop/Core/Error.h>
-#include <vimlop/Rendering/PNGImageIO.h>
-#include <vimlop/Results/RegistrationRecordIO.h>
-#include <vimlop/Report/RegistrationReport.h>
 #include "ReportFixture.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Rendering/ContourOverlay.h>
+#include <vimlop/Rendering/PNGImageIO.h>
 #include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
+#include <vimlop/Report/RegistrationReport.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
 
 #include <gtest/gtest.h>
 

@@ -6,13 +6,13 @@
 // (the truth off by a small known motion, reached in 8 iterations), so that
 // the pictures depend on neither the registration's numerics nor its speed.
 
+#include "TestMeshes.h"
+#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Rendering/PNGImageIO.h>
-#include <vimlop/Results/RegistrationRecord.h>
-#include <vimlop/Core/Rotation.h>
 #include <vimlop/Rendering/SurfaceView.h>
-#include <vimlop/Core/SyntheticExperiment.h>
-#include "TestMeshes.h"
+#include <vimlop/Results/RegistrationRecord.h>
 
 #include <vtkImageData.h>
 

@@ -1,7 +1,7 @@
+#include "ReportFixture.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Results/PerturbationRuns.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
-#include "ReportFixture.h"
 
 #include <gtest/gtest.h>
 

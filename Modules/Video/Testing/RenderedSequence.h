@@ -4,9 +4,9 @@
 // A short virtual-endoscope sequence in a folded tube, rendered once per test
 // program, with its ground truth (needs an X display).
 
-#include <vimlop/Rendering/EndoscopeTrajectory.h>
-#include <vimlop/Core/RegistrationModel.h>
 #include "TestMeshes.h"
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Rendering/EndoscopeTrajectory.h>
 #include <vimlop/Rendering/vtkVIMLOPVirtualEndoscope.h>
 
 #include <opencv2/core/mat.hpp>

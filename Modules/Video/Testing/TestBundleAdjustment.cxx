@@ -1,6 +1,6 @@
-#include <vimlop/Video/BundleAdjustment.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Rotation.h>
+#include <vimlop/Video/BundleAdjustment.h>
 
 #include <gtest/gtest.h>
 

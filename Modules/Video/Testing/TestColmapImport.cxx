@@ -1,5 +1,5 @@
-#include <vimlop/Video/ColmapImport.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Video/ColmapImport.h>
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // COLMAP import against models written by the real `colmap` program (built
 // only when CMake found it; CI installs Debian's package).
 
-#include <vimlop/Video/ColmapImport.h>
-#include <vimlop/Video/ColmapRunner.h>
 #include "RenderedSequence.h"
 #include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/SimilarityEstimation.h>
+#include <vimlop/Video/ColmapImport.h>
+#include <vimlop/Video/ColmapRunner.h>
 
 #include <gtest/gtest.h>
 

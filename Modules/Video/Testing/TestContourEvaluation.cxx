@@ -1,5 +1,5 @@
-#include <vimlop/Video/ContourEvaluation.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Video/ContourEvaluation.h>
 
 #include <gtest/gtest.h>
 

@@ -91,9 +91,10 @@ TEST(IntrinsicsIO, ErrorsNameTheFileAndTheProblem)
   EXPECT_EQ(messageOf(malformed).rfind("'" + malformed + "': ", 0), 0u) << messageOf(malformed);
   // Found by fuzzing: a declared size is checked before OpenCV allocates it.
   const std::string huge = out + "/huge.yaml";
-  std::ofstream(huge) << "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\n"
-                         "camera_matrix: !!opencv-matrix\n   rows: 100000\n   cols: 100000\n   dt: d\n"
-                         "   data: [ 1. ]\n";
+  std::ofstream(huge)
+    << "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\n"
+       "camera_matrix: !!opencv-matrix\n   rows: 100000\n   cols: 100000\n   dt: d\n"
+       "   data: [ 1. ]\n";
   EXPECT_EQ(messageOf(huge), "'" + huge + "': 'camera_matrix' has an invalid size 100000x100000");
   const std::string text = out + "/intrinsics.txt";
   std::ofstream(text) << "fx 500";

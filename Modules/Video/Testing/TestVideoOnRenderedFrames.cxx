@@ -1,12 +1,12 @@
 // Contours and structure from motion on pictures of the virtual endoscope
 // (Rendering module), against the simulation's ground truth.
 
-#include <vimlop/Video/ContourEvaluation.h>
-#include <vimlop/Video/OccludingContourDetector.h>
-#include <vimlop/Core/OccludingContours.h>
 #include "RenderedSequence.h"
+#include <vimlop/Core/OccludingContours.h>
 #include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/SimilarityEstimation.h>
+#include <vimlop/Video/ContourEvaluation.h>
+#include <vimlop/Video/OccludingContourDetector.h>
 #include <vimlop/Video/StructureFromMotion.h>
 
 #include <gtest/gtest.h>
