@@ -1,69 +1,32 @@
-// Template-to-patient registration with ITK. This is the module's heaviest
-// translation unit (ITK's v4 registration templates), so all the ITK work of
-// the registration lives here, instantiated for float images only. Like every
-// ITK translation unit it includes no Eigen (see CTVolume.h).
+// Template-to-patient registration with ITK: the driver, and the helpers it
+// shares with the affine stage (TemplateAffineStage.cxx) and the SyN stage
+// (TemplateSyNStage.cxx). ITK's heavy v4 registration templates live in the
+// two stages' units only; all of it is instantiated for float images only.
 #include <vimlop/Imaging/TemplateRegistration.h>
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/ITKImageConversion.h>
+#include <vimlop/Imaging/TemplateAffineStage.h>
+#include <vimlop/Imaging/TemplateRegistrationITK.h>
+#include <vimlop/Imaging/TemplateSyNStage.h>
 #include <vimlop/Imaging/VolumeCrop.h>
 
-#include <itkAffineTransform.h>
-#include <itkCommand.h>
-#include <itkDisplacementFieldTransform.h>
-#include <itkDisplacementFieldTransformParametersAdaptor.h>
-#include <itkImageRegistrationMethodv4.h>
 #include <itkLinearInterpolateImageFunction.h>
-#include <itkMattesMutualInformationImageToImageMetricv4.h>
-#include <itkMeanSquaresImageToImageMetricv4.h>
-#include <itkRegistrationParameterScalesFromPhysicalShift.h>
-#include <itkRegularStepGradientDescentOptimizerv4.h>
-#include <itkShrinkImageFilter.h>
-#include <itkSyNImageRegistrationMethod.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <limits>
 
 namespace vimlop
 {
 
+namespace templatereg
+{
+
 namespace
 {
-
-using Image = itk::Image<float, 3>;
-using AffineTransform = itk::AffineTransform<double, 3>;
-using FieldTransform = itk::DisplacementFieldTransform<double, 3>;
-using Point = itk::Point<double, 3>;
-using Clock = std::chrono::steady_clock;
-
-constexpr float kLowestHU = -1000.0f;
-constexpr float kHighestHU = 2000.0f;
-constexpr double kTissueHU = -500.0;
-
-/// Calls a function on an ITK event.
-class Observer : public itk::Command
-{
-public:
-  using Pointer = itk::SmartPointer<Observer>;
-  static Pointer New()
-  {
-    Pointer observer = new Observer;
-    observer->UnRegister(); // the smart pointer holds the only reference
-    return observer;
-  }
-  void Execute(itk::Object*, const itk::EventObject&) override { this->Callback(); }
-  void Execute(const itk::Object*, const itk::EventObject&) override { this->Callback(); }
-  std::function<void()> Callback;
-};
-
-double seconds(Clock::time_point since)
-{
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 /// Continuous index of a physical point in a volume (orthonormal direction).
 std::array<double, 3> physicalToIndex(const CTVolume& v, const std::array<double, 3>& p)
@@ -81,48 +44,14 @@ std::array<double, 3> physicalToIndex(const CTVolume& v, const std::array<double
   return index;
 }
 
-/// Centroid (physical) of the voxels above the tissue threshold; every other voxel is enough.
-std::array<double, 3> tissueCentroid(const CTVolume& v)
+std::string firstLine(const itk::ExceptionObject& e)
 {
-  std::array<double, 3> sum{ 0.0, 0.0, 0.0 };
-  double count = 0.0;
-  for (int k = 0; k < v.dims[2]; k += 2)
-  {
-    for (int j = 0; j < v.dims[1]; j += 2)
-    {
-      for (int i = 0; i < v.dims[0]; i += 2)
-      {
-        const std::size_t n = static_cast<std::size_t>(i) +
-          static_cast<std::size_t>(v.dims[0]) * (j + static_cast<std::size_t>(v.dims[1]) * k);
-        if (v.intensities[n] > kTissueHU)
-        {
-          sum[0] += i;
-          sum[1] += j;
-          sum[2] += k;
-          count += 1.0;
-        }
-      }
-    }
-  }
-  if (count == 0.0)
-  {
-    return v.indexToPhysical(
-      { 0.5 * (v.dims[0] - 1), 0.5 * (v.dims[1] - 1), 0.5 * (v.dims[2] - 1) });
-  }
-  return v.indexToPhysical({ sum[0] / count, sum[1] / count, sum[2] / count });
+  std::string text = e.GetDescription();
+  const auto newline = text.find('\n');
+  return newline == std::string::npos ? text : text.substr(0, newline);
 }
 
-/// Integer shrink factors per axis that bring `spacing` closest to `targetMm`.
-itk::ShrinkImageFilter<Image, Image>::ShrinkFactorsType shrinkFactors(
-  const std::array<double, 3>& spacing, double targetMm)
-{
-  itk::ShrinkImageFilter<Image, Image>::ShrinkFactorsType factors;
-  for (unsigned a = 0; a < 3; ++a)
-  {
-    factors[a] = static_cast<unsigned>(std::max(1L, std::lround(targetMm / spacing[a])));
-  }
-  return factors;
-}
+} // namespace
 
 Point toPoint(const std::array<double, 3>& p)
 {
@@ -133,11 +62,14 @@ Point toPoint(const std::array<double, 3>& p)
   return x;
 }
 
-std::string firstLine(const itk::ExceptionObject& e)
+itk::FixedArray<unsigned, 3> shrinkFactors(const std::array<double, 3>& spacingMm, double targetMm)
 {
-  std::string text = e.GetDescription();
-  const auto newline = text.find('\n');
-  return newline == std::string::npos ? text : text.substr(0, newline);
+  itk::FixedArray<unsigned, 3> factors;
+  for (unsigned a = 0; a < 3; ++a)
+  {
+    factors[a] = static_cast<unsigned>(std::max(1L, std::lround(targetMm / spacingMm[a])));
+  }
+  return factors;
 }
 
 [[noreturn]] void noOverlap(double fraction)
@@ -150,9 +82,7 @@ std::string firstLine(const itk::ExceptionObject& e)
   throw Error(text);
 }
 
-/// Fraction of the fixed crop's voxels (every other one) that `map` sends into `patient`.
-double overlap(
-  const CTVolume& fixed, const CTVolume& patient, const std::function<Point(const Point&)>& map)
+double overlap(const CTVolume& fixed, const CTVolume& patient, const PointMap& map)
 {
   double inside = 0.0;
   double count = 0.0;
@@ -177,9 +107,6 @@ double overlap(
   return count > 0.0 ? inside / count : 0.0;
 }
 
-/// Rethrows an ITK failure as a one-line vimlop::Error. "Samples map
-/// outside" means the transform has left the moving image: the images do not
-/// overlap, and `overlapNow` says by how much.
 [[noreturn]] void registrationFailed(const itk::ExceptionObject& e, const std::string& stage,
   const std::function<double()>& overlapNow)
 {
@@ -191,9 +118,7 @@ double overlap(
   throw Error("the " + stage + " registration failed (" + what + ")");
 }
 
-/// Pearson correlation between the fixed crop and the patient at mapped points (stride 2).
-double correlation(
-  const CTVolume& fixed, const Image* patient, const std::function<Point(const Point&)>& map)
+double correlation(const CTVolume& fixed, const Image* patient, const PointMap& map)
 {
   auto interpolator = itk::LinearInterpolateImageFunction<Image, double>::New();
   interpolator->SetInputImage(patient);
@@ -237,8 +162,24 @@ double correlation(
   return va > 0.0 && vb > 0.0 ? cov / std::sqrt(va * vb) : 0.0;
 }
 
+} // namespace templatereg
+
+namespace
+{
+
+using namespace templatereg;
+using Clock = std::chrono::steady_clock;
+
+constexpr float kLowestHU = -1000.0f;
+constexpr float kHighestHU = 2000.0f;
+
+double seconds(Clock::time_point since)
+{
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
 /// Samples x -> map(x) - x on the voxel grid of `grid`.
-DisplacementField sampleField(const CTVolume& grid, const std::function<Point(const Point&)>& map)
+DisplacementField sampleField(const CTVolume& grid, const PointMap& map)
 {
   DisplacementField field;
   field.dims = grid.dims;
@@ -346,108 +287,11 @@ TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
 
   // 2. Affine.
   const auto affineStart = Clock::now();
-  auto affine = AffineTransform::New();
-  {
-    const std::array<double, 3> centre =
-      fixedVolume.indexToPhysical({ 0.5 * (fixedVolume.dims[0] - 1),
-        0.5 * (fixedVolume.dims[1] - 1), 0.5 * (fixedVolume.dims[2] - 1) });
-    affine->SetCenter(toPoint(centre));
-    const std::array<double, 3> from = tissueCentroid(templateCT);
-    const std::array<double, 3> to = tissueCentroid(patientCT);
-    AffineTransform::OutputVectorType shift;
-    for (int a = 0; a < 3; ++a)
-    {
-      shift[a] = to[a] - from[a];
-    }
-    affine->SetTranslation(shift);
-  }
-  result.initialCorrelation =
-    correlation(fixedVolume, moving, [&](const Point& x) { return affine->TransformPoint(x); });
-
-  using MIMetric = itk::MattesMutualInformationImageToImageMetricv4<Image, Image>;
-  using AffineMethod = itk::ImageRegistrationMethodv4<Image, Image, AffineTransform>;
-  const std::size_t affineLevels = options.affineLevelSpacingMm.size();
-  {
-    auto metric = MIMetric::New();
-    metric->SetNumberOfHistogramBins(static_cast<itk::SizeValueType>(options.histogramBins));
-    auto scales = itk::RegistrationParameterScalesFromPhysicalShift<MIMetric>::New();
-    scales->SetMetric(metric);
-    auto optimizer = itk::RegularStepGradientDescentOptimizerv4<double>::New();
-    // Steps of up to 2 mm of voxel shift at first (the scales make parameter
-    // steps comparable to shifts), halved whenever the direction turns back.
-    optimizer->SetLearningRate(2.0);
-    optimizer->SetMinimumStepLength(1e-3);
-    optimizer->SetRelaxationFactor(0.5);
-    optimizer->SetGradientMagnitudeTolerance(1e-6);
-    optimizer->SetScalesEstimator(scales);
-    optimizer->SetNumberOfIterations(static_cast<itk::SizeValueType>(options.affineIterations[0]));
-
-    auto method = AffineMethod::New();
-    method->SetFixedImage(fixed);
-    method->SetMovingImage(moving);
-    method->SetInitialTransform(affine);
-    method->InPlaceOn();
-    method->SetMetric(metric);
-    method->SetOptimizer(optimizer);
-    method->SetNumberOfLevels(affineLevels);
-    AffineMethod::SmoothingSigmasArrayType sigmas(static_cast<unsigned>(affineLevels));
-    for (std::size_t level = 0; level < affineLevels; ++level)
-    {
-      method->SetShrinkFactorsPerDimension(static_cast<unsigned>(level),
-        shrinkFactors(fixedVolume.spacingMm, options.affineLevelSpacingMm[level]));
-      // Smooth to about the level's voxel size before sampling it.
-      sigmas[static_cast<unsigned>(level)] = 0.5 * options.affineLevelSpacingMm[level];
-    }
-    method->SetSmoothingSigmasPerLevel(sigmas);
-    method->SmoothingSigmasAreSpecifiedInPhysicalUnitsOn();
-    method->SetMetricSamplingStrategy(AffineMethod::MetricSamplingStrategyEnum::REGULAR);
-    method->SetMetricSamplingPercentage(options.affineSamplingFraction);
-    method->MetricSamplingReinitializeSeed(7);
-
-    double total = 0.0;
-    for (int n : options.affineIterations)
-    {
-      total += n;
-    }
-    auto levelObserver = Observer::New();
-    levelObserver->Callback = [&]()
-    {
-      const auto level = static_cast<std::size_t>(method->GetCurrentLevel());
-      if (level < affineLevels)
-      {
-        optimizer->SetNumberOfIterations(
-          static_cast<itk::SizeValueType>(options.affineIterations[level]));
-      }
-    };
-    method->AddObserver(itk::MultiResolutionIterationEvent(), levelObserver);
-    auto iterationObserver = Observer::New();
-    iterationObserver->Callback = [&]()
-    {
-      double done = optimizer->GetCurrentIteration();
-      for (std::size_t level = 0;
-           level < std::min<std::size_t>(method->GetCurrentLevel(), affineLevels); ++level)
-      {
-        done += options.affineIterations[level];
-      }
-      reportProgress(
-        progress, 0.01 + 0.19 * std::min(1.0, done / std::max(1.0, total)), "affine registration");
-    };
-    optimizer->AddObserver(itk::IterationEvent(), iterationObserver);
-    try
-    {
-      method->Update();
-    }
-    catch (const itk::ExceptionObject& e)
-    {
-      registrationFailed(e, "affine",
-        [&]
-        {
-          return overlap(
-            fixedVolume, patientCT, [&](const Point& x) { return affine->TransformPoint(x); });
-        });
-    }
-    result.affineMetricValue = optimizer->GetValue();
-  }
+  const TemplateAffineStage affineStage = TemplateAffineStage::compute(
+    templateCT, patientCT, fixedVolume, fixed, moving, options, progress);
+  const AffineTransform* affine = affineStage.transform;
+  result.initialCorrelation = affineStage.initialCorrelation;
+  result.affineMetricValue = affineStage.metricValue;
   for (int row = 0; row < 3; ++row)
   {
     for (int col = 0; col < 3; ++col)
@@ -488,104 +332,10 @@ TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
   const CTVolume patientVolume = cropVolume(patientCT, mapped, kLowestHU, kHighestHU);
   moving = itkconv::toITKImage<Image>(patientVolume);
 
-  using SyN = itk::SyNImageRegistrationMethod<Image, Image, FieldTransform>;
-  auto syn = SyN::New();
-  const std::size_t synLevels = options.synLevelSpacingMm.size();
-  {
-    syn->SetFixedImage(fixed);
-    syn->SetMovingImage(moving);
-    syn->SetMovingInitialTransform(affine);
-    // The level adaptors resample the output transform's field at every
-    // level, the first included, so it starts as a zero field on the crop.
-    auto zero = FieldTransform::DisplacementFieldType::New();
-    zero->CopyInformation(fixed);
-    zero->SetRegions(fixed->GetLargestPossibleRegion());
-    zero->Allocate();
-    zero->FillBuffer(FieldTransform::DisplacementFieldType::PixelType(0.0));
-    auto output = FieldTransform::New();
-    output->SetDisplacementField(zero);
-    syn->SetInitialTransform(output);
-    syn->InPlaceOn();
-    if (options.metric == Metric::MeanSquares)
-    {
-      syn->SetMetric(itk::MeanSquaresImageToImageMetricv4<Image, Image>::New());
-    }
-    else
-    {
-      auto metric = MIMetric::New();
-      metric->SetNumberOfHistogramBins(static_cast<itk::SizeValueType>(options.histogramBins));
-      syn->SetMetric(metric);
-    }
-    syn->SetNumberOfLevels(synLevels);
-    SyN::SmoothingSigmasArrayType sigmas(static_cast<unsigned>(synLevels));
-    SyN::NumberOfIterationsArrayType iterations(static_cast<unsigned>(synLevels));
-    SyN::TransformParametersAdaptorsContainerType adaptors;
-    for (std::size_t level = 0; level < synLevels; ++level)
-    {
-      const auto factors = shrinkFactors(fixedVolume.spacingMm, options.synLevelSpacingMm[level]);
-      syn->SetShrinkFactorsPerDimension(static_cast<unsigned>(level), factors);
-      // No smoothing at the finest level: its detail is what SyN is for.
-      sigmas[static_cast<unsigned>(level)] =
-        level + 1 == synLevels ? 0.0 : 0.5 * options.synLevelSpacingMm[level];
-      iterations[static_cast<unsigned>(level)] =
-        static_cast<itk::SizeValueType>(options.synIterations[level]);
-      // The field of each level lives on the shrunk template crop.
-      auto shrink = itk::ShrinkImageFilter<Image, Image>::New();
-      shrink->SetShrinkFactors(factors);
-      shrink->SetInput(fixed);
-      shrink->UpdateOutputInformation();
-      const Image* shrunk = shrink->GetOutput();
-      auto adaptor = itk::DisplacementFieldTransformParametersAdaptor<FieldTransform>::New();
-      adaptor->SetRequiredSpacing(shrunk->GetSpacing());
-      adaptor->SetRequiredSize(shrunk->GetLargestPossibleRegion().GetSize());
-      adaptor->SetRequiredDirection(shrunk->GetDirection());
-      adaptor->SetRequiredOrigin(shrunk->GetOrigin());
-      adaptors.push_back(adaptor);
-    }
-    syn->SetSmoothingSigmasPerLevel(sigmas);
-    syn->SmoothingSigmasAreSpecifiedInPhysicalUnitsOn();
-    syn->SetNumberOfIterationsPerLevel(iterations);
-    syn->SetTransformParametersAdaptorsPerLevel(adaptors);
-    syn->SetLearningRate(options.synLearningRate);
-    syn->SetConvergenceThreshold(1e-6);
-    syn->SetConvergenceWindowSize(10);
-    syn->SetGaussianSmoothingVarianceForTheUpdateField(options.updateFieldVariance);
-    syn->SetGaussianSmoothingVarianceForTheTotalField(options.totalFieldVariance);
-
-    // Progress: a level's iterations cost about its number of voxels.
-    std::vector<double> cost(synLevels);
-    double total = 0.0;
-    for (std::size_t level = 0; level < synLevels; ++level)
-    {
-      const auto factors = shrinkFactors(fixedVolume.spacingMm, options.synLevelSpacingMm[level]);
-      cost[level] =
-        static_cast<double>(fixedVolume.numberOfVoxels()) / (factors[0] * factors[1] * factors[2]);
-      total += cost[level] * options.synIterations[level];
-    }
-    auto iterationObserver = Observer::New();
-    iterationObserver->Callback = [&]()
-    {
-      const auto level = std::min<std::size_t>(syn->GetCurrentLevel(), synLevels - 1);
-      double done = cost[level] * syn->GetCurrentIteration();
-      for (std::size_t l = 0; l < level; ++l)
-      {
-        done += cost[l] * options.synIterations[l];
-      }
-      reportProgress(progress, 0.2 + 0.75 * std::min(1.0, done / std::max(1.0, total)),
-        "deformable registration");
-    };
-    syn->AddObserver(itk::IterationEvent(), iterationObserver);
-    try
-    {
-      syn->Update();
-    }
-    catch (const itk::ExceptionObject& e)
-    {
-      registrationFailed(e, "deformable", [&] { return result.overlapFraction; });
-    }
-    result.synMetricValue = syn->GetCurrentMetricValue();
-  }
-  FieldTransform* phi = syn->GetModifiableTransform();
+  const TemplateSyNStage synStage = TemplateSyNStage::compute(
+    fixedVolume, fixed, moving, affine, result.overlapFraction, options, progress);
+  result.synMetricValue = synStage.metricValue;
+  FieldTransform* phi = synStage.phi;
   result.synSeconds = seconds(synStart);
 
   // 5. The fields.
