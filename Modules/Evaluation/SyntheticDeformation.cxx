@@ -29,21 +29,6 @@ std::array<double, 4> bsplineWeights(double f)
     (-3.0 * f3 + 3.0 * f2 + 3.0 * f + 1.0) / 6.0, f3 / 6.0 };
 }
 
-std::array<double, 3> physicalToIndex(const CTVolume& v, const std::array<double, 3>& p)
-{
-  std::array<double, 3> index{};
-  for (int col = 0; col < 3; ++col)
-  {
-    double projection = 0.0;
-    for (int row = 0; row < 3; ++row)
-    {
-      projection += v.direction[3 * row + col] * (p[row] - v.originMm[row]);
-    }
-    index[col] = projection / v.spacingMm[col];
-  }
-  return index;
-}
-
 } // namespace
 
 SyntheticDeformation::SyntheticDeformation(const CTVolume& grid, const Options& options)
@@ -87,8 +72,8 @@ SyntheticDeformation::SyntheticDeformation(const CTVolume& grid, const Options& 
     std::array<double, 3> high{ -1e300, -1e300, -1e300 };
     for (int corner = 0; corner < 8; ++corner)
     {
-      const std::array<double, 3> index = physicalToIndex(
-        grid, { r[(corner & 1) ? 1 : 0], r[(corner & 2) ? 3 : 2], r[(corner & 4) ? 5 : 4] });
+      const std::array<double, 3> index = grid.physicalToIndex(
+        { r[(corner & 1) ? 1 : 0], r[(corner & 2) ? 3 : 2], r[(corner & 4) ? 5 : 4] });
       for (int a = 0; a < 3; ++a)
       {
         low[a] = std::min(low[a], index[a]);
@@ -161,7 +146,7 @@ std::array<double, 3> SyntheticDeformation::displacementAtIndex(
 std::array<double, 3> SyntheticDeformation::patientToTemplateDisplacement(
   const std::array<double, 3>& patientPointMm) const
 {
-  return this->displacementAtIndex(physicalToIndex(this->Grid, patientPointMm));
+  return this->displacementAtIndex(this->Grid.physicalToIndex(patientPointMm));
 }
 
 std::array<double, 3> SyntheticDeformation::templateToPatient(const std::array<double, 3>& x) const
@@ -239,7 +224,7 @@ CTVolume SyntheticDeformation::makePatient(
           const std::array<double, 3> x{ y[0] + b[0], y[1] + b[1], y[2] + b[2] };
           patient.intensities[static_cast<std::size_t>(i) +
             static_cast<std::size_t>(d[0]) * (j + static_cast<std::size_t>(d[1]) * k)] =
-            static_cast<float>(sample(physicalToIndex(templateCT, x)));
+            static_cast<float>(sample(templateCT.physicalToIndex(x)));
         }
       }
     }

@@ -53,6 +53,23 @@ struct CTVolume
     }
     return p;
   }
+
+  /// @brief Continuous index of a physical point (mm, LPS); the inverse of
+  /// indexToPhysical() for an orthonormal direction.
+  std::array<double, 3> physicalToIndex(const std::array<double, 3>& pointMm) const
+  {
+    std::array<double, 3> index{};
+    for (int col = 0; col < 3; ++col)
+    {
+      double projection = 0.0;
+      for (int row = 0; row < 3; ++row)
+      {
+        projection += direction[3 * row + col] * (pointMm[row] - originMm[row]);
+      }
+      index[col] = projection / spacingMm[col];
+    }
+    return index;
+  }
 };
 
 } // namespace vimlop

@@ -28,22 +28,6 @@ namespace templatereg
 namespace
 {
 
-/// Continuous index of a physical point in a volume (orthonormal direction).
-std::array<double, 3> physicalToIndex(const CTVolume& v, const std::array<double, 3>& p)
-{
-  std::array<double, 3> index{};
-  for (int col = 0; col < 3; ++col)
-  {
-    double projection = 0.0;
-    for (int row = 0; row < 3; ++row)
-    {
-      projection += v.direction[3 * row + col] * (p[row] - v.originMm[row]);
-    }
-    index[col] = projection / v.spacingMm[col];
-  }
-  return index;
-}
-
 std::string firstLine(const itk::ExceptionObject& e)
 {
   std::string text = e.GetDescription();
@@ -93,7 +77,7 @@ double overlap(const CTVolume& fixed, const CTVolume& patient, const PointMap& m
       for (int i = 0; i < fixed.dims[0]; i += 2)
       {
         const Point y = map(toPoint(fixed.indexToPhysical({ double(i), double(j), double(k) })));
-        const std::array<double, 3> index = physicalToIndex(patient, { y[0], y[1], y[2] });
+        const std::array<double, 3> index = patient.physicalToIndex({ y[0], y[1], y[2] });
         bool in = true;
         for (int a = 0; a < 3; ++a)
         {
