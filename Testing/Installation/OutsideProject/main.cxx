@@ -3,11 +3,11 @@
 // it to a VTK pipeline around vtkVIMLOPRegistration, prints the transform
 // GetTransform() offers and checks it against the trial's ground truth. The
 // exit code is 0 only when the registration is accurate.
-#include <EmbreeRegistrationModel.h>
-#include <PolyDataConversion.h>
-#include <RegistrationInputConversion.h>
-#include <SyntheticExperiment.h>
-#include <vtkVIMLOPRegistration.h>
+#include <vimlop/Core/SyntheticExperiment.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Registration/RegistrationInputConversion.h>
+#include <vimlop/Registration/vtkVIMLOPRegistration.h>
 
 #include <vtkLinearTransform.h>
 #include <vtkMatrix4x4.h>
