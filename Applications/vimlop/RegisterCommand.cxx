@@ -154,16 +154,16 @@ void runRegister(RegisterOptions o)
   {
     throw Error("give --tracker CSV or --scale S: SfM alone has no metric scale");
   }
-  const std::vector<FramePose> truthPoses =
-    o.truth.empty() ? std::vector<FramePose>() : readFramePoses(o.truth);
-  requireOffscreenRendering("vimlop register");
-
   VideoRegistrationPipeline pipeline(o.pipeline);
   pipeline.setLog(&log);
   pipeline.setProgress([](const std::string&, double) { return !interrupted; });
+  pipeline.prepare(inputs);
+  const std::vector<FramePose> truthPoses =
+    o.truth.empty() ? std::vector<FramePose>() : readFramePoses(o.truth);
+  requireOffscreenRendering("vimlop register");
   try
   {
-    pipeline.run(inputs);
+    pipeline.process();
   }
   catch (const PipelineCancelled&)
   {

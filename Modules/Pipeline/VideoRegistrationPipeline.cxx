@@ -79,6 +79,10 @@ struct VideoRegistrationPipeline::Internals
   StartMode Mode = StartMode::Canonical;
   int Anchor = -1;
   std::optional<MultiStartResult> Outcome;
+  // prepare(): the inputs and the small files read from them.
+  std::optional<VideoRegistrationInputs> Inputs;
+  std::optional<TrackerTrajectory> Tracker;
+  std::vector<FramePose> StartPoses;
 
   void say(const std::string& text) const
   {
@@ -409,15 +413,21 @@ void VideoRegistrationPipeline::run()
   d.warnAtScaleBound();
 }
 
-void VideoRegistrationPipeline::run(const VideoRegistrationInputs& in)
+void VideoRegistrationPipeline::run(const VideoRegistrationInputs& inputs)
+{
+  this->prepare(inputs);
+  this->process();
+}
+
+void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
 {
   Internals& d = *this->Impl;
   // The small files first, so that a bad one fails before the long work.
-  std::optional<TrackerTrajectory> tracker;
+  d.Tracker.reset();
   if (!in.trackerPath.empty())
   {
     std::vector<std::string> warnings;
-    tracker = TrackerTrajectory::readCsv(in.trackerPath, &warnings);
+    d.Tracker = TrackerTrajectory::readCsv(in.trackerPath, &warnings);
     for (const std::string& w : warnings)
     {
       d.Warn(w);
@@ -427,11 +437,11 @@ void VideoRegistrationPipeline::run(const VideoRegistrationInputs& in)
   {
     throw Error("give a tracker recording or an initial scale: SfM alone has no metric scale");
   }
-  std::vector<FramePose> startPoses;
+  d.StartPoses.clear();
   if (!in.startPosesPath.empty())
   {
-    startPoses = readFramePoses(in.startPosesPath);
-    if (startPoses.empty())
+    d.StartPoses = readFramePoses(in.startPosesPath);
+    if (d.StartPoses.empty())
     {
       throw Error("'" + in.startPosesPath + "': holds no pose");
     }
@@ -440,7 +450,16 @@ void VideoRegistrationPipeline::run(const VideoRegistrationInputs& in)
   {
     throw Error("a manual start needs a pose file");
   }
+  d.Inputs = in;
+}
 
+void VideoRegistrationPipeline::process()
+{
+  Internals& d = *this->Impl;
+  d.need(d.Inputs.has_value(), "prepare the inputs");
+  const VideoRegistrationInputs& in = *d.Inputs;
+  const std::optional<TrackerTrajectory>& tracker = d.Tracker;
+  const std::vector<FramePose>& startPoses = d.StartPoses;
   this->loadFrames(
     in.framesPath, readIntrinsics(in.intrinsicsPath), in.maxFrames, in.intrinsicsPath);
   if (tracker)

@@ -128,13 +128,20 @@ public:
   void setStarts(const std::vector<SimilarityTransform>& startsSfmToCT, StartMode mode);
   ///@}
 
+  ///@{
   /**
-   * @brief Stages 1-8 on `inputs`: checks the small files first (tracker,
-   * start poses), then loads, detects, reconstructs, scales, makes the data
-   * and the starts, and registers.
+   * @brief The whole job on `inputs`: prepare() then process().
+   * prepare() reads and checks the small files (tracker, start poses), so
+   * that a bad one fails before any long work (a program may check more of
+   * its own, e.g. a display, between the two); process() runs stages 1-8
+   * on the prepared inputs: loads, detects, reconstructs, scales, makes the
+   * data and the starts, and registers.
    * @throws vimlop::Error naming the file or stage that failed; PipelineCancelled.
    */
   void run(const VideoRegistrationInputs& inputs);
+  void prepare(const VideoRegistrationInputs& inputs);
+  void process();
+  ///@}
 
   /**
    * 8. Registers from every start (the multi-start; a single start uses every
