@@ -7,6 +7,7 @@
 #include <vimlop/Evaluation/Peers/Open3DPeers.h>
 #include <vimlop/Evaluation/TrialSaving.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
 
 #include <algorithm>
 #include <chrono>
@@ -38,9 +39,7 @@ RegistrationOptions registrationOptions(
   const std::string& method, const SyntheticProtocolOptions& options)
 {
   RegistrationOptions o;
-  o.method = method == "vimlop" ? RegistrationMethod::VIMLOP
-    : method == "imlp"          ? RegistrationMethod::IMLP
-                                : RegistrationMethod::TrimmedICP;
+  o.method = registrationMethodFromString(method);
   o.contourMatch.positionCovariancePx2 = options.contourVariancePx2 * Eigen::Matrix2d::Identity();
   o.contourMatch.kappa = options.kappa;
   o.stallRelativeDecrease = options.stallRelativeDecrease;
