@@ -1,5 +1,7 @@
 #include "PipelineFlags.h"
 
+#include "CommandLine.h"
+
 #include <CLI/CLI.hpp>
 
 #include <sstream>
@@ -15,6 +17,16 @@ std::string text(double value)
   std::ostringstream out;
   out << value;
   return out.str();
+}
+
+std::string joined(const std::vector<double>& values)
+{
+  std::string list;
+  for (double v : values)
+  {
+    list += (list.empty() ? "" : ",") + text(v);
+  }
+  return list;
 }
 
 } // namespace
@@ -59,6 +71,12 @@ void addPipelineOptions(CLI::App& c, VideoRegistrationPipeline::Options& p)
      "--finalists", p.multiStart.finalists, "canonical: starts run fully, at every scale factor")
     ->capture_default_str()
     ->check(CLI::Range(1, 100000));
+  c.add_option_function<std::string>(
+     "--scale-factors",
+     [&p](const std::string& text)
+     { p.multiStart.scaleFactors = parseNumbers(text, "--scale-factors"); },
+     "canonical: variations of the initial scale per start")
+    ->default_str(joined(p.multiStart.scaleFactors));
   c.add_option("--canonical-spacing-mm", p.canonical.spacingMm,
      "canonical: distance between generated canonical positions, mm")
     ->capture_default_str()

@@ -78,7 +78,6 @@ struct RegisterOptions
   std::string method = "vimlop";
   std::string truth;
   VideoRegistrationPipeline::Options pipeline;
-  std::string scaleFactors = "0.9,1,1.1";
   int maxFrames = 1000;
   std::string out;
   bool force = false;
@@ -128,7 +127,6 @@ void runRegister(RegisterOptions o)
 
   // Everything that can be checked before the work is checked first.
   o.pipeline.registration.method = registrationMethodFromString(o.method);
-  o.pipeline.multiStart.scaleFactors = parseNumbers(o.scaleFactors, "--scale-factors");
   if (o.printOptions)
   {
     std::cout << registrationOptionsJson(o.pipeline).dump(2) << std::endl;
@@ -268,9 +266,6 @@ void addRegisterCommand(CLI::App& app)
   c->add_option("--truth", o->truth,
     "true camera poses (FramePose JSON, e.g. a simulation's poses.json): errors are reported");
   addPipelineOptions(*c, p);
-  c->add_option(
-     "--scale-factors", o->scaleFactors, "canonical: variations of the initial scale per start")
-    ->capture_default_str();
   c->add_option("--max-frames", o->maxFrames, "read at most this many frames")
     ->capture_default_str()
     ->check(CLI::Range(2, 100000));
