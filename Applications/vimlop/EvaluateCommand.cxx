@@ -105,8 +105,8 @@ void runVideo(const VideoCommandOptions& o)
     parseRange(o.perturbDeg, "--perturb-deg");
   options.init = o.init;
   options.uprightRollDeg = o.uprightDeg;
-  VideoRegistrationPipeline::Options& pipeline = options.pipeline;
-  pipeline.threads = o.threads;
+  VideoRegistrationOptions& pipeline = options.pipeline;
+  pipeline.registration.threads = o.threads;
   pipeline.canonical.spacingMm = o.canonicalSpacingMm;
   pipeline.multiStart.scaleFactors = parseNumbers(o.scaleFactors, "--scale-factors");
   pipeline.multiStart.screeningIterations = o.screeningIterations;
@@ -161,7 +161,7 @@ void runPerturbation(const PerturbationCommandOptions& o)
   options.successMm = o.successMm;
   options.video.simulation.seed = o.seed;
   options.video.simulation.frames = o.frames;
-  options.video.pipeline.threads = o.threads;
+  options.video.pipeline.registration.threads = o.threads;
   options.validate();
   requireOffscreenRendering("vimlop evaluate perturbation");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);

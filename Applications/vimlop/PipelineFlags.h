@@ -12,12 +12,13 @@ namespace vimlop
 {
 
 /**
- * @brief Adds the registration flags of the main job (noise, outliers, scale
- * bound, iterations, threads, multi-start, canonical spacing, failure
- * threshold) to `command`, stored into `options`, which must outlive the
- * parse. The defaults shown are those `options` holds: the pipeline's.
+ * @brief Adds a flag for every setting of the main job to `command`, stored
+ * into `options`, which must outlive the parse: one per row of
+ * RegistrationOptionTable.h and VideoRegistrationOptionTable.h (with the
+ * row's range as the check), Σ2d and the scale factors. The defaults shown
+ * are those `options` holds: the pipeline's.
  */
-void addPipelineOptions(CLI::App& command, VideoRegistrationPipeline::Options& options);
+void addPipelineOptions(CLI::App& command, VideoRegistrationOptions& options);
 
 } // namespace vimlop
 

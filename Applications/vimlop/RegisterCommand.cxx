@@ -77,7 +77,7 @@ struct RegisterOptions
   std::string init = "canonical";
   std::string method = "vimlop";
   std::string truth;
-  VideoRegistrationPipeline::Options pipeline;
+  VideoRegistrationOptions pipeline;
   int maxFrames = 1000;
   std::string out;
   bool force = false;
@@ -232,7 +232,7 @@ void runRegister(RegisterOptions o)
 void addRegisterCommand(CLI::App& app)
 {
   auto o = std::make_shared<RegisterOptions>();
-  VideoRegistrationPipeline::Options& p = o->pipeline;
+  VideoRegistrationOptions& p = o->pipeline;
   CLI::App* c = app.add_subcommand("register",
     "Register an endoscopic video to a CT (V-IMLOP): result folder with result.json, VTK files, "
     "registered video and report. Exit code 3 when the result is flagged as a failure.");

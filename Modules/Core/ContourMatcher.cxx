@@ -23,7 +23,7 @@ struct Evaluator
 
   explicit Evaluator(const ContourMatchOptions& o)
     : kappa(o.kappa)
-    , minCos(std::cos(o.maxAngleRad))
+    , minCos(std::cos(o.maxAngleDeg * M_PI / 180.0))
   {
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(o.positionCovariancePx2);
     if (!(eig.eigenvalues()[0] > 0.0) || !o.positionCovariancePx2.allFinite())

@@ -20,9 +20,9 @@ struct ContourMatchOptions
   Eigen::Matrix2d positionCovariancePx2 = Eigen::Matrix2d::Identity();
   /// κ: von Mises concentration of contour normals (default 200, the paper's).
   double kappa = 200.0;
-  /// Largest angle between matched normals, radians (default 45°; the paper
+  /// Largest angle between matched normals, degrees (default 45; the paper
   /// imposes a bound without giving its value).
-  double maxAngleRad = 0.7853981633974483;
+  double maxAngleDeg = 45.0;
 };
 
 /// @brief A video contour point and the model contour sample it matches.

@@ -1,6 +1,10 @@
 #include <vimlop/Core/RegistrationOptions.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/OptionRange.h>
+#include <vimlop/Core/RegistrationOptionTable.h>
+
+#include <Eigen/LU>
 
 #include <cmath>
 #include <sstream>
@@ -24,47 +28,25 @@ const char* toString(RegistrationMethod method)
 
 void RegistrationOptions::validate() const
 {
-  std::ostringstream problem;
+  const std::string context = "registration options";
   if (!(this->minScale >= 0.0) || std::isnan(this->maxScale) ||
     !(this->minScale <= this->maxScale) || !(this->maxScale > 0.0))
   {
-    problem << "scale bounds are invalid: min " << this->minScale << " > max " << this->maxScale
-            << " or negative";
+    std::ostringstream problem;
+    problem << context << ": scale bounds are invalid: min " << this->minScale << " > max "
+            << this->maxScale << " or negative";
+    throw Error(problem.str());
   }
-  else if (!(this->trimFraction >= 0.0 && this->trimFraction < 1.0))
+  const Eigen::Matrix2d& covariance = this->contourMatch.positionCovariancePx2;
+  if (!covariance.allFinite() || covariance(0, 1) != covariance(1, 0) ||
+    !(covariance(0, 0) > 0.0) || !(covariance.determinant() > 0.0))
   {
-    problem << "trim fraction must lie in [0, 1), got " << this->trimFraction;
+    throw Error(context + ": the contour position covariance must be symmetric positive definite");
   }
-  else if (!(this->chiSquareProbability > 0.0 && this->chiSquareProbability < 1.0))
-  {
-    problem << "chi-square probability must lie in (0, 1), got " << this->chiSquareProbability;
-  }
-  else if (!(this->maxContourOutlierFraction >= 0.0 && this->maxContourOutlierFraction <= 1.0))
-  {
-    problem << "contour outlier fraction must lie in [0, 1], got "
-            << this->maxContourOutlierFraction;
-  }
-  else if (!(this->contourSampleSpacingPx > 0.0))
-  {
-    problem << "contour sample spacing must be positive, got " << this->contourSampleSpacingPx;
-  }
-  else if (!(this->contourMatch.kappa >= 0.0) || !(this->contourMatch.maxAngleRad > 0.0))
-  {
-    problem << "kappa must be non-negative and the normal angle bound positive";
-  }
-  else if (this->maxIterations < 1 || this->maxBackoffSteps < 0 || this->stallIterations < 1)
-  {
-    problem << "iteration cap must be at least 1 and back-off steps non-negative";
-  }
-  else if (!(this->convergenceTranslationMm >= 0.0 && this->convergenceRotationDeg >= 0.0 &&
-             this->convergenceScaleRelative >= 0.0))
-  {
-    problem << "convergence thresholds must be non-negative";
-  }
-  if (!problem.str().empty())
-  {
-    throw Error("registration options: " + problem.str());
-  }
+#define VIMLOP_CHECK_VALUE(Name, Type, member, key, flag, min, max, help)                          \
+  requireInRange(context, key, this->member, min, max);
+  VIMLOP_REGISTRATION_VALUES(VIMLOP_CHECK_VALUE)
+#undef VIMLOP_CHECK_VALUE
 }
 
 } // namespace vimlop

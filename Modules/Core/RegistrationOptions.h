@@ -23,6 +23,8 @@ const char* toString(RegistrationMethod method);
 /**
  * @brief Every parameter of a registration, with the paper's values where it
  * gives them. Units: mm, pixels, radians (degrees only in the names that say so).
+ * Each scalar setting also has a row in RegistrationOptionTable.h (its
+ * range, JSON key, flag and VTK name).
  */
 struct RegistrationOptions
 {
@@ -107,7 +109,8 @@ struct RegistrationOptions
   int threads = 0;
 
   /**
-   * @brief Checks the values.
+   * @brief Checks the values: the scale bounds' order, Σ2d, and every
+   * setting of RegistrationOptionTable.h against its range.
    * @throws vimlop::Error naming the first invalid one (e.g. min scale > max scale).
    */
   void validate() const;

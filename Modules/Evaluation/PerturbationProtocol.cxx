@@ -87,7 +87,7 @@ PerturbationProtocolReport runPerturbationProtocol(const TriangleMesh& mesh,
   std::vector<double> scores(total);
   std::mutex progressMutex;
   int done = 0;
-  TaskPool(o.video.pipeline.threads)
+  TaskPool(o.video.pipeline.registration.threads)
     .run(total,
       [&](int i)
       {

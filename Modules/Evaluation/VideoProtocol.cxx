@@ -96,7 +96,7 @@ VideoProtocolReport runVideoProtocol(
   report.sfmFloor = c.floor;
   report.init = o.init;
 
-  const VideoRegistrationPipeline::Options& settings = o.pipeline;
+  const VideoRegistrationOptions& settings = o.pipeline;
   std::vector<SimilarityTransform> starts;
   if (o.init == "perturbed")
   {
@@ -130,7 +130,7 @@ VideoProtocolReport runVideoProtocol(
     {
       MultiStartOptions multi = settings.multiStart;
       multi.registration = options;
-      multi.threads = settings.threads;
+      multi.threads = settings.registration.threads;
       const MultiStartResult ms = registerMultiStart(model, c.data, starts, multi,
         [&](const char* phase, int done, int total)
         {

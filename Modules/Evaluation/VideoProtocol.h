@@ -39,7 +39,7 @@ struct VideoProtocolOptions
   /// The registration: noise model, V11, scale bounds, point noise floor,
   /// contour detector, canonical poses, multi-start, threads (the production
   /// defaults, those of `vimlop register`).
-  VideoRegistrationPipeline::Options pipeline;
+  VideoRegistrationOptions pipeline;
   /// The start: "perturbed" (the truth moved by the ranges above) or
   /// "canonical" (the multi-start from canonical poses, V13 b). Default "perturbed".
   std::string init = "perturbed";

@@ -4,6 +4,7 @@
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Pipeline/SimilarityFromCameras.h>
+#include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
 #include <vimlop/Report/RegisteredVideo.h>
 #include <vimlop/Report/RegistrationReport.h>
 #include <vimlop/Results/RecordJson.h>
@@ -150,26 +151,15 @@ nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline
   return summary;
 }
 
-nlohmann::json registrationOptionsJson(const VideoRegistrationPipeline::Options& o)
+nlohmann::json registrationOptionsJson(const VideoRegistrationOptions& o)
 {
-  const MultiStartOptions& m = o.multiStart;
-  return { { "registration", recordjson::optionsJson(o.registration) },
-    { "scale_bound_factor", o.scaleBoundFactor }, { "point_noise_floor_mm", o.pointNoiseFloorMm },
-    { "threads", o.threads },
-    { "multi_start",
-      { { "scale_factors", m.scaleFactors }, { "screening_iterations", m.screeningIterations },
-        { "screening_stride", m.screeningStride }, { "finalists", m.finalists },
-        { "failure_contour_error_px", m.failureContourErrorPx },
-        { "min_matched_fraction", m.minMatchedFraction } } },
-    { "canonical",
-      { { "spacing_mm", o.canonical.spacingMm }, { "min_clearance_mm", o.canonical.minClearanceMm },
-        { "look_ahead_mm", o.canonical.lookAheadMm },
-        { "views_per_position", o.canonical.viewsPerPosition },
-        { "rolls_deg", o.canonical.rollsDeg } } },
-    { "contours",
-      { { "smoothing_sigma_px", o.contours.smoothingSigmaPx },
-        { "high_threshold", o.contours.highThreshold },
-        { "low_threshold", o.contours.lowThreshold }, { "spacing_px", o.contours.spacingPx } } } };
+  nlohmann::json j = { { "registration", recordjson::optionsJson(o.registration) },
+    { "scale_factors", o.multiStart.scaleFactors }, { "canonical_rolls_deg", o.canonical.rollsDeg },
+    { "contour_channel", o.contours.channel == ContourChannel::Red ? "red" : "luminance" } };
+#define VIMLOP_VALUE_JSON(Name, Type, member, key, flag, min, max, help) j[key] = o.member;
+  VIMLOP_VIDEO_REGISTRATION_VALUES(VIMLOP_VALUE_JSON)
+#undef VIMLOP_VALUE_JSON
+  return j;
 }
 
 } // namespace vimlop

@@ -64,7 +64,7 @@ nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline
  * the layout of result.json's "options", then the pipeline's own), so that
  * the faces can show, and a test compare, the defaults they use.
  */
-nlohmann::json registrationOptionsJson(const VideoRegistrationPipeline::Options& options);
+nlohmann::json registrationOptionsJson(const VideoRegistrationOptions& options);
 
 } // namespace vimlop
 

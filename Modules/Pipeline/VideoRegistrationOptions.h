@@ -11,7 +11,9 @@ namespace vimlop
 
 /**
  * @brief Every setting of the main job, with the production defaults:
- * the one set `vimlop register`, the VTK face and Python use.
+ * the one set `vimlop register`, the VTK face and Python use. Each scalar
+ * setting has a row in RegistrationOptionTable.h (those of `registration`,
+ * e.g. its `threads`, which every stage uses) or VideoRegistrationOptionTable.h.
  */
 struct VideoRegistrationOptions
 {
@@ -35,15 +37,14 @@ struct VideoRegistrationOptions
   /// scale factors, contour-error threshold). Its `registration` is
   /// replaced by registrationOptions().
   MultiStartOptions multiStart;
-  /// Threads, 0 for all cores (default 0). Results do not depend on it.
-  int threads = 0;
 
   /**
    * @brief The registration options for a start at `initialScale` (mm
    * per SfM unit): `registration` with the scale bounds of
-   * `scaleBoundFactor` and `threads`.
+   * `scaleBoundFactor`.
    */
   RegistrationOptions registrationOptions(double initialScale) const;
+  /// @brief Checks every table row against its range, then the nested structs.
   /// @throws vimlop::Error naming the first invalid field.
   void validate() const;
 };

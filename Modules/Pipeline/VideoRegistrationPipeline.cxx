@@ -1,7 +1,10 @@
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
+#include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
+
 #include <vimlop/Core/CanonicalStarts.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/OptionRange.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Imaging/ModelLoading.h>
@@ -29,26 +32,15 @@ RegistrationOptions VideoRegistrationOptions::registrationOptions(double initial
   RegistrationOptions o = this->registration;
   o.minScale = initialScale / this->scaleBoundFactor;
   o.maxScale = initialScale * this->scaleBoundFactor;
-  o.threads = this->threads;
   return o;
 }
 
 void VideoRegistrationOptions::validate() const
 {
-  if (!(this->scaleBoundFactor > 1.0))
-  {
-    throw Error("the scale bound factor must be greater than 1, got " +
-      std::to_string(this->scaleBoundFactor));
-  }
-  if (!(this->pointNoiseFloorMm >= 0.0))
-  {
-    throw Error("the point noise floor must not be negative, got " +
-      std::to_string(this->pointNoiseFloorMm) + " mm");
-  }
-  if (this->threads < 0)
-  {
-    throw Error("the thread count must not be negative");
-  }
+#define VIMLOP_CHECK_VALUE(Name, Type, member, key, flag, min, max, help)                          \
+  requireInRange("video registration options", key, this->member, min, max);
+  VIMLOP_VIDEO_REGISTRATION_VALUES(VIMLOP_CHECK_VALUE)
+#undef VIMLOP_CHECK_VALUE
   this->registration.validate();
   this->multiStart.validate();
   this->canonical.validate();
@@ -56,7 +48,7 @@ void VideoRegistrationOptions::validate() const
 
 struct VideoRegistrationPipeline::Internals
 {
-  Options Opts;
+  VideoRegistrationOptions Opts;
   std::ostream* Log = nullptr;
   std::function<void(const std::string&)> Warn = [](const std::string& text)
   { std::cerr << "vimlop: warning: " << text << "\n"; };
@@ -134,7 +126,7 @@ struct VideoRegistrationPipeline::Internals
   }
 };
 
-VideoRegistrationPipeline::VideoRegistrationPipeline(const Options& options)
+VideoRegistrationPipeline::VideoRegistrationPipeline(const VideoRegistrationOptions& options)
   : Impl(std::make_unique<Internals>())
 {
   options.validate();
@@ -143,7 +135,7 @@ VideoRegistrationPipeline::VideoRegistrationPipeline(const Options& options)
 
 VideoRegistrationPipeline::~VideoRegistrationPipeline() = default;
 
-const VideoRegistrationPipeline::Options& VideoRegistrationPipeline::options() const
+const VideoRegistrationOptions& VideoRegistrationPipeline::options() const
 {
   return this->Impl->Opts;
 }
@@ -359,7 +351,7 @@ void VideoRegistrationPipeline::run()
   const RegistrationOptions options = d.Opts.registrationOptions(d.Scale);
   MultiStartOptions multi = d.Opts.multiStart;
   multi.registration = options;
-  multi.threads = d.Opts.threads;
+  multi.threads = d.Opts.registration.threads;
   if (d.Starts.size() > 1)
   {
     try

@@ -42,7 +42,7 @@ namespace vimlop
  * 8. run(): the (multi-start) V-IMLOP registration and its failure flag (V13);
  * then record() and writeOutputs() (result folder, registered video, report).
  * `vimlop register`, `vtkVIMLOPVideoRegistration` and Python's
- * `vimlop.register_video` are thin faces over it and share its Options.
+ * `vimlop.register_video` are thin faces over it and share its VideoRegistrationOptions.
  *
  * Progress lines go to the log stream (none by default); warnings to the
  * warning handler (stderr by default); the progress callback may cancel
@@ -52,19 +52,17 @@ namespace vimlop
 class VideoRegistrationPipeline
 {
 public:
-  /// @brief Every setting of the main job (see VideoRegistrationOptions).
-  using Options = VideoRegistrationOptions;
-
   /// @brief Progress: the stage ("model", "contours", "sfm", "registration", ...) and the
   /// fraction of it done; return false to cancel.
   using Progress = std::function<bool(const std::string& stage, double fraction)>;
 
-  explicit VideoRegistrationPipeline(const Options& options = Options());
+  explicit VideoRegistrationPipeline(
+    const VideoRegistrationOptions& options = VideoRegistrationOptions());
   ~VideoRegistrationPipeline();
   VideoRegistrationPipeline(const VideoRegistrationPipeline&) = delete;
   VideoRegistrationPipeline& operator=(const VideoRegistrationPipeline&) = delete;
 
-  const Options& options() const;
+  const VideoRegistrationOptions& options() const;
 
   /// @brief Where progress lines go (nullptr, the default: nowhere).
   void setLog(std::ostream* log);
@@ -88,7 +86,7 @@ public:
   void loadFrames(const std::string& path, const PinholeCamera& intrinsics, int maxFrames = 1000,
     const std::string& intrinsicsSource = "intrinsics");
 
-  /// 3. Occluding contours of every frame (Options::contours).
+  /// 3. Occluding contours of every frame (VideoRegistrationOptions::contours).
   void detectContours();
 
   /**
@@ -116,7 +114,7 @@ public:
   /**
    * 7. The starts. Canonical: one per pose of `posesCT` (those outside the
    * airway are dropped with a warning), or generated along the airway with
-   * Options::canonical when null. Manual: the given frame's camera at the
+   * VideoRegistrationOptions::canonical when null. Manual: the given frame's camera at the
    * given camera-to-CT pose. `source` names the poses in messages (e.g. their file).
    * @throws vimlop::Error when no canonical pose lies inside the airway, or
    * the manual pose is of a frame SfM did not register.

@@ -18,7 +18,6 @@
 vtkStandardNewMacro(vtkVIMLOPVideoRegistration);
 
 vtkVIMLOPVideoRegistration::vtkVIMLOPVideoRegistration()
-  : Options(std::make_unique<vimlop::VideoRegistrationOptions>())
 {
   this->SetNumberOfInputPorts(0);
   this->SetNumberOfOutputPorts(2);
@@ -42,43 +41,15 @@ vtkTypeBool vtkVIMLOPVideoRegistration::ProcessRequest(
   return this->Superclass::ProcessRequest(request, inputs, outputs);
 }
 
-void vtkVIMLOPVideoRegistration::SetNumberOfThreads(int threads)
-{
-  if (threads >= 0 && threads != this->Options->threads)
-  {
-    this->Options->threads = threads;
-    this->Modified();
-  }
-}
-
-int vtkVIMLOPVideoRegistration::GetNumberOfThreads() const
-{
-  return this->Options->threads;
-}
-
-void vtkVIMLOPVideoRegistration::SetFailureThresholdPx(double threshold)
-{
-  if (threshold > 0.0 && threshold != this->Options->multiStart.failureContourErrorPx)
-  {
-    this->Options->multiStart.failureContourErrorPx = threshold;
-    this->Modified();
-  }
-}
-
-double vtkVIMLOPVideoRegistration::GetFailureThresholdPx() const
-{
-  return this->Options->multiStart.failureContourErrorPx;
-}
-
 vimlop::VideoRegistrationOptions& vtkVIMLOPVideoRegistration::GetOptions()
 {
   this->Modified();
-  return *this->Options;
+  return this->Options;
 }
 
 std::string vtkVIMLOPVideoRegistration::GetOptionsAsJSON() const
 {
-  return vimlop::registrationOptionsJson(*this->Options).dump(2);
+  return vimlop::registrationOptionsJson(this->Options).dump(2);
 }
 
 vtkTable* vtkVIMLOPVideoRegistration::GetCameraPoses()
@@ -125,7 +96,7 @@ int vtkVIMLOPVideoRegistration::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputs)
 {
   this->Pipeline.reset();
-  auto pipeline = std::make_unique<vimlop::VideoRegistrationPipeline>(*this->Options);
+  auto pipeline = std::make_unique<vimlop::VideoRegistrationPipeline>(this->Options);
   pipeline->setWarningHandler([this](const std::string& text) { vtkWarningMacro(<< text); });
   // The stages in their order, with a share of the progress each.
   const char* stages[] = { "frames", "model", "contours", "sfm", "registration" };
@@ -198,7 +169,9 @@ void vtkVIMLOPVideoRegistration::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StartPosesFileName: " << this->StartPosesFileName << "\n";
   os << indent << "StartFromManualPose: " << (this->StartFromManualPose ? "On" : "Off") << "\n";
   os << indent << "MaxFrames: " << this->MaxFrames << "\n";
-  os << indent << "Options: " << vimlop::registrationOptionsJson(*this->Options).dump() << "\n";
+  VIMLOP_REGISTRATION_VALUES(vtkVIMLOPPrintValueOption)
+  VIMLOP_REGISTRATION_SWITCHES(vtkVIMLOPPrintSwitchOption)
+  VIMLOP_VIDEO_REGISTRATION_VALUES(vtkVIMLOPPrintValueOption)
   if (this->Pipeline)
   {
     os << indent << "Result: " << this->GetNumberOfRegisteredFrames() << " frames, contour error "

@@ -2,6 +2,10 @@
 #define vtkVIMLOPVideoRegistration_h
 
 #include "VIMLOPPipelineModule.h"
+#include <vimlop/Core/RegistrationOptionTable.h>
+#include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
+#include <vimlop/Pipeline/VideoRegistrationOptions.h>
+#include <vimlop/Registration/VTKOptionMacros.h>
 
 #include <vtkAlgorithm.h>
 #include <vtkNew.h>
@@ -17,7 +21,6 @@ class vtkTransform;
 namespace vimlop
 {
 class VideoRegistrationPipeline;
-struct VideoRegistrationOptions;
 } // namespace vimlop
 
 /**
@@ -115,15 +118,27 @@ public:
   ///@}
 
   ///@{
-  /// Threads, 0 for all cores (default 0). Results do not depend on it.
-  void SetNumberOfThreads(int threads);
-  int GetNumberOfThreads() const;
-  ///@}
-
-  ///@{
-  /// V13: contour error above which a result is flagged as a failure, px (default 6).
-  void SetFailureThresholdPx(double threshold);
-  double GetFailureThresholdPx() const;
+  /**
+   * Every setting of vimlop::VideoRegistrationOptions, generated from
+   * RegistrationOptionTable.h and VideoRegistrationOptionTable.h (meaning,
+   * unit, range; the defaults are `vimlop register`'s): numbers as
+   * Set<Name>/Get<Name>, clamped into [Get<Name>MinValue(),
+   * Get<Name>MaxValue()], e.g. SetNumberOfThreads, SetFailureThresholdPx,
+   * SetCanonicalSpacingMm, SetContourKappa, SetMaxIterations; switches as
+   * Set<Name>, <Name>On and <Name>Off, e.g. AnatomicalConstraintOff().
+   */
+#define vtkVIMLOPVideoRegistrationValue(Name, Type, member, key, flag, min, max, help)             \
+  vtkVIMLOPValueOptionMacro(this->Options.registration.member, Name, Type, min, max)
+#define vtkVIMLOPVideoRegistrationSwitch(Name, member, key, flag, help)                            \
+  vtkVIMLOPSwitchOptionMacro(this->Options.registration.member, Name)
+#define vtkVIMLOPVideoRegistrationOwnValue(Name, Type, member, key, flag, min, max, help)          \
+  vtkVIMLOPValueOptionMacro(this->Options.member, Name, Type, min, max)
+  VIMLOP_REGISTRATION_VALUES(vtkVIMLOPVideoRegistrationValue)
+  VIMLOP_REGISTRATION_SWITCHES(vtkVIMLOPVideoRegistrationSwitch)
+  VIMLOP_VIDEO_REGISTRATION_VALUES(vtkVIMLOPVideoRegistrationOwnValue)
+#undef vtkVIMLOPVideoRegistrationValue
+#undef vtkVIMLOPVideoRegistrationSwitch
+#undef vtkVIMLOPVideoRegistrationOwnValue
   ///@}
 
   /// @brief Every setting of the main job (C++: change any of them before Update()).
@@ -147,7 +162,10 @@ public:
   int GetNumberOfCandidates() const;
   int GetNumberOfRegisteredFrames() const;
   /// The pipeline of the last execution (its stages' products), or null.
-  const vimlop::VideoRegistrationPipeline* GetPipeline() const { return this->Pipeline.get(); }
+  const vimlop::VideoRegistrationPipeline* GetPipeline() const
+  {
+    return this->Pipeline.get();
+  }
   ///@}
 
   vtkTypeBool ProcessRequest(
@@ -177,7 +195,7 @@ private:
   double FramesPerSecond = 30.0;
   double TimeOffset = 0.0;
   int MaxFrames = 1000;
-  std::unique_ptr<vimlop::VideoRegistrationOptions> Options;
+  vimlop::VideoRegistrationOptions Options;
   std::unique_ptr<vimlop::VideoRegistrationPipeline> Pipeline;
   vtkNew<vtkTransform> Transform;
 };

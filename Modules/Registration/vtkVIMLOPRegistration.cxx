@@ -268,26 +268,6 @@ void vtkVIMLOPRegistration::GetContourPositionCovariancePx2(double covariance[3]
   covariance[2] = c(1, 1);
 }
 
-void vtkVIMLOPRegistration::SetContourKappa(double kappa)
-{
-  this->SetOption(this->Options.contourMatch.kappa, kappa);
-}
-
-void vtkVIMLOPRegistration::SetMaxContourNormalAngleDeg(double degrees)
-{
-  this->SetOption(this->Options.contourMatch.maxAngleRad, degrees * M_PI / 180.0);
-}
-
-double vtkVIMLOPRegistration::GetMaxContourNormalAngleDeg() const
-{
-  return this->Options.contourMatch.maxAngleRad * 180.0 / M_PI;
-}
-
-void vtkVIMLOPRegistration::SetContourSampleSpacingPx(double spacing)
-{
-  this->SetOption(this->Options.contourSampleSpacingPx, spacing);
-}
-
 void vtkVIMLOPRegistration::SetMinScale(double scale)
 {
   this->SetOption(this->Options.minScale, scale);
@@ -296,96 +276,6 @@ void vtkVIMLOPRegistration::SetMinScale(double scale)
 void vtkVIMLOPRegistration::SetMaxScale(double scale)
 {
   this->SetOption(this->Options.maxScale, scale);
-}
-
-void vtkVIMLOPRegistration::SetTrimFraction(double fraction)
-{
-  this->SetOption(this->Options.trimFraction, fraction);
-}
-
-void vtkVIMLOPRegistration::SetChiSquareProbability(double p)
-{
-  this->SetOption(this->Options.chiSquareProbability, p);
-}
-
-void vtkVIMLOPRegistration::SetMaxContourOutlierFraction(double fraction)
-{
-  this->SetOption(this->Options.maxContourOutlierFraction, fraction);
-}
-
-void vtkVIMLOPRegistration::SetEqualInfluence(bool on)
-{
-  this->SetOption(this->Options.equalInfluence, on);
-}
-
-void vtkVIMLOPRegistration::SetAnatomicalConstraint(bool on)
-{
-  this->SetOption(this->Options.anatomicalConstraint, on);
-}
-
-void vtkVIMLOPRegistration::SetMaxBackoffSteps(int steps)
-{
-  this->SetOption(this->Options.maxBackoffSteps, steps);
-}
-
-void vtkVIMLOPRegistration::SetMaxIterations(int iterations)
-{
-  this->SetOption(this->Options.maxIterations, iterations);
-}
-
-void vtkVIMLOPRegistration::SetConvergenceTranslationMm(double mm)
-{
-  this->SetOption(this->Options.convergenceTranslationMm, mm);
-}
-
-void vtkVIMLOPRegistration::SetConvergenceRotationDeg(double degrees)
-{
-  this->SetOption(this->Options.convergenceRotationDeg, degrees);
-}
-
-void vtkVIMLOPRegistration::SetConvergenceScaleRelative(double fraction)
-{
-  this->SetOption(this->Options.convergenceScaleRelative, fraction);
-}
-
-void vtkVIMLOPRegistration::SetAccelerate(bool on)
-{
-  this->SetOption(this->Options.accelerate, on);
-}
-
-void vtkVIMLOPRegistration::SetMaxAcceleration(double factor)
-{
-  this->SetOption(this->Options.maxAcceleration, factor);
-}
-
-void vtkVIMLOPRegistration::SetStallRelativeDecrease(double fraction)
-{
-  this->SetOption(this->Options.stallRelativeDecrease, fraction);
-}
-
-void vtkVIMLOPRegistration::SetStallIterations(int iterations)
-{
-  this->SetOption(this->Options.stallIterations, iterations);
-}
-
-void vtkVIMLOPRegistration::SetPointsFirst(bool on)
-{
-  this->SetOption(this->Options.pointsFirst, on);
-}
-
-void vtkVIMLOPRegistration::SetPoseUpdateMaxIterations(int iterations)
-{
-  this->SetOption(this->Options.poseUpdate.maxIterations, iterations);
-}
-
-void vtkVIMLOPRegistration::SetPoseUpdateRelativeTolerance(double tolerance)
-{
-  this->SetOption(this->Options.poseUpdate.relativeTolerance, tolerance);
-}
-
-void vtkVIMLOPRegistration::SetNumberOfThreads(int threads)
-{
-  this->SetOption(this->Options.threads, threads);
 }
 
 const vimlop::RegistrationModel& vtkVIMLOPRegistration::ModelFor(vtkPolyData* surface)
@@ -510,29 +400,10 @@ void vtkVIMLOPRegistration::PrintSelf(ostream& os, vtkIndent indent)
   const Eigen::Matrix2d& c = o.contourMatch.positionCovariancePx2;
   os << indent << "ContourPositionCovariancePx2: (" << c(0, 0) << ", " << c(0, 1) << ", " << c(1, 1)
      << ")\n";
-  os << indent << "ContourKappa: " << o.contourMatch.kappa << "\n";
-  os << indent << "MaxContourNormalAngleDeg: " << this->GetMaxContourNormalAngleDeg() << "\n";
-  os << indent << "ContourSampleSpacingPx: " << o.contourSampleSpacingPx << "\n";
   os << indent << "MinScale: " << o.minScale << "\n";
   os << indent << "MaxScale: " << o.maxScale << "\n";
-  os << indent << "TrimFraction: " << o.trimFraction << "\n";
-  os << indent << "ChiSquareProbability: " << o.chiSquareProbability << "\n";
-  os << indent << "MaxContourOutlierFraction: " << o.maxContourOutlierFraction << "\n";
-  os << indent << "EqualInfluence: " << (o.equalInfluence ? "On" : "Off") << "\n";
-  os << indent << "AnatomicalConstraint: " << (o.anatomicalConstraint ? "On" : "Off") << "\n";
-  os << indent << "MaxBackoffSteps: " << o.maxBackoffSteps << "\n";
-  os << indent << "MaxIterations: " << o.maxIterations << "\n";
-  os << indent << "ConvergenceTranslationMm: " << o.convergenceTranslationMm << "\n";
-  os << indent << "ConvergenceRotationDeg: " << o.convergenceRotationDeg << "\n";
-  os << indent << "ConvergenceScaleRelative: " << o.convergenceScaleRelative << "\n";
-  os << indent << "Accelerate: " << (o.accelerate ? "On" : "Off") << "\n";
-  os << indent << "MaxAcceleration: " << o.maxAcceleration << "\n";
-  os << indent << "StallRelativeDecrease: " << o.stallRelativeDecrease << "\n";
-  os << indent << "StallIterations: " << o.stallIterations << "\n";
-  os << indent << "PointsFirst: " << (o.pointsFirst ? "On" : "Off") << "\n";
-  os << indent << "PoseUpdateMaxIterations: " << o.poseUpdate.maxIterations << "\n";
-  os << indent << "PoseUpdateRelativeTolerance: " << o.poseUpdate.relativeTolerance << "\n";
-  os << indent << "NumberOfThreads: " << o.threads << "\n";
+  VIMLOP_REGISTRATION_VALUES(vtkVIMLOPPrintValueOption)
+  VIMLOP_REGISTRATION_SWITCHES(vtkVIMLOPPrintSwitchOption)
   os << indent << "InitialTransform: " << this->InitialTransform.Get() << "\n";
   os << indent << "Starts: " << (this->Starts ? this->Starts->GetNumberOfItems() : 0) << "\n";
   os << indent << "StartFromCanonicalPoses: " << (this->StartFromCanonicalPoses ? "On" : "Off")

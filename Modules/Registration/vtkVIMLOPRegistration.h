@@ -4,10 +4,12 @@
 #include <vimlop/Core/CanonicalPoses.h>
 #include <vimlop/Core/MultiStartRegistration.h>
 #include <vimlop/Core/RegistrationData.h>
+#include <vimlop/Core/RegistrationOptionTable.h>
 #include <vimlop/Core/RegistrationOptions.h>
 #include <vimlop/Core/RegistrationResult.h>
 
 #include "VIMLOPRegistrationModule.h"
+#include "VTKOptionMacros.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCommand.h>
@@ -216,27 +218,9 @@ public:
 
   ///@{
   /// V5: covariance Σ2d of video contour positions, pixels² in image axes, as
-  /// (σuu², σuv, σvv²) (default (9, 0, 9): 3 px std, the paper's P1 value).
+  /// (σuu², σuv, σvv²) (default (1, 0, 1): the paper's value for video).
   void SetContourPositionCovariancePx2(double uu, double uv, double vv);
   void GetContourPositionCovariancePx2(double covariance[3]) const;
-  ///@}
-
-  ///@{
-  /// V5: von Mises concentration κ of contour normals, dimensionless (default 200).
-  void SetContourKappa(double kappa);
-  double GetContourKappa() const { return this->Options.contourMatch.kappa; }
-  ///@}
-
-  ///@{
-  /// V5: largest angle between the normals of a matched contour pair, degrees (default 45).
-  void SetMaxContourNormalAngleDeg(double degrees);
-  double GetMaxContourNormalAngleDeg() const;
-  ///@}
-
-  ///@{
-  /// V3: spacing of model contour samples along their edges, pixels (default 1).
-  void SetContourSampleSpacingPx(double spacing);
-  double GetContourSampleSpacingPx() const { return this->Options.contourSampleSpacingPx; }
   ///@}
 
   ///@{
@@ -249,122 +233,79 @@ public:
   ///@}
 
   ///@{
-  /// V8: initial trim ratio p_t, the fraction of 3-D pairs trimmed in the
-  /// first stage, in [0, 1) (default 0.1).
-  void SetTrimFraction(double fraction);
-  double GetTrimFraction() const { return this->Options.trimFraction; }
-  ///@}
-
-  ///@{
-  /// V8: probability p of the chi-square outlier tests, in (0, 1) (default 0.95).
-  void SetChiSquareProbability(double p);
-  double GetChiSquareProbability() const { return this->Options.chiSquareProbability; }
-  ///@}
-
-  ///@{
-  /// V8: largest fraction of a frame's contour points rejected as outliers (default 0.5).
-  void SetMaxContourOutlierFraction(double fraction);
-  double GetMaxContourOutlierFraction() const { return this->Options.maxContourOutlierFraction; }
-  ///@}
-
-  ///@{
-  /// V9: scale the 3-D covariances so that 3-D and 2-D data weigh the same (default on).
-  void SetEqualInfluence(bool on);
-  bool GetEqualInfluence() const { return this->Options.equalInfluence; }
-  ///@}
-
-  ///@{
-  /// V10: keep every camera inside the model surface (default on; never for trimmed ICP).
-  void SetAnatomicalConstraint(bool on);
-  bool GetAnatomicalConstraint() const { return this->Options.anatomicalConstraint; }
-  ///@}
-
-  ///@{
-  /// V10: halvings of an update tried before it is undone (default 10).
-  void SetMaxBackoffSteps(int steps);
-  int GetMaxBackoffSteps() const { return this->Options.maxBackoffSteps; }
-  ///@}
-
-  ///@{
-  /// V11: iteration cap (default 100).
-  void SetMaxIterations(int iterations);
-  int GetMaxIterations() const { return this->Options.maxIterations; }
-  ///@}
-
-  ///@{
-  /// V11: convergence thresholds: motion of the data's centroid, mm (default
-  /// 0.005); rotation change, degrees (default 0.005); relative scale change
-  /// (default 2e-4). Converged when all three changes are below them.
-  void SetConvergenceTranslationMm(double mm);
-  double GetConvergenceTranslationMm() const { return this->Options.convergenceTranslationMm; }
-  void SetConvergenceRotationDeg(double degrees);
-  double GetConvergenceRotationDeg() const { return this->Options.convergenceRotationDeg; }
-  void SetConvergenceScaleRelative(double fraction);
-  double GetConvergenceScaleRelative() const { return this->Options.convergenceScaleRelative; }
-  ///@}
-
-  ///@{
-  /// Besl-McKay extrapolation along consistent updates (default on), by at
-  /// most MaxAcceleration times the last update (default 10).
-  void SetAccelerate(bool on);
-  bool GetAccelerate() const { return this->Options.accelerate; }
-  void SetMaxAcceleration(double factor);
-  double GetMaxAcceleration() const { return this->Options.maxAcceleration; }
-  ///@}
-
-  ///@{
-  /// V11: stop when the mean match cost has not fallen by StallRelativeDecrease
-  /// (default 0.001) below its lowest value for StallIterations iterations (default 5).
-  void SetStallRelativeDecrease(double fraction);
-  double GetStallRelativeDecrease() const { return this->Options.stallRelativeDecrease; }
-  void SetStallIterations(int iterations);
-  int GetStallIterations() const { return this->Options.stallIterations; }
-  ///@}
-
-  ///@{
-  /// V-IMLOP: leave the contours out until the points alone converge (default on).
-  void SetPointsFirst(bool on);
-  bool GetPointsFirst() const { return this->Options.pointsFirst; }
-  ///@}
-
-  ///@{
-  /// V6: Levenberg-Marquardt iterations per pose update (default 20) and its
-  /// relative cost tolerance (default 1e-9).
-  void SetPoseUpdateMaxIterations(int iterations);
-  int GetPoseUpdateMaxIterations() const { return this->Options.poseUpdate.maxIterations; }
-  void SetPoseUpdateRelativeTolerance(double tolerance);
-  double GetPoseUpdateRelativeTolerance() const
-  {
-    return this->Options.poseUpdate.relativeTolerance;
-  }
-  ///@}
-
-  ///@{
-  /// Threads, 0 for all cores (default 0). Results do not depend on it.
-  void SetNumberOfThreads(int threads);
-  int GetNumberOfThreads() const { return this->Options.threads; }
+  /**
+   * Every other setting of vimlop::RegistrationOptions, generated from
+   * RegistrationOptionTable.h (the table gives each one's meaning, unit and
+   * range; RegistrationOptions.h its default and why): numbers as
+   * Set<Name>/Get<Name>, clamped into [Get<Name>MinValue(),
+   * Get<Name>MaxValue()], e.g. SetContourKappa, SetTrimFraction,
+   * SetMaxIterations, SetNumberOfThreads; switches as Set<Name>, <Name>On and
+   * <Name>Off, e.g. AnatomicalConstraintOff(). The defaults are Core's, the
+   * main job's.
+   */
+#define vtkVIMLOPRegistrationValue(Name, Type, member, key, flag, min, max, help)                  \
+  vtkVIMLOPValueOptionMacro(this->Options.member, Name, Type, min, max)
+#define vtkVIMLOPRegistrationSwitch(Name, member, key, flag, help)                                 \
+  vtkVIMLOPSwitchOptionMacro(this->Options.member, Name)
+  VIMLOP_REGISTRATION_VALUES(vtkVIMLOPRegistrationValue)
+  VIMLOP_REGISTRATION_SWITCHES(vtkVIMLOPRegistrationSwitch)
+#undef vtkVIMLOPRegistrationValue
+#undef vtkVIMLOPRegistrationSwitch
   ///@}
 
   /// @brief Every option above as Core's struct (what RequestData passes on).
-  const vimlop::RegistrationOptions& GetRegistrationOptions() const { return this->Options; }
+  const vimlop::RegistrationOptions& GetRegistrationOptions() const
+  {
+    return this->Options;
+  }
 
   ///@{
   /// Outcome of the last execution.
-  const vimlop::RegistrationResult& GetResult() const { return this->Result; }
+  const vimlop::RegistrationResult& GetResult() const
+  {
+    return this->Result;
+  }
   /// The data of the last execution, as converted from the inputs.
-  const vimlop::RegistrationData& GetRegistrationData() const { return this->Data; }
-  vimlop::TerminationReason GetTerminationReason() const { return this->Result.termination; }
-  int GetNumberOfIterations() const { return this->Result.iterations; }
-  double GetResidualErrorMm() const { return this->Result.residualErrorMm; }
-  double GetContourErrorPx() const { return this->Result.contourErrorPx; }
+  const vimlop::RegistrationData& GetRegistrationData() const
+  {
+    return this->Data;
+  }
+  vimlop::TerminationReason GetTerminationReason() const
+  {
+    return this->Result.termination;
+  }
+  int GetNumberOfIterations() const
+  {
+    return this->Result.iterations;
+  }
+  double GetResidualErrorMm() const
+  {
+    return this->Result.residualErrorMm;
+  }
+  double GetContourErrorPx() const
+  {
+    return this->Result.contourErrorPx;
+  }
   /// V13: true when the result's contour error exceeds FailureThresholdPx (or
   /// too few video contour points matched): do not navigate with it.
-  bool GetFlaggedAsFailure() const { return this->Outcome.failure; }
+  bool GetFlaggedAsFailure() const
+  {
+    return this->Outcome.failure;
+  }
   /// Candidates of the last execution (1 for a single start) and the winner's index.
-  int GetNumberOfCandidates() const { return static_cast<int>(this->Outcome.candidates.size()); }
-  int GetWinningCandidate() const { return this->Outcome.bestCandidate; }
+  int GetNumberOfCandidates() const
+  {
+    return static_cast<int>(this->Outcome.candidates.size());
+  }
+  int GetWinningCandidate() const
+  {
+    return this->Outcome.bestCandidate;
+  }
   /// The multi-start's outcome (every candidate's start, errors and iterations).
-  const vimlop::MultiStartResult& GetMultiStartResult() const { return this->Outcome; }
+  const vimlop::MultiStartResult& GetMultiStartResult() const
+  {
+    return this->Outcome;
+  }
   ///@}
 
   vtkMTimeType GetMTime() override;

@@ -1,6 +1,7 @@
 #include <vimlop/Results/RecordJson.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/RegistrationOptionTable.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 
 #include <Eigen/Geometry>
@@ -98,27 +99,34 @@ SimilarityTransform transformFrom(const json& j, const std::string& what)
     Eigen::Matrix4d(matrixFrom(j.at("matrix"), 4, what)), 1e-6);
 }
 
+void readValue(const json& j, const char* key, double& field)
+{
+  field = j.contains(key) && j.at(key).is_null() ? std::numeric_limits<double>::infinity()
+                                                 : j.value(key, field);
+}
+
+void readValue(const json& j, const char* key, int& field)
+{
+  field = intValue(j, key, field);
+}
+
+void readValue(const json& j, const char* key, bool& field)
+{
+  field = j.value(key, field);
+}
+
 json optionsJson(const RegistrationOptions& o)
 {
-  return { { "method", toString(o.method) },
+  json j = { { "method", toString(o.method) },
     { "contour_position_covariance_px2", matrixJson(o.contourMatch.positionCovariancePx2) },
-    { "contour_kappa", o.contourMatch.kappa },
-    { "max_contour_normal_angle_deg", o.contourMatch.maxAngleRad * 180.0 / M_PI },
-    { "contour_sample_spacing_px", o.contourSampleSpacingPx }, { "min_scale", o.minScale },
-    { "max_scale", boundJson(o.maxScale) }, { "trim_fraction", o.trimFraction },
-    { "chi_square_probability", o.chiSquareProbability },
-    { "max_contour_outlier_fraction", o.maxContourOutlierFraction },
-    { "equal_influence", o.equalInfluence }, { "anatomical_constraint", o.anatomicalConstraint },
-    { "max_backoff_steps", o.maxBackoffSteps }, { "max_iterations", o.maxIterations },
-    { "convergence_translation_mm", o.convergenceTranslationMm },
-    { "convergence_rotation_deg", o.convergenceRotationDeg },
-    { "convergence_scale_relative", o.convergenceScaleRelative }, { "accelerate", o.accelerate },
-    { "max_acceleration", o.maxAcceleration },
-    { "stall_relative_decrease", o.stallRelativeDecrease },
-    { "stall_iterations", o.stallIterations }, { "points_first", o.pointsFirst },
-    { "pose_update_max_iterations", o.poseUpdate.maxIterations },
-    { "pose_update_relative_tolerance", o.poseUpdate.relativeTolerance },
-    { "threads", o.threads } };
+    { "min_scale", o.minScale }, { "max_scale", boundJson(o.maxScale) } };
+#define VIMLOP_VALUE_JSON(Name, Type, member, key, flag, min, max, help) j[key] = o.member;
+#define VIMLOP_SWITCH_JSON(Name, member, key, flag, help) j[key] = o.member;
+  VIMLOP_REGISTRATION_VALUES(VIMLOP_VALUE_JSON)
+  VIMLOP_REGISTRATION_SWITCHES(VIMLOP_SWITCH_JSON)
+#undef VIMLOP_VALUE_JSON
+#undef VIMLOP_SWITCH_JSON
+  return j;
 }
 
 RegistrationOptions optionsFrom(const json& j)
@@ -130,34 +138,15 @@ RegistrationOptions optionsFrom(const json& j)
     o.contourMatch.positionCovariancePx2 =
       matrixFrom(j.at("contour_position_covariance_px2"), 2, "contour_position_covariance_px2");
   }
-  o.contourMatch.kappa = j.value("contour_kappa", o.contourMatch.kappa);
-  o.contourMatch.maxAngleRad =
-    j.value("max_contour_normal_angle_deg", o.contourMatch.maxAngleRad * 180.0 / M_PI) * M_PI /
-    180.0;
-  o.contourSampleSpacingPx = j.value("contour_sample_spacing_px", o.contourSampleSpacingPx);
   o.minScale = j.value("min_scale", o.minScale);
   o.maxScale = boundFrom(j, "max_scale", std::numeric_limits<double>::infinity());
-  o.trimFraction = j.value("trim_fraction", o.trimFraction);
-  o.chiSquareProbability = j.value("chi_square_probability", o.chiSquareProbability);
-  o.maxContourOutlierFraction =
-    j.value("max_contour_outlier_fraction", o.maxContourOutlierFraction);
-  o.equalInfluence = j.value("equal_influence", o.equalInfluence);
-  o.anatomicalConstraint = j.value("anatomical_constraint", o.anatomicalConstraint);
-  o.maxBackoffSteps = intValue(j, "max_backoff_steps", o.maxBackoffSteps);
-  o.maxIterations = intValue(j, "max_iterations", o.maxIterations);
-  o.convergenceTranslationMm = j.value("convergence_translation_mm", o.convergenceTranslationMm);
-  o.convergenceRotationDeg = j.value("convergence_rotation_deg", o.convergenceRotationDeg);
-  o.convergenceScaleRelative = j.value("convergence_scale_relative", o.convergenceScaleRelative);
-  o.accelerate = j.value("accelerate", o.accelerate);
-  o.maxAcceleration = j.value("max_acceleration", o.maxAcceleration);
-  o.stallRelativeDecrease = j.value("stall_relative_decrease", o.stallRelativeDecrease);
-  o.stallIterations = intValue(j, "stall_iterations", o.stallIterations);
-  o.pointsFirst = j.value("points_first", o.pointsFirst);
-  o.poseUpdate.maxIterations =
-    intValue(j, "pose_update_max_iterations", o.poseUpdate.maxIterations);
-  o.poseUpdate.relativeTolerance =
-    j.value("pose_update_relative_tolerance", o.poseUpdate.relativeTolerance);
-  o.threads = intValue(j, "threads", o.threads);
+#define VIMLOP_VALUE_FROM(Name, Type, member, key, flag, min, max, help)                           \
+  readValue(j, key, o.member);
+#define VIMLOP_SWITCH_FROM(Name, member, key, flag, help) readValue(j, key, o.member);
+  VIMLOP_REGISTRATION_VALUES(VIMLOP_VALUE_FROM)
+  VIMLOP_REGISTRATION_SWITCHES(VIMLOP_SWITCH_FROM)
+#undef VIMLOP_VALUE_FROM
+#undef VIMLOP_SWITCH_FROM
   return o;
 }
 

@@ -26,7 +26,7 @@ Eigen::MatrixXd matrixFrom(const json& rows, int n, const std::string& what);
 /// {"matrix", "scale", "rotation", "translation", "rotation_angle_deg"}.
 json transformJson(const SimilarityTransform& t);
 SimilarityTransform transformFrom(const json& j, const std::string& what);
-/// Every option, in the units the names say (mm, px, deg); infinite bounds as null.
+/// Every option, in the units the names say (mm, px, deg); infinite values as null.
 json optionsJson(const RegistrationOptions& o);
 /**
  * The int under `key`, or `fallback` when absent. A number outside int's
@@ -34,7 +34,13 @@ json optionsJson(const RegistrationOptions& o);
  * behaviour). @throws vimlop::Error naming the key.
  */
 int intValue(const json& j, const char* key, int fallback);
-/// Options from optionsJson(); keys not given keep their defaults.
+/// `j[key]` into `field` when present: ints must be whole numbers, a null
+/// double is +infinity (as optionsJson writes it). @throws vimlop::Error naming the key.
+void readValue(const json& j, const char* key, double& field);
+void readValue(const json& j, const char* key, int& field);
+void readValue(const json& j, const char* key, bool& field);
+/// Options from optionsJson() (every row of RegistrationOptionTable.h and
+/// the method, Σ2d and scale bounds); keys not given keep their defaults.
 RegistrationOptions optionsFrom(const json& j);
 
 } // namespace vimlop::recordjson

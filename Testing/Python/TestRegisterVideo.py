@@ -63,18 +63,38 @@ flt = vimlop.vtkVIMLOPRegistration()
 covariance = [0.0, 0.0, 0.0]
 flt.GetContourPositionCovariancePx2(covariance)
 r = cli["registration"]
-filter_values = {
-    "max_iterations": flt.GetMaxIterations(), "contour_kappa": flt.GetContourKappa(),
-    "stall_iterations": flt.GetStallIterations(),
-    "stall_relative_decrease": flt.GetStallRelativeDecrease(),
-    "trim_fraction": flt.GetTrimFraction(), "chi_square_probability": flt.GetChiSquareProbability(),
-    "contour_position_covariance_px2": [[covariance[0], covariance[1]],
-                                        [covariance[1], covariance[2]]],
-}
-check(all(r[k] == v for k, v in filter_values.items()),
-      "vtkVIMLOPRegistration's defaults are the same: %s" % filter_values)
-check(flt.GetFailureThresholdPx() == cli["multi_start"]["failure_contour_error_px"],
-      "and its failure threshold")
+check(r["contour_position_covariance_px2"] == [[covariance[0], covariance[1]],
+                                               [covariance[1], covariance[2]]],
+      "vtkVIMLOPRegistration's contour covariance is the same")
+
+
+def vtk_name(key):
+    """The VTK property of a JSON key, as the option tables name them."""
+    return "NumberOfThreads" if key == "threads" else "".join(
+        word.capitalize() for word in key.split("_"))
+
+
+# Every setting of the option table, whatever it holds: the filter (the
+# VTK face of Core's defaults) and the pipeline's VTK source must agree.
+source_filter = vimlop.vtkVIMLOPVideoRegistration()
+compared = 0
+for key, value in r.items():
+    if key in ("method", "contour_position_covariance_px2", "min_scale", "max_scale"):
+        continue
+    name = vtk_name(key)
+    for face in (flt, source_filter):
+        check(getattr(face, "Get" + name)() == value,
+              "%s.Get%s() == %s" % (face.GetClassName(), name, value))
+    compared += 1
+check(compared >= 20, "%d registration settings compared" % compared)
+for key in ("failure_threshold_px", "finalists", "canonical_spacing_mm", "scale_bound_factor"):
+    check(getattr(source_filter, "Get" + vtk_name(key))() == cli[key],
+          "vtkVIMLOPVideoRegistration.Get%s() == %s" % (vtk_name(key), cli[key]))
+check(flt.GetFailureThresholdPx() == cli["failure_threshold_px"],
+      "and the filter's failure threshold")
+source_filter.SetTrimFraction(7.0)
+check(source_filter.GetTrimFraction() == source_filter.GetTrimFractionMaxValue() == 0.9,
+      "a value outside the table's range is clamped into it")
 
 # Bad input: an error that names the problem.
 try:

@@ -48,7 +48,7 @@ TEST(ContourMatcher, TreeSearchMatchesBruteForce)
     EXPECT_NEAR(fast[i].cost, reference[i].cost, 1e-9);
     if (fast[i].model >= 0)
     {
-      EXPECT_LE(fast[i].angleRad, options.maxAngleRad + 1e-12);
+      EXPECT_LE(fast[i].angleRad, options.maxAngleDeg * M_PI / 180.0 + 1e-12);
     }
   }
 }

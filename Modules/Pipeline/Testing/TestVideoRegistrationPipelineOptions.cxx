@@ -12,7 +12,7 @@ namespace
 
 TEST(VideoRegistrationPipelineOptions, AreTheProductionDefaultsForVideo)
 {
-  const VideoRegistrationPipeline::Options o;
+  const VideoRegistrationOptions o;
   // The paper's values for contours detected in video (Σ2d = 1 px², κ = 200)
   // and the stall rule of a registration with thousands of contour points.
   EXPECT_DOUBLE_EQ(o.registration.contourMatch.positionCovariancePx2(0, 0), 1.0);
@@ -25,8 +25,8 @@ TEST(VideoRegistrationPipelineOptions, AreTheProductionDefaultsForVideo)
 
 TEST(VideoRegistrationPipelineOptions, GiveScaleBoundsAroundTheInitialScale)
 {
-  VideoRegistrationPipeline::Options o;
-  o.threads = 1;
+  VideoRegistrationOptions o;
+  o.registration.threads = 1;
   const RegistrationOptions r = o.registrationOptions(2.0);
   EXPECT_DOUBLE_EQ(r.minScale, 1.6);
   EXPECT_DOUBLE_EQ(r.maxScale, 2.5);
@@ -35,7 +35,7 @@ TEST(VideoRegistrationPipelineOptions, GiveScaleBoundsAroundTheInitialScale)
 
 TEST(VideoRegistrationPipelineOptions, AScaleBoundOfOneIsAnError)
 {
-  VideoRegistrationPipeline::Options o;
+  VideoRegistrationOptions o;
   o.scaleBoundFactor = 1.0;
   try
   {
@@ -44,7 +44,8 @@ TEST(VideoRegistrationPipelineOptions, AScaleBoundOfOneIsAnError)
   }
   catch (const Error& e)
   {
-    EXPECT_STREQ(e.what(), "the scale bound factor must be greater than 1, got 1.000000");
+    EXPECT_STREQ(
+      e.what(), "video registration options: scale_bound_factor must lie in [1.0001, 10], got 1");
   }
 }
 
@@ -66,10 +67,11 @@ TEST(VideoRegistrationPipeline, StagesOutOfOrderSayWhatMustComeFirst)
 
 TEST(VideoRegistrationPipelineOptions, AreWrittenAsJsonWithTheRegistrationOptions)
 {
-  const nlohmann::json j = registrationOptionsJson(VideoRegistrationPipeline::Options());
+  const nlohmann::json j = registrationOptionsJson(VideoRegistrationOptions());
   EXPECT_EQ(j["registration"]["max_iterations"].get<int>(), 300);
   EXPECT_DOUBLE_EQ(j["scale_bound_factor"].get<double>(), 1.25);
-  EXPECT_EQ(j["multi_start"]["scale_factors"].size(), 3u);
+  EXPECT_EQ(j["scale_factors"].size(), 3u);
+  EXPECT_DOUBLE_EQ(j["failure_threshold_px"].get<double>(), 6.0);
 }
 
 } // namespace

@@ -473,13 +473,37 @@ TEST(vtkVIMLOPRegistration, OptionsDefaultToCoreAndArePrinted)
   registration->SetMaxContourNormalAngleDeg(30.0);
   EXPECT_GT(registration->GetMTime(), before);
   EXPECT_DOUBLE_EQ(registration->GetRegistrationOptions().trimFraction, 0.2);
-  EXPECT_NEAR(registration->GetRegistrationOptions().contourMatch.maxAngleRad, M_PI / 6.0, 1e-15);
+  EXPECT_DOUBLE_EQ(registration->GetRegistrationOptions().contourMatch.maxAngleDeg, 30.0);
 
   std::ostringstream printed;
   registration->Print(printed);
   EXPECT_NE(printed.str().find("TrimFraction: 0.2"), std::string::npos);
   EXPECT_NE(printed.str().find("Method: vimlop"), std::string::npos);
   EXPECT_NE(printed.str().find("MaxContourNormalAngleDeg: 30"), std::string::npos);
+}
+
+TEST(vtkVIMLOPRegistration, ItsTableGeneratedSettersClampIntoTheTableRangeAndReachCoreOptions)
+{
+  vtkNew<vtkVIMLOPRegistration> registration;
+  registration->SetTrimFraction(5.0);
+  EXPECT_DOUBLE_EQ(registration->GetTrimFraction(), registration->GetTrimFractionMaxValue());
+  registration->SetMaxIterations(-3);
+  EXPECT_EQ(registration->GetMaxIterations(), 1);
+  EXPECT_EQ(registration->GetMaxIterationsMinValue(), 1);
+  registration->SetNumberOfThreads(1);
+  registration->AnatomicalConstraintOff();
+  registration->SetStallIterations(7);
+  const RegistrationOptions& o = registration->GetRegistrationOptions();
+  EXPECT_DOUBLE_EQ(o.trimFraction, 0.9);
+  EXPECT_EQ(o.threads, 1);
+  EXPECT_FALSE(o.anatomicalConstraint);
+  EXPECT_EQ(o.stallIterations, 7);
+  // Whatever the setters accept, Core accepts: the ranges are the same table.
+  EXPECT_NO_THROW(o.validate());
+  std::ostringstream printed;
+  registration->Print(printed);
+  EXPECT_NE(printed.str().find("AnatomicalConstraint: Off"), std::string::npos);
+  EXPECT_NE(printed.str().find("StallIterations: 7"), std::string::npos);
 }
 
 TEST(vtkVIMLOPRegistration, AMultiStartKeepsTheLeastContourErrorAndFlagsAboveTheThreshold)

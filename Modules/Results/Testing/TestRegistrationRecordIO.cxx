@@ -86,7 +86,7 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   EXPECT_DOUBLE_EQ(back.options.maxScale, 1.25);
   EXPECT_DOUBLE_EQ(back.options.contourMatch.kappa, 150.0);
   EXPECT_NEAR(
-    back.options.contourMatch.maxAngleRad, record.options.contourMatch.maxAngleRad, 1e-15);
+    back.options.contourMatch.maxAngleDeg, record.options.contourMatch.maxAngleDeg, 1e-12);
   EXPECT_LT((back.initialSfmToCT.matrix() - record.initialSfmToCT.matrix()).norm(), 1e-12);
 
   const RegistrationResult& a = record.result;
