@@ -1,5 +1,6 @@
-#include "CanonicalCommand.h"
+#include "Commands.h"
 
+#include "CommandLine.h"
 #include <vimlop/Core/CanonicalPoses.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/FramePoseIO.h>
@@ -23,7 +24,6 @@ struct CanonicalCommandOptions
   std::string ct;
   std::string out;
   CanonicalPoseOptions poses;
-  std::vector<double> rollsDeg{ 0.0 };
 };
 
 void runCanonical(CanonicalCommandOptions o)
@@ -32,7 +32,6 @@ void runCanonical(CanonicalCommandOptions o)
   {
     throw Error("give --mesh or --ct");
   }
-  o.poses.rollsDeg = o.rollsDeg;
   const RegistrationModel model = makeEmbreeRegistrationModel(airwayMeshFrom(o.mesh, o.ct));
   const std::vector<CameraPose> poses = makeCanonicalPoses(model, o.poses);
   std::vector<FramePose> numbered;
@@ -42,7 +41,8 @@ void runCanonical(CanonicalCommandOptions o)
   }
   writeFramePoses(numbered, o.out);
   std::printf("%zu canonical poses (%.1f mm apart, %d views per position, %zu rolls); wrote '%s'\n",
-    poses.size(), o.poses.spacingMm, o.poses.viewsPerPosition, o.rollsDeg.size(), o.out.c_str());
+    poses.size(), o.poses.spacingMm, o.poses.viewsPerPosition, o.poses.rollsDeg.size(),
+    o.out.c_str());
 }
 
 } // namespace
@@ -54,10 +54,7 @@ void addCanonicalCommand(CLI::App& app)
     "Canonical camera poses along the airway of a template (store them with it; `vimlop warp "
     "--template-poses` carries them to a patient; `vimlop register --init canonical:FILE` starts "
     "from them)");
-  CLI::Option* mesh = c->add_option("--mesh", o->mesh, "airway surface (normals into the air)");
-  CLI::Option* ct =
-    c->add_option("--ct", o->ct, "CT volume whose airway is segmented with the defaults");
-  mesh->excludes(ct);
+  addModelOptions(*c, o->mesh, o->ct);
   c->add_option("--out", o->out, "pose file (FramePose JSON)")->required();
   c->add_option("--spacing-mm", o->poses.spacingMm, "least distance between positions, mm")
     ->capture_default_str()
@@ -71,7 +68,7 @@ void addCanonicalCommand(CLI::App& app)
   c->add_option("--views", o->poses.viewsPerPosition, "view directions per position")
     ->capture_default_str()
     ->check(CLI::Range(1, 20));
-  c->add_option("--rolls-deg", o->rollsDeg, "rolls about the view axis, degrees (repeatable)")
+  c->add_option("--rolls-deg", o->poses.rollsDeg, "rolls about the view axis, degrees (repeatable)")
     ->delimiter(',')
     ->capture_default_str();
   c->callback([o] { runCanonical(*o); });

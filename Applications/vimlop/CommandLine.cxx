@@ -3,7 +3,10 @@
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
 
+#include <CLI/CLI.hpp>
+
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
@@ -46,6 +49,43 @@ std::vector<std::string> parseList(const std::string& text, const std::string& w
     throw Error(what + ": no items given");
   }
   return items;
+}
+
+std::string joinNumbers(const std::vector<double>& numbers)
+{
+  std::ostringstream out;
+  for (size_t i = 0; i < numbers.size(); ++i)
+  {
+    out << (i ? "," : "") << numbers[i];
+  }
+  return out.str();
+}
+
+std::string joinList(const std::vector<std::string>& items)
+{
+  std::string text;
+  for (const std::string& item : items)
+  {
+    text += (text.empty() ? "" : ",") + item;
+  }
+  return text;
+}
+
+void addModelOptions(CLI::App& command, std::string& mesh, std::string& ct)
+{
+  CLI::Option* meshOption =
+    command.add_option("--mesh", mesh, "airway surface (CT frame, normals into the air)");
+  CLI::Option* ctOption =
+    command.add_option("--ct", ct, "CT volume whose airway is segmented with the defaults");
+  meshOption->excludes(ctOption);
+}
+
+void printLines(const std::vector<std::string>& lines)
+{
+  for (const std::string& line : lines)
+  {
+    std::printf("%s\n", line.c_str());
+  }
 }
 
 void writeJsonFile(const nlohmann::json& json, const std::string& path)

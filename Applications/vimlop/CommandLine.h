@@ -12,6 +12,11 @@
  * @brief Small helpers the subcommands share: list parsing and safe output.
  */
 
+namespace CLI
+{
+class App;
+}
+
 namespace vimlop
 {
 
@@ -22,6 +27,16 @@ std::pair<double, double> parseRange(const std::string& text, const std::string&
 std::vector<double> parseNumbers(const std::string& text, const std::string& what);
 /// @brief "a,b,c" as a list of non-empty items.
 std::vector<std::string> parseList(const std::string& text, const std::string& what);
+/// @brief Numbers or items joined by commas, as the parsers above read them (shown defaults).
+std::string joinNumbers(const std::vector<double>& numbers);
+std::string joinList(const std::vector<std::string>& items);
+
+/// @brief Adds --mesh and --ct, each excluding the other: the airway a command reads with
+/// airwayMeshFrom (Imaging/ModelLoading.h).
+void addModelOptions(CLI::App& command, std::string& mesh, std::string& ct);
+
+/// @brief Prints each of `lines` (a report's summaryLines) to stdout.
+void printLines(const std::vector<std::string>& lines);
 
 /**
  * @brief Writes `json` to `path` through a temporary file and a rename, so an

@@ -1,14 +1,13 @@
-#include "ContoursCommand.h"
+#include "Commands.h"
 
-#include "CommandLine.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Video/FrameContoursIO.h>
 #include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Video/OccludingContourDetector.h>
 
 #include <CLI/CLI.hpp>
 
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -45,44 +44,24 @@ void runContours(ContoursOptions o)
   }
   const FrameSequence sequence = FrameSequence::load(o.frames);
   const OccludingContourDetector detector(o.detector);
-  nlohmann::json frames = nlohmann::json::array();
+  std::vector<FrameContours> frames;
   size_t total = 0;
   for (int f = 0; f < sequence.size(); ++f)
   {
-    const std::vector<ContourPoint> points = detector.detect(sequence.frame(f));
-    total += points.size();
-    nlohmann::json list = nlohmann::json::array();
-    for (const ContourPoint& p : points)
-    {
-      list.push_back({ p.pixel.x(), p.pixel.y(), p.normal.x(), p.normal.y() });
-    }
-    frames.push_back({ { "name", sequence.name(f) }, { "points", list } });
+    frames.push_back({ sequence.name(f), detector.detect(sequence.frame(f)) });
+    total += frames.back().points.size();
     if (!o.overlay.empty())
     {
-      // Each point as a dot with a short tick along its normal (towards the far side).
-      cv::Mat picture = sequence.frame(f).clone();
-      for (const ContourPoint& p : points)
-      {
-        const cv::Point2d a(p.pixel.x(), p.pixel.y());
-        const cv::Point2d b = a + 4.0 * cv::Point2d(p.normal.x(), p.normal.y());
-        cv::line(picture, a, b, cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
-        cv::circle(picture, a, 1, cv::Scalar(0, 255, 0), -1, cv::LINE_AA);
-      }
       std::filesystem::create_directories(o.overlay);
       const std::string path =
         (std::filesystem::path(o.overlay) / sequence.name(f)).replace_extension(".png").string();
-      if (!cv::imwrite(path, picture))
+      if (!cv::imwrite(path, drawFrameContours(sequence.frame(f), frames.back().points)))
       {
         throw Error("'" + path + "': cannot write the image");
       }
     }
   }
-  const nlohmann::json document = { { "format", "vimlop-contours" }, { "version", 1 },
-    { "convention",
-      "pixels with the centre of the top-left pixel at (0, 0); [u, v, nu, nv] with the unit normal "
-      "pointing from the near, occluding side to the far side" },
-    { "frames", frames } };
-  writeJsonFile(document, o.out);
+  writeFrameContours(frames, o.out);
   std::printf("contours: %zu points in %d frames (%.0f per frame); wrote '%s'\n", total,
     sequence.size(), static_cast<double>(total) / sequence.size(), o.out.c_str());
 }

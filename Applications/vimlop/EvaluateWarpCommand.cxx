@@ -1,4 +1,4 @@
-#include "EvaluateWarpCommand.h"
+#include "Commands.h"
 
 #include "TerminalProgress.h"
 #include <vimlop/Core/Error.h>
@@ -7,8 +7,6 @@
 #include <vimlop/Imaging/CTVolumeIO.h>
 
 #include <CLI/CLI.hpp>
-
-#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -70,37 +68,10 @@ void runEvaluateWarp(EvaluateWarpOptions options)
       throw Error("'" + options.out + "': could not write the result");
     }
   }
-  std::string elastixLine;
-  if (report.elastix)
-  {
-    const TemplateWarpProtocolReport::Elastix& e = *report.elastix;
-    char text[200];
-    std::snprintf(text, sizeof(text),
-      "; elastix mean %.2f mm, p95 %.2f mm, max %.2f mm, %.1f s (%.2fx our time)", e.errors.meanMm,
-      e.errors.p95Mm, e.errors.maxMm, e.runtimeS, e.runtimeRatio);
-    elastixLine = text;
-  }
-  const VertexErrorSummary& ours = report.errors;
-  std::printf("vimlop evaluate warp: seed %u, %.1f mm: mean %.2f mm, p95 %.2f mm, max %.2f mm, "
-              "%.1f s (before: mean %.2f mm)%s -> %s\n",
-    protocol.seed, protocol.maxDisplacementMm, ours.meanMm, ours.p95Mm, ours.maxMm, report.runtimeS,
-    report.beforeRegistration.meanMm, elastixLine.c_str(), options.out.c_str());
+  std::printf(
+    "vimlop evaluate warp: %s -> %s\n", report.summaryText().c_str(), options.out.c_str());
   std::fflush(stdout);
-  if (options.requireMeanMm >= 0.0 && ours.meanMm > options.requireMeanMm)
-  {
-    char text[120];
-    std::snprintf(text, sizeof(text), "the mean vertex error %.2f mm exceeds the required %.2f mm",
-      ours.meanMm, options.requireMeanMm);
-    throw Error(text);
-  }
-  if (options.requireP95Mm >= 0.0 && ours.p95Mm > options.requireP95Mm)
-  {
-    char text[120];
-    std::snprintf(text, sizeof(text),
-      "the 95th percentile vertex error %.2f mm exceeds the required %.2f mm", ours.p95Mm,
-      options.requireP95Mm);
-    throw Error(text);
-  }
+  report.requireErrorsAtMost(options.requireMeanMm, options.requireP95Mm);
 }
 
 } // namespace

@@ -1,4 +1,4 @@
-#include "InfoCommand.h"
+#include "Commands.h"
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/CTVolumeIO.h>

@@ -1,4 +1,4 @@
-#include "ReportCommand.h"
+#include "Commands.h"
 
 #include "CommandLine.h"
 #include <vimlop/Core/Error.h>

@@ -1,4 +1,4 @@
-#include "SegmentCommand.h"
+#include "Commands.h"
 
 #include "TerminalProgress.h"
 #include <vimlop/Core/Error.h>
@@ -30,10 +30,8 @@ struct SegmentOptions
   std::string out;
   std::string labelOut;
   std::string seed;
-  double threshold = -400.0;
-  double bodyThreshold = -500.0;
-  double sinusDistance = 0.0;
-  int triangles = 30000;
+  AirwaySegmentation::Options segmentation;
+  AirwaySurface::Options surface;
 };
 
 /// "x,y,z" (mm) to a point; anything else is the user's error.
@@ -53,7 +51,7 @@ std::array<double, 3> parsePoint(const std::string& text, const std::string& opt
   return p;
 }
 
-void runSegment(const SegmentOptions& options)
+void runSegment(SegmentOptions options)
 {
   const auto start = std::chrono::steady_clock::now();
   // Check what can be checked before the work.
@@ -67,16 +65,10 @@ void runSegment(const SegmentOptions& options)
     throw Error("'" + options.labelOut +
       "': unsupported label output type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
   }
-  AirwaySegmentation::Options segmentation;
-  segmentation.airThresholdHU = options.threshold;
-  segmentation.bodyThresholdHU = options.bodyThreshold;
-  segmentation.sinusInclusionDistanceMm = options.sinusDistance;
   if (!options.seed.empty())
   {
-    segmentation.seedMm = parsePoint(options.seed, "--seed-mm");
+    options.segmentation.seedMm = parsePoint(options.seed, "--seed-mm");
   }
-  AirwaySurface::Options surfaceOptions;
-  surfaceOptions.targetTriangles = options.triangles;
 
   const CTVolume ct = readCTVolume(options.ct, options.seriesUID);
   for (const std::string& warning : ct.warnings)
@@ -84,9 +76,9 @@ void runSegment(const SegmentOptions& options)
     std::cerr << "vimlop segment: warning: " << warning << "\n";
   }
   const ProgressCallback progress = terminalProgress("segment");
-  const AirwaySegmentation airway = AirwaySegmentation::compute(ct, segmentation,
+  const AirwaySegmentation airway = AirwaySegmentation::compute(ct, options.segmentation,
     [&progress](double f, const std::string& step) { reportProgress(progress, 0.5 * f, step); });
-  const AirwaySurface surface = AirwaySurface::compute(airway.label, surfaceOptions,
+  const AirwaySurface surface = AirwaySurface::compute(airway.label, options.surface,
     [&progress](double f, const std::string& step)
     { reportProgress(progress, 0.5 + 0.5 * f, step); });
   writePolyData(surface.surface, options.out);
@@ -97,26 +89,12 @@ void runSegment(const SegmentOptions& options)
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  if (surface.boundaryEdges > 0 || surface.nonManifoldEdges > 0)
+  for (const std::string& warning : surface.warnings())
   {
-    std::cerr << "vimlop segment: warning: the surface has " << surface.boundaryEdges
-              << " open boundary edges and " << surface.nonManifoldEdges << " non-manifold edges\n";
+    std::cerr << "vimlop segment: warning: " << warning << "\n";
   }
-  if (surface.droppedTriangleFraction > 0.01)
-  {
-    std::fprintf(stderr,
-      "vimlop segment: warning: %d disconnected pieces (%.1f%% of the surface) were dropped\n",
-      surface.droppedPieces, 100.0 * surface.droppedTriangleFraction);
-  }
-  std::printf("vimlop segment: airway %.1f cm^3 (%s of %d interior air components; next largest "
-              "%.1f cm^3; %d sinuses added), centroid (%.1f, %.1f, %.1f) mm LPS\n",
-    airway.volumeMm3 / 1000.0, airway.selection == "seed" ? "seeded, one" : "largest",
-    airway.interiorAirComponents, airway.nextLargestVolumeMm3 / 1000.0, airway.includedSinuses,
-    airway.centroidMm[0], airway.centroidMm[1], airway.centroidMm[2]);
-  std::printf("vimlop segment: surface %d triangles, %d vertices, encloses %.1f cm^3, area %.1f "
-              "cm^2, %d open edges, %d non-manifold edges, %.1f s -> %s\n",
-    surface.triangles, surface.vertices, surface.enclosedVolumeMm3 / 1000.0,
-    surface.areaMm2 / 100.0, surface.boundaryEdges, surface.nonManifoldEdges, seconds,
+  std::printf("vimlop segment: %s\n", airway.summaryText().c_str());
+  std::printf("vimlop segment: %s, %.1f s -> %s\n", surface.summaryText().c_str(), seconds,
     options.out.c_str());
 }
 
@@ -133,21 +111,21 @@ void addSegmentCommand(CLI::App& app)
     ->required();
   segment->add_option(
     "--series", options->seriesUID, "DICOM series UID when a folder holds several");
-  segment->add_option("--threshold", options->threshold, "Air threshold in HU")
+  segment->add_option("--threshold", options->segmentation.airThresholdHU, "Air threshold in HU")
     ->capture_default_str();
   segment
-    ->add_option(
-      "--body-threshold", options->bodyThreshold, "Tissue threshold of the head mask in HU")
+    ->add_option("--body-threshold", options->segmentation.bodyThresholdHU,
+      "Tissue threshold of the head mask in HU")
     ->capture_default_str();
   segment
-    ->add_option("--triangles", options->triangles,
+    ->add_option("--triangles", options->surface.targetTriangles,
       "Target triangle count after decimation (0: no decimation)")
     ->capture_default_str();
   segment->add_option("--seed-mm", options->seed,
     "x,y,z: a point inside the airway (CT frame, LPS mm); default: the largest air space in the "
     "head");
   segment
-    ->add_option("--sinus-distance-mm", options->sinusDistance,
+    ->add_option("--sinus-distance-mm", options->segmentation.sinusInclusionDistanceMm,
       "Also include air spaces within this distance of the airway (sinuses); 0: none")
     ->capture_default_str();
   segment->add_option(

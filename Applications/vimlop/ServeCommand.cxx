@@ -1,4 +1,4 @@
-#include "ServeCommand.h"
+#include "Commands.h"
 
 #include "PoseServingFlags.h"
 #include <vimlop/Core/Error.h>

@@ -1,4 +1,4 @@
-#include "SfmCommand.h"
+#include "Commands.h"
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Video/IntrinsicsIO.h>
@@ -45,15 +45,8 @@ void runSfm(const SfmOptions& o)
   SfmReconstruction sfm;
   if (!o.colmap.empty())
   {
-    std::vector<std::string> names;
-    if (!o.frames.empty())
-    {
-      const FrameSequence sequence = FrameSequence::load(o.frames);
-      for (int f = 0; f < sequence.size(); ++f)
-      {
-        names.push_back(sequence.name(f));
-      }
-    }
+    const std::vector<std::string> names =
+      o.frames.empty() ? std::vector<std::string>() : FrameSequence::load(o.frames).names();
     sfm = reconstructFrames({}, names, PinholeCamera(), o.colmap, &std::cerr);
   }
   else
@@ -71,14 +64,9 @@ void runSfm(const SfmOptions& o)
     }
     const std::vector<cv::Mat> frames =
       idealFrames(sequence, k, o.frames, o.intrinsics, &std::cerr);
-    std::vector<std::string> names;
-    for (int f = 0; f < sequence.size(); ++f)
-    {
-      names.push_back(sequence.name(f));
-    }
     PinholeCamera ideal = k;
     ideal.distortion.resize(0);
-    sfm = reconstructFrames(frames, names, ideal, "", &std::cerr);
+    sfm = reconstructFrames(frames, sequence.names(), ideal, "", &std::cerr);
   }
   if (tracker)
   {

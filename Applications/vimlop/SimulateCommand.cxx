@@ -1,5 +1,6 @@
-#include "SimulateCommand.h"
+#include "Commands.h"
 
+#include "CommandLine.h"
 #include "TerminalEvaluationProgress.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
@@ -25,20 +26,15 @@ struct SimulateOptions
   std::string ct;
   std::string out;
   EndoscopeSimulationOptions simulation;
-  int width = 320;
-  int height = 240;
-  double focal = 200.0;
 };
 
 void runSimulate(SimulateOptions o)
 {
   const auto start = std::chrono::steady_clock::now();
   PinholeCamera& k = o.simulation.intrinsics;
-  k.widthPx = o.width;
-  k.heightPx = o.height;
-  k.fx = k.fy = o.focal;
-  k.cx = 0.5 * (o.width - 1);
-  k.cy = 0.5 * (o.height - 1);
+  k.fy = k.fx; // square pixels, principal point at the centre
+  k.cx = 0.5 * (k.widthPx - 1);
+  k.cy = 0.5 * (k.heightPx - 1);
   k.validate();
   requireOffscreenRendering("vimlop simulate");
   const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
@@ -46,20 +42,10 @@ void runSimulate(SimulateOptions o)
   const SimulatedVideo video =
     simulateEndoscopeVideo(model, o.simulation, terminalEvaluationProgress());
   writeSimulatedVideo(video, o.out);
-  double length = 0.0;
-  double clearance = 1e300;
-  for (size_t f = 0; f < video.camerasCT.size(); ++f)
-  {
-    if (f > 0)
-    {
-      length += (video.camerasCT[f].centre - video.camerasCT[f - 1].centre).norm();
-    }
-    clearance =
-      std::min(clearance, model.locator().closestPoint(video.camerasCT[f].centre).distanceMm);
-  }
   std::printf("simulated %d frames of %dx%d px along a %.1f mm path (least wall distance %.2f mm) "
               "in %.1f s; wrote '%s'\n",
-    o.simulation.frames, o.width, o.height, length, clearance,
+    o.simulation.frames, k.widthPx, k.heightPx, video.pathLengthMm(),
+    video.leastWallDistanceMm(model),
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), o.out.c_str());
 }
 
@@ -71,24 +57,21 @@ void addSimulateCommand(CLI::App& app)
   CLI::App* simulate = app.add_subcommand("simulate",
     "Simulate an endoscope sequence in the airway: frames, depth maps, intrinsics, true poses, "
     "tracker CSV");
-  CLI::Option* mesh =
-    simulate->add_option("--mesh", o->mesh, "airway surface (CT frame, normals into the air)");
-  CLI::Option* ct =
-    simulate->add_option("--ct", o->ct, "CT volume whose airway is segmented with the defaults");
-  mesh->excludes(ct);
+  addModelOptions(*simulate, o->mesh, o->ct);
   simulate->add_option("--out", o->out, "output folder")->required();
   simulate->add_option("--frames", o->simulation.frames, "number of frames")
     ->capture_default_str()
     ->check(CLI::Range(2, 10000));
   simulate->add_option("--seed", o->simulation.seed, "random seed (path, texture, noise)")
     ->capture_default_str();
-  simulate->add_option("--width", o->width, "image width, pixels")
+  PinholeCamera& k = o->simulation.intrinsics;
+  simulate->add_option("--width", k.widthPx, "image width, pixels")
     ->capture_default_str()
     ->check(CLI::Range(16, 8192));
-  simulate->add_option("--height", o->height, "image height, pixels")
+  simulate->add_option("--height", k.heightPx, "image height, pixels")
     ->capture_default_str()
     ->check(CLI::Range(16, 8192));
-  simulate->add_option("--focal", o->focal, "focal length, pixels (principal point at the centre)")
+  simulate->add_option("--focal", k.fx, "focal length, pixels (principal point at the centre)")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
   simulate->add_option("--step-mm", o->simulation.trajectory.stepMm, "advance per frame, mm")

@@ -1,4 +1,4 @@
-#include "WarpCommand.h"
+#include "Commands.h"
 
 #include "TerminalProgress.h"
 #include <vimlop/Imaging/TemplateWarpJob.h>

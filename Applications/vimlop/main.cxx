@@ -2,19 +2,9 @@
 // registers itself here; errors the user can act on are vimlop::Error and end
 // the program with one line on stderr and exit code 1.
 
-#include "CanonicalCommand.h"
 #include "CommandLine.h"
-#include "ContoursCommand.h"
-#include "EvaluateCommand.h"
-#include "EvaluateWarpCommand.h"
-#include "InfoCommand.h"
+#include "Commands.h"
 #include "RegisterCommand.h"
-#include "ReportCommand.h"
-#include "SegmentCommand.h"
-#include "ServeCommand.h"
-#include "SfmCommand.h"
-#include "SimulateCommand.h"
-#include "WarpCommand.h"
 #include <vimlop/Core/Error.h>
 
 #include <CLI/CLI.hpp>

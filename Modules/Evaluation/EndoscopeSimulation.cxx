@@ -15,10 +15,31 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 
 namespace vimlop
 {
+
+double SimulatedVideo::pathLengthMm() const
+{
+  double length = 0.0;
+  for (size_t f = 1; f < this->camerasCT.size(); ++f)
+  {
+    length += (this->camerasCT[f].centre - this->camerasCT[f - 1].centre).norm();
+  }
+  return length;
+}
+
+double SimulatedVideo::leastWallDistanceMm(const RegistrationModel& model) const
+{
+  double distance = std::numeric_limits<double>::infinity();
+  for (const CameraPose& camera : this->camerasCT)
+  {
+    distance = std::min(distance, model.locator().closestPoint(camera.centre).distanceMm);
+  }
+  return distance;
+}
 
 SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
   const EndoscopeSimulationOptions& o, const EvaluationProgress& progress)

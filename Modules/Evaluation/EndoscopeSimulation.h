@@ -53,6 +53,12 @@ struct SimulatedVideo
   std::vector<cv::Mat> frames;    ///< 8-bit BGR
   std::vector<DepthMap> depth;
   TrackerTrajectory tracker; ///< tracked tip positions, in the CT frame (mm)
+
+  /// @brief Length of the camera path: the distances between successive optical centres, mm.
+  double pathLengthMm() const;
+  /// @brief The least distance of an optical centre to the surface of `model`, mm
+  /// (infinite with no cameras).
+  double leastWallDistanceMm(const RegistrationModel& model) const;
 };
 
 /**

@@ -5,6 +5,7 @@
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TaskPool.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/SimulatedVideoCase.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
@@ -36,6 +37,31 @@ void PerturbationProtocolOptions::validate() const
   {
     throw Error("P3: the success bound must be positive");
   }
+}
+
+std::vector<std::string> PerturbationProtocolReport::summaryLines() const
+{
+  std::vector<std::string> lines;
+  for (const PerturbationOffsetReport& o : this->offsets)
+  {
+    lines.push_back(formatText("P3 offset %4.1f mm / %4.1f deg: success %3.0f %%, camera error "
+                               "median %.3f mm, contour error median %.2f px",
+      o.offsetMm, o.offsetDeg, 100.0 * o.successRate, o.cameraPositionMedianMm,
+      o.contourErrorMedianPx));
+  }
+  if (!this->auc)
+  {
+    lines.push_back(formatText("P3 %s; no ROC area (it needs both successes and failures)",
+      this->failures == 0 ? "every run succeeded" : "every run failed"));
+  }
+  else
+  {
+    lines.push_back(formatText("P3 contour error separates failures from successes: ROC AUC %.3f, "
+                               "best threshold %.2f px (%d failures of %d runs)",
+      *this->auc, this->failureThresholdPx.value_or(0.0), static_cast<int>(this->failures),
+      this->runsTotal));
+  }
+  return lines;
 }
 
 nlohmann::json PerturbationProtocolReport::toJson() const

@@ -63,6 +63,9 @@ struct PerturbationProtocolReport
 
   /// @brief p3.json as written by `vimlop evaluate perturbation` (without the runs).
   nlohmann::json toJson() const;
+  /// @brief One line per offset, then the ROC line ("P3 ..."), as `vimlop
+  /// evaluate perturbation` prints.
+  std::vector<std::string> summaryLines() const;
 };
 
 /**

@@ -4,6 +4,7 @@
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Statistics.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/Peers/Open3DPeers.h>
 #include <vimlop/Evaluation/TrialSaving.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
@@ -52,6 +53,20 @@ RegistrationOptions registrationOptions(
 }
 
 } // namespace
+
+std::vector<std::string> SyntheticProtocolReport::summaryLines() const
+{
+  std::vector<std::string> lines;
+  for (const SyntheticProtocolMethodReport& m : this->methods)
+  {
+    lines.push_back(
+      formatText("P1 %-12s TRE median %.3f mm (mean %.3f, p95 %.3f), success %.0f %%, "
+                 "camera %.3f mm / %.3f deg, runtime median %.3f s",
+        m.method.c_str(), m.treMedianMm, m.treMeanMm, m.treP95Mm, 100.0 * m.successRate,
+        m.cameraPositionMedianMm, m.cameraAngleMedianDeg, m.runtimeMedianS));
+  }
+  return lines;
+}
 
 nlohmann::json SyntheticProtocolReport::toJson() const
 {

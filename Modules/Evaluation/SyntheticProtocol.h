@@ -81,6 +81,9 @@ struct SyntheticProtocolReport
 
   /// @brief The report as written by `vimlop evaluate synthetic` (layout in the user guide).
   nlohmann::json toJson() const;
+  /// @brief One line per method ("P1 vimlop TRE median ..."), as `vimlop evaluate synthetic`
+  /// prints.
+  std::vector<std::string> summaryLines() const;
 };
 
 /// @brief Every method name P1 knows, comma-separated (for messages).

@@ -1,6 +1,7 @@
 #include <vimlop/Evaluation/TemplateWarpProtocol.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
 #include <vimlop/Evaluation/Peers/ElastixRegistration.h>
 #include <vimlop/Evaluation/SyntheticDeformation.h>
@@ -76,6 +77,35 @@ void TemplateWarpProtocolOptions::validate() const
   if (this->runElastix && this->elastixWorkFolder.empty())
   {
     throw Error("P4: elastix needs a work folder");
+  }
+}
+
+std::string TemplateWarpProtocolReport::summaryText() const
+{
+  std::string text = formatText("seed %u, %.1f mm: mean %.2f mm, p95 %.2f mm, max %.2f mm, %.1f s "
+                                "(before: mean %.2f mm)",
+    this->seed, this->maxDisplacementMm, this->errors.meanMm, this->errors.p95Mm,
+    this->errors.maxMm, this->runtimeS, this->beforeRegistration.meanMm);
+  if (this->elastix)
+  {
+    const Elastix& e = *this->elastix;
+    text += formatText("; elastix mean %.2f mm, p95 %.2f mm, max %.2f mm, %.1f s (%.2fx our time)",
+      e.errors.meanMm, e.errors.p95Mm, e.errors.maxMm, e.runtimeS, e.runtimeRatio);
+  }
+  return text;
+}
+
+void TemplateWarpProtocolReport::requireErrorsAtMost(double meanMm, double p95Mm) const
+{
+  if (meanMm >= 0.0 && this->errors.meanMm > meanMm)
+  {
+    throw Error(formatText(
+      "the mean vertex error %.2f mm exceeds the required %.2f mm", this->errors.meanMm, meanMm));
+  }
+  if (p95Mm >= 0.0 && this->errors.p95Mm > p95Mm)
+  {
+    throw Error(formatText("the 95th percentile vertex error %.2f mm exceeds the required %.2f mm",
+      this->errors.p95Mm, p95Mm));
   }
 }
 

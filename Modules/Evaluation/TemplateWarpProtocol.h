@@ -97,6 +97,15 @@ struct TemplateWarpProtocolReport
 
   /// @brief The report as written by `vimlop evaluate warp` (less the CT's name).
   nlohmann::json toJson() const;
+  /// @brief "seed S, D mm: mean ... (before: mean ...)[; elastix ...]", the
+  /// figures `vimlop evaluate warp` prints.
+  std::string summaryText() const;
+  /**
+   * @brief Checks VIMLOP's errors against required bounds (negative: none).
+   * @throws vimlop::Error "the mean vertex error X mm exceeds the required Y
+   * mm" (or the 95th percentile's) when one is exceeded.
+   */
+  void requireErrorsAtMost(double meanMm, double p95Mm) const;
 };
 
 /**

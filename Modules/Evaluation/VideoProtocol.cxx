@@ -4,6 +4,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/MultiStartRegistration.h>
 #include <vimlop/Core/Registration.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/SimulatedVideoCase.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
@@ -38,6 +39,31 @@ nlohmann::json methodJson(const VideoProtocolMethodReport& m)
 }
 
 } // namespace
+
+std::vector<std::string> VideoProtocolReport::summaryLines() const
+{
+  const ContourScores& c = this->contours;
+  std::vector<std::string> lines{ formatText(
+    "P2 contours: precision %.3f, recall %.3f, median normal error %.1f deg; SfM (%s) %d points",
+    c.precision, c.recall, c.normalErrorDegMedian, this->sfm.c_str(),
+    static_cast<int>(this->sfmPoints)) };
+  for (const VideoProtocolMethodReport& m : this->methods)
+  {
+    const VideoCameraErrors& e = m.errors;
+    lines.push_back(formatText("P2 %-6s camera %.3f mm (max %.3f) / %.3f deg (max %.3f), scale "
+                               "error %.2f %%, runtime %.1f s",
+      m.method.c_str(), e.positionMeanMm, e.positionMaxMm, e.angleMeanDeg, e.angleMaxDeg,
+      100.0 * e.scaleErrorRel, e.runtimeS));
+    if (m.multiStart)
+    {
+      lines.push_back(formatText("P2 %-6s multi-start of %d candidates: contour error %.2f px, %s",
+        m.method.c_str(), static_cast<int>(this->candidates.value_or(0)),
+        m.multiStart->contourErrorPx,
+        m.multiStart->failureFlag ? "FLAGGED as a failure" : "not flagged"));
+    }
+  }
+  return lines;
+}
 
 nlohmann::json VideoProtocolReport::toJson() const
 {

@@ -103,6 +103,9 @@ struct VideoProtocolReport
 
   /// @brief The report as written by `vimlop evaluate video` (layout in the user guide).
   nlohmann::json toJson() const;
+  /// @brief The contour and SfM line, then per method its camera errors (and
+  /// multi-start) lines ("P2 ..."), as `vimlop evaluate video` prints.
+  std::vector<std::string> summaryLines() const;
 };
 
 /**

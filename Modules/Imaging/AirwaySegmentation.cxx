@@ -4,6 +4,7 @@
 #include <vimlop/Imaging/AirwaySegmentation.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/ITKImageConversion.h>
 
 #include <itkBinaryBallStructuringElement.h>
@@ -557,6 +558,15 @@ std::vector<AirwaySegmentation::InteriorPoint> AirwaySegmentation::deepestPoints
     }
   }
   return points;
+}
+
+std::string AirwaySegmentation::summaryText() const
+{
+  return formatText("airway %.1f cm^3 (%s of %d interior air components; next largest %.1f "
+                    "cm^3; %d sinuses added), centroid (%.1f, %.1f, %.1f) mm LPS",
+    this->volumeMm3 / 1000.0, this->selection == "seed" ? "seeded, one" : "largest",
+    this->interiorAirComponents, this->nextLargestVolumeMm3 / 1000.0, this->includedSinuses,
+    this->centroidMm[0], this->centroidMm[1], this->centroidMm[2]);
 }
 
 } // namespace vimlop

@@ -126,6 +126,10 @@ struct AirwaySegmentation
    */
   VIMLOPIMAGING_EXPORT std::vector<InteriorPoint> deepestPoints(
     int count, double minimumSeparationMm) const;
+
+  /// @brief "airway V cm^3 (largest of N interior air components; ...), centroid (x, y, z) mm
+  /// LPS", as `vimlop segment` prints it.
+  VIMLOPIMAGING_EXPORT std::string summaryText() const;
 };
 
 } // namespace vimlop

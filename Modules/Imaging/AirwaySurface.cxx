@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/AirwaySurface.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
 
@@ -371,6 +372,31 @@ AirwaySurface AirwaySurface::compute(
   result.enclosedVolumeMm3 = -signedVolume(result.surface);
   reportProgress(progress, 1.0, "done");
   return result;
+}
+
+std::string AirwaySurface::summaryText() const
+{
+  return formatText("surface %d triangles, %d vertices, encloses %.1f cm^3, area %.1f cm^2, %d "
+                    "open edges, %d non-manifold edges",
+    this->triangles, this->vertices, this->enclosedVolumeMm3 / 1000.0, this->areaMm2 / 100.0,
+    this->boundaryEdges, this->nonManifoldEdges);
+}
+
+std::vector<std::string> AirwaySurface::warnings() const
+{
+  std::vector<std::string> warnings;
+  if (this->boundaryEdges > 0 || this->nonManifoldEdges > 0)
+  {
+    warnings.push_back(
+      formatText("the surface has %d open boundary edges and %d non-manifold edges",
+        this->boundaryEdges, this->nonManifoldEdges));
+  }
+  if (this->droppedTriangleFraction > 0.01)
+  {
+    warnings.push_back(formatText("%d disconnected pieces (%.1f%% of the surface) were dropped",
+      this->droppedPieces, 100.0 * this->droppedTriangleFraction));
+  }
+  return warnings;
 }
 
 } // namespace vimlop

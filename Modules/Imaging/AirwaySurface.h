@@ -8,6 +8,9 @@
 
 #include <vtkSmartPointer.h>
 
+#include <string>
+#include <vector>
+
 class vtkPolyData;
 
 namespace vimlop
@@ -77,6 +80,13 @@ struct AirwaySurface
    */
   VIMLOPIMAGING_EXPORT static AirwaySurface compute(const CTVolume& label, const Options& options,
     const ProgressCallback& progress = ProgressCallback());
+
+  /// @brief "surface N triangles, M vertices, encloses V cm^3, area A cm^2, E open edges, F
+  /// non-manifold edges", as `vimlop segment` prints it.
+  VIMLOPIMAGING_EXPORT std::string summaryText() const;
+  /// @brief What a user should know of the surface: open or non-manifold edges, and
+  /// disconnected pieces over 1 % of it that were dropped (empty when none).
+  VIMLOPIMAGING_EXPORT std::vector<std::string> warnings() const;
 };
 
 } // namespace vimlop

@@ -33,6 +33,8 @@ public:
   const cv::Mat& frame(int i) const { return this->Frames.at(static_cast<size_t>(i)); }
   /// @brief File name of frame i (folder input) or "frame<i>" (video input).
   const std::string& name(int i) const { return this->Names.at(static_cast<size_t>(i)); }
+  /// @brief The names of all frames, in order.
+  const std::vector<std::string>& names() const { return this->Names; }
   int widthPx() const { return this->Frames.empty() ? 0 : this->Frames.front().cols; }
   int heightPx() const { return this->Frames.empty() ? 0 : this->Frames.front().rows; }
 

@@ -65,6 +65,9 @@ TEST(FrameSequence, LoadsAFolderInNaturalOrder)
     EXPECT_EQ(sequence.frame(k).at<cv::Vec3b>(0, 0)[0], 10 * expected[k]) << k;
     EXPECT_EQ(sequence.name(k), "frame" + std::to_string(expected[k]) + ".png");
   }
+  EXPECT_EQ(sequence.names(),
+    std::vector<std::string>(
+      { "frame0.png", "frame1.png", "frame2.png", "frame10.png", "frame11.png" }));
   EXPECT_EQ(sequence.widthPx(), 64);
   EXPECT_EQ(sequence.heightPx(), 48);
   EXPECT_EQ(FrameSequence::load(folder, 2).size(), 2);

@@ -1,0 +1,19 @@
+#include <vimlop/Core/TextFormat.h>
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+using namespace vimlop;
+
+TEST(TextFormat, FormatsAsPrintfDoes)
+{
+  EXPECT_EQ(formatText("P1 %-6s %.3f mm, %d %%", "imlp", 0.12345, 7), "P1 imlp   0.123 mm, 7 %");
+  EXPECT_EQ(formatText("%s", ""), "");
+}
+
+TEST(TextFormat, KeepsTextLongerThanAnyFixedBuffer)
+{
+  const std::string longText(5000, 'x');
+  EXPECT_EQ(formatText("<%s>", longText.c_str()), "<" + longText + ">");
+}

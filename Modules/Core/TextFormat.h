@@ -1,0 +1,21 @@
+#ifndef vimlop_TextFormat_h
+#define vimlop_TextFormat_h
+
+#include <string>
+
+namespace vimlop
+{
+
+/**
+ * @brief printf-style formatting into a string, for the one-line summaries
+ * the typed reports give every face (the program, Python) to print alike.
+ */
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+std::string
+formatText(const char* format, ...);
+
+} // namespace vimlop
+
+#endif
