@@ -173,7 +173,7 @@ void runPerturbation(const PerturbationCommandOptions& o)
   if (!o.noReport)
   {
     RegistrationReport::write(
-      nullptr, "", p3.runs, (fs::path(o.out) / "report").string(), RegistrationReport::Options());
+      nullptr, "", p3.runs, (fs::path(o.out) / "report").string(), RegistrationReportOptions());
   }
   writeJsonFile(p3.toJson(), (fs::path(o.out) / "p3.json").string());
   for (const PerturbationOffsetReport& offset : p3.offsets)

@@ -67,7 +67,7 @@ void runSegment(const SegmentOptions& options)
     throw Error("'" + options.labelOut +
       "': unsupported label output type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
   }
-  AirwaySegmentation::Options segmentation;
+  AirwaySegmentationOptions segmentation;
   segmentation.airThresholdHU = options.threshold;
   segmentation.bodyThresholdHU = options.bodyThreshold;
   segmentation.sinusInclusionDistanceMm = options.sinusDistance;
@@ -75,7 +75,7 @@ void runSegment(const SegmentOptions& options)
   {
     segmentation.seedMm = parsePoint(options.seed, "--seed-mm");
   }
-  AirwaySurface::Options surfaceOptions;
+  AirwaySurfaceOptions surfaceOptions;
   surfaceOptions.targetTriangles = options.triangles;
 
   const CTVolume ct = readCTVolume(options.ct, options.seriesUID);

@@ -166,7 +166,7 @@ vtkSmartPointer<vtkPolyData> withoutCoincidentPairs(vtkPolyData* surface, int& r
 } // namespace
 
 AirwaySurface AirwaySurface::compute(
-  const CTVolume& label, const Options& options, const ProgressCallback& progress)
+  const CTVolume& label, const AirwaySurfaceOptions& options, const ProgressCallback& progress)
 {
   if (label.dims[0] < 2 || label.dims[1] < 2 || label.dims[2] < 2 ||
     label.intensities.size() != label.numberOfVoxels())

@@ -13,6 +13,19 @@ class vtkPolyData;
 namespace vimlop
 {
 
+/// @brief Parameters of AirwaySurface::compute().
+struct AirwaySurfaceOptions
+{
+  /// Triangles after decimation. Default 30000, which keeps a nasal airway's
+  /// turbinates and meatuses (about 1.5 mm triangles) while closest-point
+  /// and contour queries stay fast; 0 keeps the full iso-surface.
+  int targetTriangles = 30000;
+  /// Windowed-sinc smoothing iterations. Default 20; 0 turns smoothing off.
+  int smoothingIterations = 20;
+  /// Pass band of the windowed-sinc filter, in (0, 2]; lower is smoother. Default 0.1.
+  double smoothingPassBand = 0.1;
+};
+
 /**
  * @brief The surface of an airway label volume, as the registration uses it,
  * and a report on its quality.
@@ -41,19 +54,6 @@ namespace vimlop
  */
 struct AirwaySurface
 {
-  /// @brief Parameters of compute().
-  struct Options
-  {
-    /// Triangles after decimation. Default 30000, which keeps a nasal airway's
-    /// turbinates and meatuses (about 1.5 mm triangles) while closest-point
-    /// and contour queries stay fast; 0 keeps the full iso-surface.
-    int targetTriangles = 30000;
-    /// Windowed-sinc smoothing iterations. Default 20; 0 turns smoothing off.
-    int smoothingIterations = 20;
-    /// Pass band of the windowed-sinc filter, in (0, 2]; lower is smoother. Default 0.1.
-    double smoothingPassBand = 0.1;
-  };
-
   /// Triangles in the CT frame with normals into the air (see above).
   vtkSmartPointer<vtkPolyData> surface;
   int triangles = 0;
@@ -75,8 +75,8 @@ struct AirwaySurface
    * @throws vimlop::Error if the label is empty, not 3-D, inconsistent, or
    * the options are out of range.
    */
-  VIMLOPIMAGING_EXPORT static AirwaySurface compute(const CTVolume& label, const Options& options,
-    const ProgressCallback& progress = ProgressCallback());
+  VIMLOPIMAGING_EXPORT static AirwaySurface compute(const CTVolume& label,
+    const AirwaySurfaceOptions& options, const ProgressCallback& progress = ProgressCallback());
 };
 
 } // namespace vimlop

@@ -69,7 +69,7 @@ TEST_P(AirwaySurfaceOnGrids, LiesOnTheBallWithNormalsIntoTheAir)
   const CTVolume label =
     fixtures::sphereLabel(dims, grid.spacing, grid.origin, grid.direction, centre, radius);
 
-  AirwaySurface::Options options;
+  AirwaySurfaceOptions options;
   options.targetTriangles = 2000;
   const AirwaySurface s = AirwaySurface::compute(label, options);
   ASSERT_TRUE(s.surface);
@@ -136,7 +136,7 @@ TEST(AirwaySurface, KeepsTheLargestPieceAndClosesAtTheVolumeBorder)
     [](int i, int j, int k) {
       return fixtures::inBox(i, j, k, { 18, 20, 15, 17, 12, 14 });
     });
-  AirwaySurface::Options options;
+  AirwaySurfaceOptions options;
   options.targetTriangles = 0; // keep the iso-surface as it is
   options.smoothingIterations = 0;
   const AirwaySurface s = AirwaySurface::compute(label, options);
@@ -161,7 +161,7 @@ TEST(AirwaySurface, BadInputGetsOneLineErrors)
 {
   CTVolume empty = fixtures::emptyVolume({ 8, 8, 8 });
   std::fill(empty.intensities.begin(), empty.intensities.end(), 0.0f);
-  AirwaySurface::Options options;
+  AirwaySurfaceOptions options;
   try
   {
     AirwaySurface::compute(empty, options);
