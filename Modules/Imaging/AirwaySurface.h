@@ -1,6 +1,7 @@
 #ifndef vimlop_AirwaySurface_h
 #define vimlop_AirwaySurface_h
 
+#include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Imaging/CTVolume.h>
 #include <vimlop/Imaging/ProgressCallback.h>
 
@@ -43,11 +44,13 @@ struct AirwaySurfaceOptions
  * 5. points are mapped to the CT frame with the label's direction matrix
  *    (VTK 9.1 filters ignore vtkImageData's direction, so the work is done in
  *    index-times-spacing coordinates and mapped here);
- * 6. faces are ordered so that their normals point into the air: a closed
- *    surface whose normals point into the region it encloses has a negative
- *    signed volume, so the faces are reversed when it comes out positive. This
- *    also undoes the winding flip of a reflecting direction matrix (det < 0,
- *    as for InVesalius projects).
+ * 6. faces are ordered so that their normals point into the air, by
+ *    orientIntoAir(): for the closed surface of steps 1-4 the rule every mesh
+ *    loader applies (orientNormalsIntoAir: a closed surface whose normals
+ *    point into the region it encloses has a negative signed volume, so the
+ *    faces are reversed when it comes out positive), so the surface written
+ *    here loads unchanged. This also undoes the winding flip of a reflecting
+ *    direction matrix (det < 0, as for InVesalius projects).
  *
  * The output holds triangles, cell normals and point normals (both named
  * "Normals", unit, into the air), in the CT frame (LPS mm).
@@ -77,6 +80,22 @@ struct AirwaySurface
    */
   VIMLOPIMAGING_EXPORT static AirwaySurface compute(const CTVolume& label,
     const AirwaySurfaceOptions& options, const ProgressCallback& progress = ProgressCallback());
+
+  /**
+   * @brief `mesh` (CT frame) with its normals into the air of `label` (the
+   * voxels where it is non-zero).
+   *
+   * A closed surface follows the loaders' rule, orientNormalsIntoAir(), so
+   * producer and loaders cannot disagree. An open surface encloses nothing
+   * and that rule keeps its faces as they are, so they must point into the
+   * air already; the label knows the air side: the faces are reversed when
+   * more of their normals lead out of the label's voxels than into them
+   * (probed half a voxel either side of each face). compute()'s surface is
+   * closed by construction (step 1), so for it this only guards the later steps.
+   * @throws vimlop::Error for a mesh without faces.
+   */
+  VIMLOPIMAGING_EXPORT static TriangleMesh orientIntoAir(
+    const TriangleMesh& mesh, const CTVolume& label);
 };
 
 } // namespace vimlop
