@@ -25,7 +25,7 @@ struct ContoursOptions
   std::string out;
   std::string overlay;
   std::string channel = "luminance";
-  OccludingContourDetector::Options detector;
+  ContourDetectionOptions detector;
 };
 
 void runContours(ContoursOptions o)

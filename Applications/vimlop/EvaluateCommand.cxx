@@ -103,7 +103,7 @@ void runPerturbation(PerturbationCommand c)
   if (!c.noReport)
   {
     RegistrationReport::write(
-      nullptr, "", p3.runs, (fs::path(c.out) / "report").string(), RegistrationReport::Options());
+      nullptr, "", p3.runs, (fs::path(c.out) / "report").string(), RegistrationReportOptions());
   }
   writeJsonFile(p3.toJson(), (fs::path(c.out) / "p3.json").string());
   printLines(p3.summaryLines());
@@ -200,8 +200,8 @@ CLI::App* addEvaluateCommand(CLI::App& app)
       "a run succeeds when its mean camera position error is at most this, mm")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
-  p3->add_option(
-      "--threads", p3Options.video.pipeline.registration.threads, "threads over runs, 0 for all cores")
+  p3->add_option("--threads", p3Options.video.pipeline.registration.threads,
+      "threads over runs, 0 for all cores")
     ->capture_default_str();
   p3->add_flag("--no-report", perturbation->noReport, "skip the rendered report");
   p3->callback([perturbation] { runPerturbation(*perturbation); });

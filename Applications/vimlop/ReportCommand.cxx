@@ -49,7 +49,7 @@ void runReport(const ReportCommandOptions& o)
     }
   }
   requireOffscreenRendering("vimlop report");
-  RegistrationReport::Options options;
+  RegistrationReportOptions options;
   options.maxOverlayFrames = o.maxOverlays;
   const RegistrationReport report =
     RegistrationReport::write(record ? &*record : nullptr, o.result, runs, o.out, options);

@@ -30,8 +30,8 @@ struct SegmentOptions
   std::string out;
   std::string labelOut;
   std::string seed;
-  AirwaySegmentation::Options segmentation;
-  AirwaySurface::Options surface;
+  AirwaySegmentationOptions segmentation;
+  AirwaySurfaceOptions surface;
 };
 
 /// "x,y,z" (mm) to a point; anything else is the user's error.

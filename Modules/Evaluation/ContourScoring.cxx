@@ -7,10 +7,10 @@ namespace vimlop
 {
 
 ScoredContours detectAndScoreContours(const RegistrationModel& model, const SimulatedVideo& video,
-  const OccludingContourDetector::Options& detectorOptions)
+  const ContourDetectionOptions& detectorOptions)
 {
   // Scored densely: thinning would make precision and recall depend on spacing.
-  OccludingContourDetector::Options denseOptions = detectorOptions;
+  ContourDetectionOptions denseOptions = detectorOptions;
   denseOptions.spacingPx = 0.0;
   const OccludingContourDetector detector(denseOptions);
   const PinholeCamera& k = video.intrinsics;

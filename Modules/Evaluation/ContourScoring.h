@@ -36,7 +36,7 @@ struct ScoredContours
  * `detector.spacingPx`.
  */
 ScoredContours detectAndScoreContours(const RegistrationModel& model, const SimulatedVideo& video,
-  const OccludingContourDetector::Options& detector);
+  const ContourDetectionOptions& detector);
 
 } // namespace vimlop
 

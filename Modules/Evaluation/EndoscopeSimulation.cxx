@@ -56,7 +56,7 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
   video.intrinsics = o.intrinsics;
   video.camerasCT = makeEndoscopeTrajectory(model, path, o.seed);
 
-  MucosaTexture::Options textureOptions;
+  MucosaTextureOptions textureOptions;
   textureOptions.seed = o.seed;
   vtkNew<vtkVIMLOPVirtualEndoscope> endoscope;
   endoscope->SetBlurSigmaPx(o.blurSigmaPx);

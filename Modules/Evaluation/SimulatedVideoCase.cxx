@@ -67,7 +67,7 @@ SimulatedVideoCase prepareSimulatedVideoCase(
     {
       cv::imwrite((fs::path(images) / video.names[f]).string(), video.frames[f]);
     }
-    ColmapRunner::Options colmapOptions;
+    ColmapRunnerOptions colmapOptions;
     colmapOptions.executable = o.colmapExecutable;
     const std::string modelFolder =
       ColmapRunner(colmapOptions).run(images, k, (fs::path(work) / "colmap").string());

@@ -31,7 +31,8 @@ std::array<double, 4> bsplineWeights(double f)
 
 } // namespace
 
-SyntheticDeformation::SyntheticDeformation(const CTVolume& grid, const Options& options)
+SyntheticDeformation::SyntheticDeformation(
+  const CTVolume& grid, const SyntheticDeformationOptions& options)
 {
   if (grid.dims[0] < 2 || grid.dims[1] < 2 || grid.dims[2] < 2)
   {

@@ -10,6 +10,20 @@
 namespace vimlop
 {
 
+/// @brief Parameters of the deformation.
+struct SyntheticDeformationOptions
+{
+  /// Largest displacement over the region. Default 5 mm.
+  double maxDisplacementMm = 5.0;
+  /// Distance between control points. Default 30 mm.
+  double controlSpacingMm = 30.0;
+  /// Seed of the random control displacements. Default 1.
+  std::uint32_t seed = 1;
+  /// Region (CT frame: x min, x max, y min, ...; mm) over which the largest
+  /// displacement is measured. Default: an empty box, meaning the whole CT.
+  std::array<double, 6> regionMm{ 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 };
+};
+
 /**
  * @brief A smooth random deformation of known field, to make a "patient" out
  * of a CT for the template-warp evaluation (DESIGN P4).
@@ -33,26 +47,12 @@ namespace vimlop
 class SyntheticDeformation
 {
 public:
-  /// @brief Parameters of the deformation.
-  struct Options
-  {
-    /// Largest displacement over the region. Default 5 mm.
-    double maxDisplacementMm = 5.0;
-    /// Distance between control points. Default 30 mm.
-    double controlSpacingMm = 30.0;
-    /// Seed of the random control displacements. Default 1.
-    std::uint32_t seed = 1;
-    /// Region (CT frame: x min, x max, y min, ...; mm) over which the largest
-    /// displacement is measured. Default: an empty box, meaning the whole CT.
-    std::array<double, 6> regionMm{ 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 };
-  };
-
   /**
    * @brief The deformation on the grid of `grid` (its dims, spacing, origin, direction).
    * @throws vimlop::Error for a non-3-D grid or options out of range
    * (negative displacement, control spacing under two voxels).
    */
-  SyntheticDeformation(const CTVolume& grid, const Options& options);
+  SyntheticDeformation(const CTVolume& grid, const SyntheticDeformationOptions& options);
 
   /// @brief b(y): the displacement (mm) that takes patient point y to its template point.
   std::array<double, 3> patientToTemplateDisplacement(

@@ -176,7 +176,7 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
 
   // The patient: a known smooth deformation plus noise.
   report(0.04, "making the patient");
-  SyntheticDeformation::Options deformationOptions;
+  SyntheticDeformationOptions deformationOptions;
   deformationOptions.maxDisplacementMm = options.maxDisplacementMm;
   deformationOptions.controlSpacingMm = options.controlSpacingMm;
   deformationOptions.seed = options.seed;
@@ -199,7 +199,7 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
   r.beforeRegistration = summarizeErrors(vertices, truth);
 
   // VIMLOP's registration.
-  TemplateRegistration::Options registration = options.registration;
+  TemplateRegistrationOptions registration = options.registration;
   registration.regionMm = region;
   const auto start = std::chrono::steady_clock::now();
   const TemplateRegistration result = TemplateRegistration::compute(ct, patient, registration,
@@ -236,7 +236,7 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
   const std::string parameters = options.elastixParametersFolder.empty()
     ? defaultElastixParametersFolder()
     : options.elastixParametersFolder;
-  ElastixRegistration::Options elastix;
+  ElastixRegistrationOptions elastix;
   elastix.parameterFiles = { (fs::path(parameters) / "affine.txt").string(),
     (fs::path(parameters) / "bspline.txt").string() };
   elastix.workDirectory = options.elastixWorkFolder;

@@ -28,7 +28,7 @@ struct TemplateWarpProtocolOptions
   unsigned seed = 1;
   /// VIMLOP's registration (default: TemplateRegistration's defaults, which
   /// suit head CTs); its region is set to the bounds of the airway mesh.
-  TemplateRegistration::Options registration;
+  TemplateRegistrationOptions registration;
   /// Run elastix on the same pair when it is installed (default true).
   bool runElastix = true;
   /// Folder with the elastix parameter files affine.txt and bspline.txt

@@ -184,7 +184,7 @@ std::optional<std::array<int, 3>> nearestVoxel(const CTVolume& ct, const std::ar
 } // namespace
 
 AirwaySegmentation AirwaySegmentation::compute(
-  const CTVolume& ct, const Options& options, const ProgressCallback& progress)
+  const CTVolume& ct, const AirwaySegmentationOptions& options, const ProgressCallback& progress)
 {
   checkVolume(ct);
   const std::size_t n = ct.numberOfVoxels();

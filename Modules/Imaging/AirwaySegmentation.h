@@ -15,6 +15,27 @@
 namespace vimlop
 {
 
+/// @brief Parameters of AirwaySegmentation::compute(); the defaults suit adult head CTs in HU.
+struct AirwaySegmentationOptions
+{
+  /// Voxels below this are air. Default -400 HU.
+  double airThresholdHU = -400.0;
+  /// Voxels above this are tissue when building the head mask. Default -500 HU.
+  double bodyThresholdHU = -500.0;
+  /// Radius of the closing applied to the head mask before its holes are
+  /// filled. Default 0 mm: no closing (see step 1).
+  double bodyClosingRadiusMm = 0.0;
+  /// Point (CT frame, LPS mm) inside the airway; when set, the component
+  /// holding it is chosen instead of the largest. Default: unset.
+  std::optional<std::array<double, 3>> seedMm;
+  /// Interior air components with a voxel centre within this distance of the
+  /// airway are included (sinuses behind thin walls). Default 0 mm: none.
+  double sinusInclusionDistanceMm = 0.0;
+  /// Smallest acceptable airway. Default 1000 mm^3 (1 cm^3); a smaller
+  /// largest component means there is no airway in the volume.
+  double minimumVolumeMm3 = 1000.0;
+};
+
 /**
  * @brief The nasal airway of a head CT as a label volume, and facts about it.
  *
@@ -50,27 +71,6 @@ namespace vimlop
  */
 struct AirwaySegmentation
 {
-  /// @brief Parameters of compute(); the defaults suit adult head CTs in HU.
-  struct Options
-  {
-    /// Voxels below this are air. Default -400 HU.
-    double airThresholdHU = -400.0;
-    /// Voxels above this are tissue when building the head mask. Default -500 HU.
-    double bodyThresholdHU = -500.0;
-    /// Radius of the closing applied to the head mask before its holes are
-    /// filled. Default 0 mm: no closing (see step 1).
-    double bodyClosingRadiusMm = 0.0;
-    /// Point (CT frame, LPS mm) inside the airway; when set, the component
-    /// holding it is chosen instead of the largest. Default: unset.
-    std::optional<std::array<double, 3>> seedMm;
-    /// Interior air components with a voxel centre within this distance of the
-    /// airway are included (sinuses behind thin walls). Default 0 mm: none.
-    double sinusInclusionDistanceMm = 0.0;
-    /// Smallest acceptable airway. Default 1000 mm^3 (1 cm^3); a smaller
-    /// largest component means there is no airway in the volume.
-    double minimumVolumeMm3 = 1000.0;
-  };
-
   /// @brief A point deep inside the airway (see deepestPoints()).
   struct InteriorPoint
   {
@@ -113,7 +113,8 @@ struct AirwaySegmentation
    * the airway is smaller than `minimumVolumeMm3`, or the seed lies outside
    * the volume or in tissue.
    */
-  VIMLOPIMAGING_EXPORT static AirwaySegmentation compute(const CTVolume& ct, const Options& options,
+  VIMLOPIMAGING_EXPORT static AirwaySegmentation compute(const CTVolume& ct,
+    const AirwaySegmentationOptions& options,
     const ProgressCallback& progress = ProgressCallback());
 
   /**

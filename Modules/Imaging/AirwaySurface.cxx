@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/AirwaySurface.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/OrientNormalsIntoAir.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
@@ -20,11 +21,11 @@
 #include <vtkPolyDataAlgorithm.h>
 #include <vtkPolyDataConnectivityFilter.h>
 #include <vtkPolyDataNormals.h>
-#include <vtkReverseSense.h>
 #include <vtkWindowedSincPolyDataFilter.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <vector>
 
@@ -69,45 +70,6 @@ void runFilter(vtkAlgorithm* filter, const ProgressCallback& progress, double be
   {
     filter->Update();
   }
-}
-
-/// Signed volume enclosed by the triangles (divergence theorem), about their mean point.
-double signedVolume(vtkPolyData* surface)
-{
-  const vtkIdType n = surface->GetNumberOfPoints();
-  std::array<double, 3> centre{ 0.0, 0.0, 0.0 };
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double* p = surface->GetPoint(i);
-    for (int a = 0; a < 3; ++a)
-    {
-      centre[a] += p[a] / static_cast<double>(n);
-    }
-  }
-  double volume = 0.0;
-  vtkCellArray* polys = surface->GetPolys();
-  vtkIdType count = 0;
-  const vtkIdType* ids = nullptr;
-  for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
-  {
-    for (vtkIdType k = 1; k + 1 < count; ++k)
-    {
-      double a[3], b[3], c[3];
-      surface->GetPoint(ids[0], a);
-      surface->GetPoint(ids[k], b);
-      surface->GetPoint(ids[k + 1], c);
-      for (int i = 0; i < 3; ++i)
-      {
-        a[i] -= centre[i];
-        b[i] -= centre[i];
-        c[i] -= centre[i];
-      }
-      volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                  a[2] * (b[0] * c[1] - b[1] * c[0])) /
-        6.0;
-    }
-  }
-  return volume;
 }
 
 /// The triangles without pairs that share their three corners: decimation
@@ -167,7 +129,7 @@ vtkSmartPointer<vtkPolyData> withoutCoincidentPairs(vtkPolyData* surface, int& r
 } // namespace
 
 AirwaySurface AirwaySurface::compute(
-  const CTVolume& label, const Options& options, const ProgressCallback& progress)
+  const CTVolume& label, const AirwaySurfaceOptions& options, const ProgressCallback& progress)
 {
   if (label.dims[0] < 2 || label.dims[1] < 2 || label.dims[2] < 2 ||
     label.intensities.size() != label.numberOfVoxels())
@@ -332,7 +294,8 @@ AirwaySurface AirwaySurface::compute(
   mapped->SetPolys(surface->GetPolys());
 
   // 6. Normals into the air. Make the winding consistent first (flying edges
-  // and the filters after it keep it, but decimation may fold a triangle).
+  // and the filters after it keep it, but decimation may fold a triangle),
+  // then orient by the loaders' rule (orientIntoAir()).
   vtkNew<vtkPolyDataNormals> consistent;
   consistent->SetInputData(mapped);
   consistent->ConsistencyOn();
@@ -341,18 +304,9 @@ AirwaySurface AirwaySurface::compute(
   consistent->ComputePointNormalsOff();
   consistent->ComputeCellNormalsOff();
   runFilter(consistent, progress, 0.93, 0.96, "orientation");
-  surface = consistent->GetOutput();
-  if (signedVolume(surface) > 0.0)
-  {
-    vtkNew<vtkReverseSense> reverse;
-    reverse->SetInputData(surface);
-    reverse->ReverseCellsOn();
-    reverse->ReverseNormalsOff();
-    reverse->Update();
-    surface = reverse->GetOutput();
-  }
+  const TriangleMesh oriented = orientIntoAir(toTriangleMesh(consistent->GetOutput()), label);
   vtkNew<vtkPolyDataNormals> normals;
-  normals->SetInputData(surface);
+  normals->SetInputData(toPolyData(oriented));
   normals->ConsistencyOff();
   normals->AutoOrientNormalsOff();
   normals->SplittingOff();
@@ -361,15 +315,14 @@ AirwaySurface AirwaySurface::compute(
   runFilter(normals, progress, 0.96, 0.99, "normals");
   result.surface = normals->GetOutput();
 
-  // The report.
-  const TriangleMesh mesh = toTriangleMesh(result.surface);
-  result.triangles = mesh.numberOfFaces();
-  result.vertices = mesh.numberOfVertices();
-  result.boundaryEdges = mesh.numberOfBoundaryEdges();
-  result.nonManifoldEdges = mesh.numberOfNonManifoldEdges();
-  result.areaMm2 = mesh.totalArea();
+  // The report, of the mesh as a loader reads it.
+  result.triangles = oriented.numberOfFaces();
+  result.vertices = oriented.numberOfVertices();
+  result.boundaryEdges = oriented.numberOfBoundaryEdges();
+  result.nonManifoldEdges = oriented.numberOfNonManifoldEdges();
+  result.areaMm2 = oriented.totalArea();
   // Normals into the enclosed air make the signed volume negative.
-  result.enclosedVolumeMm3 = -signedVolume(result.surface);
+  result.enclosedVolumeMm3 = -oriented.signedVolume();
   reportProgress(progress, 1.0, "done");
   return result;
 }
@@ -397,6 +350,51 @@ std::vector<std::string> AirwaySurface::warnings() const
       this->droppedPieces, 100.0 * this->droppedTriangleFraction));
   }
   return warnings;
+}
+
+TriangleMesh AirwaySurface::orientIntoAir(const TriangleMesh& mesh, const CTVolume& label)
+{
+  if (mesh.numberOfBoundaryEdges() == 0)
+  {
+    return orientNormalsIntoAir(mesh);
+  }
+  // An open surface encloses nothing, and orientNormalsIntoAir() keeps its
+  // faces as they are, so their order must be right here. The label knows
+  // the air side: a face's normal should lead from tissue into label voxels.
+  // Probing half the smallest voxel either side of the centroid reaches the
+  // voxel centres on both sides of the iso-surface (it lies half a voxel
+  // from them), and the vote over all faces outweighs the odd folded one.
+  const double step = 0.5 * *std::min_element(label.spacingMm.begin(), label.spacingMm.end());
+  const auto inLabel = [&label](const Eigen::Vector3d& p)
+  {
+    const std::array<double, 3> index = label.physicalToIndex({ p.x(), p.y(), p.z() });
+    std::array<long long, 3> voxel{};
+    for (int a = 0; a < 3; ++a)
+    {
+      voxel[a] = std::llround(index[a]);
+      if (voxel[a] < 0 || voxel[a] >= label.dims[a])
+      {
+        return false;
+      }
+    }
+    const std::size_t at = static_cast<std::size_t>(voxel[0]) +
+      static_cast<std::size_t>(label.dims[0]) *
+        (static_cast<std::size_t>(voxel[1]) +
+          static_cast<std::size_t>(label.dims[1]) * static_cast<std::size_t>(voxel[2]));
+    return label.intensities[at] != 0.0f;
+  };
+  long long intoAir = 0;
+  long long outOfAir = 0;
+  for (int f = 0; f < mesh.numberOfFaces(); ++f)
+  {
+    const Eigen::Vector3d centre = mesh.faceCentroid(f);
+    const Eigen::Vector3d& n = mesh.faceNormals()[f];
+    const bool front = inLabel(centre + step * n);
+    const bool back = inLabel(centre - step * n);
+    intoAir += front && !back ? 1 : 0;
+    outOfAir += back && !front ? 1 : 0;
+  }
+  return outOfAir > intoAir ? mesh.flipped() : mesh;
 }
 
 } // namespace vimlop

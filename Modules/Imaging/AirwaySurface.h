@@ -1,6 +1,7 @@
 #ifndef vimlop_AirwaySurface_h
 #define vimlop_AirwaySurface_h
 
+#include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Imaging/CTVolume.h>
 #include <vimlop/Imaging/ProgressCallback.h>
 
@@ -15,6 +16,19 @@ class vtkPolyData;
 
 namespace vimlop
 {
+
+/// @brief Parameters of AirwaySurface::compute().
+struct AirwaySurfaceOptions
+{
+  /// Triangles after decimation. Default 30000, which keeps a nasal airway's
+  /// turbinates and meatuses (about 1.5 mm triangles) while closest-point
+  /// and contour queries stay fast; 0 keeps the full iso-surface.
+  int targetTriangles = 30000;
+  /// Windowed-sinc smoothing iterations. Default 20; 0 turns smoothing off.
+  int smoothingIterations = 20;
+  /// Pass band of the windowed-sinc filter, in (0, 2]; lower is smoother. Default 0.1.
+  double smoothingPassBand = 0.1;
+};
 
 /**
  * @brief The surface of an airway label volume, as the registration uses it,
@@ -33,30 +47,19 @@ namespace vimlop
  * 5. points are mapped to the CT frame with the label's direction matrix
  *    (VTK 9.1 filters ignore vtkImageData's direction, so the work is done in
  *    index-times-spacing coordinates and mapped here);
- * 6. faces are ordered so that their normals point into the air: a closed
- *    surface whose normals point into the region it encloses has a negative
- *    signed volume, so the faces are reversed when it comes out positive. This
- *    also undoes the winding flip of a reflecting direction matrix (det < 0,
- *    as for InVesalius projects).
+ * 6. faces are ordered so that their normals point into the air, by
+ *    orientIntoAir(): for the closed surface of steps 1-4 the rule every mesh
+ *    loader applies (orientNormalsIntoAir: a closed surface whose normals
+ *    point into the region it encloses has a negative signed volume, so the
+ *    faces are reversed when it comes out positive), so the surface written
+ *    here loads unchanged. This also undoes the winding flip of a reflecting
+ *    direction matrix (det < 0, as for InVesalius projects).
  *
  * The output holds triangles, cell normals and point normals (both named
  * "Normals", unit, into the air), in the CT frame (LPS mm).
  */
 struct AirwaySurface
 {
-  /// @brief Parameters of compute().
-  struct Options
-  {
-    /// Triangles after decimation. Default 30000, which keeps a nasal airway's
-    /// turbinates and meatuses (about 1.5 mm triangles) while closest-point
-    /// and contour queries stay fast; 0 keeps the full iso-surface.
-    int targetTriangles = 30000;
-    /// Windowed-sinc smoothing iterations. Default 20; 0 turns smoothing off.
-    int smoothingIterations = 20;
-    /// Pass band of the windowed-sinc filter, in (0, 2]; lower is smoother. Default 0.1.
-    double smoothingPassBand = 0.1;
-  };
-
   /// Triangles in the CT frame with normals into the air (see above).
   vtkSmartPointer<vtkPolyData> surface;
   int triangles = 0;
@@ -78,8 +81,8 @@ struct AirwaySurface
    * @throws vimlop::Error if the label is empty, not 3-D, inconsistent, or
    * the options are out of range.
    */
-  VIMLOPIMAGING_EXPORT static AirwaySurface compute(const CTVolume& label, const Options& options,
-    const ProgressCallback& progress = ProgressCallback());
+  VIMLOPIMAGING_EXPORT static AirwaySurface compute(const CTVolume& label,
+    const AirwaySurfaceOptions& options, const ProgressCallback& progress = ProgressCallback());
 
   /// @brief "surface N triangles, M vertices, encloses V cm^3, area A cm^2, E open edges, F
   /// non-manifold edges", as `vimlop segment` prints it.
@@ -87,6 +90,22 @@ struct AirwaySurface
   /// @brief What a user should know of the surface: open or non-manifold edges, and
   /// disconnected pieces over 1 % of it that were dropped (empty when none).
   VIMLOPIMAGING_EXPORT std::vector<std::string> warnings() const;
+
+  /**
+   * @brief `mesh` (CT frame) with its normals into the air of `label` (the
+   * voxels where it is non-zero).
+   *
+   * A closed surface follows the loaders' rule, orientNormalsIntoAir(), so
+   * producer and loaders cannot disagree. An open surface encloses nothing
+   * and that rule keeps its faces as they are, so they must point into the
+   * air already; the label knows the air side: the faces are reversed when
+   * more of their normals lead out of the label's voxels than into them
+   * (probed half a voxel either side of each face). compute()'s surface is
+   * closed by construction (step 1), so for it this only guards the later steps.
+   * @throws vimlop::Error for a mesh without faces.
+   */
+  VIMLOPIMAGING_EXPORT static TriangleMesh orientIntoAir(
+    const TriangleMesh& mesh, const CTVolume& label);
 };
 
 } // namespace vimlop

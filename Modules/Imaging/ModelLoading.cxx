@@ -39,8 +39,8 @@ TriangleMesh loadAirwayMesh(const std::string& path)
 TriangleMesh segmentAirwayMesh(const std::string& ctPath)
 {
   const CTVolume ct = readCTVolume(ctPath);
-  const AirwaySegmentation airway = AirwaySegmentation::compute(ct, AirwaySegmentation::Options());
-  const AirwaySurface surface = AirwaySurface::compute(airway.label, AirwaySurface::Options());
+  const AirwaySegmentation airway = AirwaySegmentation::compute(ct, AirwaySegmentationOptions());
+  const AirwaySurface surface = AirwaySurface::compute(airway.label, AirwaySurfaceOptions());
   std::cerr << "vimlop: segmented the airway of '" << ctPath << "': " << surface.triangles
             << " triangles, " << surface.enclosedVolumeMm3 / 1000.0 << " cm^3\n";
   return toTriangleMesh(surface.surface);

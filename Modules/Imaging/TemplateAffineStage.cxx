@@ -52,7 +52,7 @@ std::array<double, 3> tissueCentroid(const CTVolume& v)
 
 TemplateAffineStage TemplateAffineStage::compute(const CTVolume& templateCT,
   const CTVolume& patientCT, const CTVolume& fixedVolume, const Image* fixed, const Image* moving,
-  const TemplateRegistration::Options& options, const ProgressCallback& progress)
+  const TemplateRegistrationOptions& options, const ProgressCallback& progress)
 {
   TemplateAffineStage stage;
   auto affine = AffineTransform::New();

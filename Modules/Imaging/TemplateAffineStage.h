@@ -34,7 +34,7 @@ struct TemplateAffineStage
    */
   static TemplateAffineStage compute(const CTVolume& templateCT, const CTVolume& patientCT,
     const CTVolume& fixedVolume, const Image* fixed, const Image* moving,
-    const TemplateRegistration::Options& options, const ProgressCallback& progress);
+    const TemplateRegistrationOptions& options, const ProgressCallback& progress);
 };
 
 } // namespace vimlop::templatereg

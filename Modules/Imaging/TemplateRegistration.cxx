@@ -194,7 +194,7 @@ DisplacementField sampleField(const CTVolume& grid, const PointMap& map)
   return field;
 }
 
-void checkOptions(const TemplateRegistration::Options& o)
+void checkOptions(const TemplateRegistrationOptions& o)
 {
   auto positive = [](const std::vector<double>& v)
   { return !v.empty() && std::all_of(v.begin(), v.end(), [](double x) { return x > 0.0; }); };
@@ -234,7 +234,8 @@ void checkVolume(const CTVolume& v, const std::string& name)
 } // namespace
 
 TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
-  const CTVolume& patientCT, const Options& options, const ProgressCallback& progress)
+  const CTVolume& patientCT, const TemplateRegistrationOptions& options,
+  const ProgressCallback& progress)
 {
   checkVolume(templateCT, "template");
   checkVolume(patientCT, "patient");

@@ -14,6 +14,59 @@
 namespace vimlop
 {
 
+/// @brief The similarity measure of the SyN stage.
+enum class TemplateRegistrationMetric
+{
+  /// Mattes mutual information: intensities need not match (different
+  /// scanners, contrast). The default.
+  MattesMutualInformation,
+  /// Mean squared difference: faster; for CTs whose HU agree.
+  MeanSquares
+};
+
+/// @brief Parameters of TemplateRegistration::compute().
+struct TemplateRegistrationOptions
+{
+  /// The box to register, in the template's CT frame: x min, x max, y min,
+  /// y max, z min, z max (mm), e.g. the bounds of the template meshes and
+  /// poses. Required (a box with min > max on any axis is refused).
+  std::array<double, 6> regionMm{ 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 };
+  /// Added around `regionMm` on every side. Default 15 mm.
+  double marginMm = 15.0;
+
+  /// Affine stage: voxel size (mm) of each resolution level, coarse to
+  /// fine, reached by integer shrinking per axis. Default 4, 2 mm.
+  std::vector<double> affineLevelSpacingMm{ 4.0, 2.0 };
+  /// Affine stage: iterations per level. Default 100, 50.
+  std::vector<int> affineIterations{ 100, 50 };
+  /// Histogram bins of Mattes mutual information. Default 32.
+  int histogramBins = 32;
+  /// Fraction of the crop's voxels sampled by the affine stage (regular
+  /// sampling). Default 0.3.
+  double affineSamplingFraction = 0.3;
+
+  /// SyN stage: similarity measure. Default Mattes mutual information.
+  TemplateRegistrationMetric metric = TemplateRegistrationMetric::MattesMutualInformation;
+  /// SyN stage: voxel size (mm) of each level, coarse to fine. Default 4, 2 mm.
+  std::vector<double> synLevelSpacingMm{ 4.0, 2.0 };
+  /// SyN stage: iterations per level. Default 20, 10.
+  std::vector<int> synIterations{ 20, 10 };
+  /// SyN stage: largest update per iteration, in voxels of the level. Default 0.3.
+  double synLearningRate = 0.3;
+  /// Variance (voxels^2 of the level) of the Gaussian that smooths each
+  /// update field. Default 3 (as ANTs' usual SyN[0.1, 3, 0]).
+  double updateFieldVariance = 3.0;
+  /// Variance (voxels^2 of the level) of the Gaussian that smooths the total
+  /// field after each update. Default 0: none.
+  double totalFieldVariance = 0.0;
+
+  /// Least fraction of the template crop that must map into the patient CT
+  /// after the affine stage. Default 0.5.
+  double minimumOverlap = 0.5;
+  /// A final correlation below this adds a warning. Default 0.5.
+  double warningCorrelation = 0.5;
+};
+
 /**
  * @brief Deformable registration of a template CT to a patient CT (the
  * paper's template-to-patient step, done there with ANTs SyN), restricted to
@@ -45,59 +98,6 @@ namespace vimlop
  */
 struct TemplateRegistration
 {
-  /// @brief The similarity measure of the SyN stage.
-  enum class Metric
-  {
-    /// Mattes mutual information: intensities need not match (different
-    /// scanners, contrast). The default.
-    MattesMutualInformation,
-    /// Mean squared difference: faster; for CTs whose HU agree.
-    MeanSquares
-  };
-
-  /// @brief Parameters of compute().
-  struct Options
-  {
-    /// The box to register, in the template's CT frame: x min, x max, y min,
-    /// y max, z min, z max (mm), e.g. the bounds of the template meshes and
-    /// poses. Required (a box with min > max on any axis is refused).
-    std::array<double, 6> regionMm{ 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 };
-    /// Added around `regionMm` on every side. Default 15 mm.
-    double marginMm = 15.0;
-
-    /// Affine stage: voxel size (mm) of each resolution level, coarse to
-    /// fine, reached by integer shrinking per axis. Default 4, 2 mm.
-    std::vector<double> affineLevelSpacingMm{ 4.0, 2.0 };
-    /// Affine stage: iterations per level. Default 100, 50.
-    std::vector<int> affineIterations{ 100, 50 };
-    /// Histogram bins of Mattes mutual information. Default 32.
-    int histogramBins = 32;
-    /// Fraction of the crop's voxels sampled by the affine stage (regular
-    /// sampling). Default 0.3.
-    double affineSamplingFraction = 0.3;
-
-    /// SyN stage: similarity measure. Default Mattes mutual information.
-    Metric metric = Metric::MattesMutualInformation;
-    /// SyN stage: voxel size (mm) of each level, coarse to fine. Default 4, 2 mm.
-    std::vector<double> synLevelSpacingMm{ 4.0, 2.0 };
-    /// SyN stage: iterations per level. Default 20, 10.
-    std::vector<int> synIterations{ 20, 10 };
-    /// SyN stage: largest update per iteration, in voxels of the level. Default 0.3.
-    double synLearningRate = 0.3;
-    /// Variance (voxels^2 of the level) of the Gaussian that smooths each
-    /// update field. Default 3 (as ANTs' usual SyN[0.1, 3, 0]).
-    double updateFieldVariance = 3.0;
-    /// Variance (voxels^2 of the level) of the Gaussian that smooths the total
-    /// field after each update. Default 0: none.
-    double totalFieldVariance = 0.0;
-
-    /// Least fraction of the template crop that must map into the patient CT
-    /// after the affine stage. Default 0.5.
-    double minimumOverlap = 0.5;
-    /// A final correlation below this adds a warning. Default 0.5.
-    double warningCorrelation = 0.5;
-  };
-
   /// Template to patient: a template point x goes to x + u(x) in the patient's
   /// frame. Sampled on the template crop's grid (its voxels).
   DisplacementField templateToPatient;
@@ -132,7 +132,7 @@ struct TemplateRegistration
    * range, or the two CTs do not overlap after the affine stage.
    */
   VIMLOPIMAGING_EXPORT static TemplateRegistration compute(const CTVolume& templateCT,
-    const CTVolume& patientCT, const Options& options,
+    const CTVolume& patientCT, const TemplateRegistrationOptions& options,
     const ProgressCallback& progress = ProgressCallback());
 };
 

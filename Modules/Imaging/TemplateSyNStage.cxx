@@ -16,7 +16,7 @@ namespace vimlop::templatereg
 
 TemplateSyNStage TemplateSyNStage::compute(const CTVolume& fixedVolume, const Image* fixed,
   const Image* moving, const AffineTransform* affine, double overlapFraction,
-  const TemplateRegistration::Options& options, const ProgressCallback& progress)
+  const TemplateRegistrationOptions& options, const ProgressCallback& progress)
 {
   using SyN = itk::SyNImageRegistrationMethod<Image, Image, FieldTransform>;
   auto syn = SyN::New();
@@ -35,7 +35,7 @@ TemplateSyNStage TemplateSyNStage::compute(const CTVolume& fixedVolume, const Im
   output->SetDisplacementField(zero);
   syn->SetInitialTransform(output);
   syn->InPlaceOn();
-  if (options.metric == TemplateRegistration::Metric::MeanSquares)
+  if (options.metric == TemplateRegistrationMetric::MeanSquares)
   {
     syn->SetMetric(itk::MeanSquaresImageToImageMetricv4<Image, Image>::New());
   }

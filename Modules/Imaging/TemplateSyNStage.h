@@ -33,7 +33,7 @@ struct TemplateSyNStage
    */
   static TemplateSyNStage compute(const CTVolume& fixedVolume, const Image* fixed,
     const Image* moving, const AffineTransform* affine, double overlapFraction,
-    const TemplateRegistration::Options& options, const ProgressCallback& progress);
+    const TemplateRegistrationOptions& options, const ProgressCallback& progress);
 };
 
 } // namespace vimlop::templatereg

@@ -147,7 +147,7 @@ TemplateWarpJobReport runTemplateWarpJob(const TemplateWarpJobOptions& options,
     grow(region, pose.cameraToWorld.centre.data());
   }
   report.regionMm = region;
-  TemplateRegistration::Options registration;
+  TemplateRegistrationOptions registration;
   registration.regionMm = region;
   registration.marginMm = options.marginMm;
   report.registration = TemplateRegistration::compute(templateCT, patientCT, registration,

@@ -117,7 +117,7 @@ void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
       *log << "vimlop register: report\n";
     }
     RegistrationReport::write(
-      &record, folder, {}, (fs::path(folder) / "report").string(), RegistrationReport::Options());
+      &record, folder, {}, (fs::path(folder) / "report").string(), RegistrationReportOptions());
   }
 }
 

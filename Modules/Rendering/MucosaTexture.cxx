@@ -50,11 +50,11 @@ double smoothstep(double edge0, double edge1, double x)
 } // namespace
 
 MucosaTexture::MucosaTexture()
-  : MucosaTexture(Options())
+  : MucosaTexture(MucosaTextureOptions())
 {
 }
 
-MucosaTexture::MucosaTexture(const Options& options)
+MucosaTexture::MucosaTexture(const MucosaTextureOptions& options)
   : Opts(options)
 {
 }
@@ -105,7 +105,7 @@ double MucosaTexture::fractal(const Eigen::Vector3d& p, int octaves, std::uint64
 
 Eigen::Vector3d MucosaTexture::albedo(const Eigen::Vector3d& pointMm) const
 {
-  const Options& o = this->Opts;
+  const MucosaTextureOptions& o = this->Opts;
   Eigen::Vector3d colour = o.baseColour;
 
   // Slow variation: brightness and a shift between pink and a paler yellow.

@@ -10,6 +10,31 @@
 namespace vimlop
 {
 
+/// @brief Appearance parameters; lengths in mm (CT frame).
+struct MucosaTextureOptions
+{
+  /// Seed of the noise lattices (default 1).
+  std::uint64_t seed = 1;
+  /// Base albedo, linear RGB in [0, 1] (default a pink-red).
+  Eigen::Vector3d baseColour = Eigen::Vector3d(0.85, 0.42, 0.36);
+  /// Size of the slow colour variation, mm (default 4).
+  double patchScaleMm = 4.0;
+  /// Relative amplitude of the slow variation of all channels (default 0.12).
+  double patchAmplitude = 0.12;
+  /// Size of the fine mottling that gives features to track, mm (default 0.7).
+  double mottleScaleMm = 0.7;
+  /// Relative amplitude of the mottling, per channel (default 0.08, 0.3,
+  /// 0.25): it comes from blood in the mucosa, like the vessels.
+  Eigen::Vector3d mottleAmplitude = Eigen::Vector3d(0.08, 0.3, 0.25);
+  /// Spacing of the large and small vessel networks, mm (defaults 3 and 1.2).
+  double largeVesselScaleMm = 3.0;
+  double smallVesselScaleMm = 1.2;
+  /// Half-width of a vessel in noise units (default 0.04: about 0.1 mm for the large ones).
+  double vesselWidth = 0.04;
+  /// Fraction of the light a vessel centre lets through, per channel (default 0.85, 0.45, 0.5).
+  Eigen::Vector3d vesselTransmission = Eigen::Vector3d(0.85, 0.45, 0.5);
+};
+
 /**
  * @brief A procedural, solid (3-D) texture that looks like nasal mucosa: a
  * pink-red base with slow colour variation, fine mottling and a network of
@@ -27,35 +52,10 @@ namespace vimlop
 class VIMLOPRENDERING_EXPORT MucosaTexture
 {
 public:
-  /// @brief Appearance parameters; lengths in mm (CT frame).
-  struct Options
-  {
-    /// Seed of the noise lattices (default 1).
-    std::uint64_t seed = 1;
-    /// Base albedo, linear RGB in [0, 1] (default a pink-red).
-    Eigen::Vector3d baseColour = Eigen::Vector3d(0.85, 0.42, 0.36);
-    /// Size of the slow colour variation, mm (default 4).
-    double patchScaleMm = 4.0;
-    /// Relative amplitude of the slow variation of all channels (default 0.12).
-    double patchAmplitude = 0.12;
-    /// Size of the fine mottling that gives features to track, mm (default 0.7).
-    double mottleScaleMm = 0.7;
-    /// Relative amplitude of the mottling, per channel (default 0.08, 0.3,
-    /// 0.25): it comes from blood in the mucosa, like the vessels.
-    Eigen::Vector3d mottleAmplitude = Eigen::Vector3d(0.08, 0.3, 0.25);
-    /// Spacing of the large and small vessel networks, mm (defaults 3 and 1.2).
-    double largeVesselScaleMm = 3.0;
-    double smallVesselScaleMm = 1.2;
-    /// Half-width of a vessel in noise units (default 0.04: about 0.1 mm for the large ones).
-    double vesselWidth = 0.04;
-    /// Fraction of the light a vessel centre lets through, per channel (default 0.85, 0.45, 0.5).
-    Eigen::Vector3d vesselTransmission = Eigen::Vector3d(0.85, 0.45, 0.5);
-  };
-
   MucosaTexture();
-  explicit MucosaTexture(const Options& options);
+  explicit MucosaTexture(const MucosaTextureOptions& options);
 
-  const Options& options() const { return this->Opts; }
+  const MucosaTextureOptions& options() const { return this->Opts; }
 
   /// @brief Albedo (linear RGB, each in [0, 1]) at `pointMm` (CT frame).
   Eigen::Vector3d albedo(const Eigen::Vector3d& pointMm) const;
@@ -70,7 +70,7 @@ private:
   /// Sum of `octaves` noise octaves (each half the size and amplitude of the last), about [-1, 1].
   double fractal(const Eigen::Vector3d& p, int octaves, std::uint64_t lattice) const;
 
-  Options Opts;
+  MucosaTextureOptions Opts;
 };
 
 } // namespace vimlop

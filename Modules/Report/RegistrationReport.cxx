@@ -175,7 +175,7 @@ ChartSpec::Series series(const std::string& name, std::vector<double> x, std::ve
 }
 
 vtkSmartPointer<vtkImageData> iterationCharts(
-  const RegistrationRecord& record, const RegistrationReport::Options& options)
+  const RegistrationRecord& record, const RegistrationReportOptions& options)
 {
   const std::vector<IterationRecord>& history = record.result.history;
   std::vector<double> iteration;
@@ -245,7 +245,7 @@ vtkSmartPointer<vtkImageData> iterationCharts(
 }
 
 vtkSmartPointer<vtkImageData> perturbationCharts(
-  const std::vector<PerturbationRun>& runs, const RegistrationReport::Options& options)
+  const std::vector<PerturbationRun>& runs, const RegistrationReportOptions& options)
 {
   std::vector<double> okOffset, okError, okContour, badOffset, badError, badContour;
   for (const PerturbationRun& run : runs)
@@ -318,7 +318,7 @@ void writeText(const std::string& text, const fs::path& path)
 
 RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
   const std::string& resultFolder, const std::vector<PerturbationRun>& runs,
-  const std::string& outFolder, const Options& options)
+  const std::string& outFolder, const RegistrationReportOptions& options)
 {
   if (!record && runs.empty())
   {

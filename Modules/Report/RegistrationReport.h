@@ -13,6 +13,17 @@
 namespace vimlop
 {
 
+/// @brief Picture sizes, pixels.
+struct RegistrationReportOptions
+{
+  int sceneWidthPx = 800;  ///< default 800
+  int sceneHeightPx = 600; ///< default 600
+  int chartWidthPx = 520;  ///< per chart (default 520)
+  int chartHeightPx = 380; ///< default 380
+  /// At most this many frames get an overlay, evenly spread (default 0: every frame).
+  int maxOverlayFrames = 0;
+};
+
 /**
  * @brief The rendered report of a registration (and of a perturbation study),
  * as `vimlop report` writes it, and the numbers it holds.
@@ -39,17 +50,6 @@ namespace vimlop
 class VIMLOPREPORT_EXPORT RegistrationReport
 {
 public:
-  /// @brief Picture sizes, pixels.
-  struct Options
-  {
-    int sceneWidthPx = 800;  ///< default 800
-    int sceneHeightPx = 600; ///< default 600
-    int chartWidthPx = 520;  ///< per chart (default 520)
-    int chartHeightPx = 380; ///< default 380
-    /// At most this many frames get an overlay, evenly spread (default 0: every frame).
-    int maxOverlayFrames = 0;
-  };
-
   /// @brief The numbers of one frame.
   struct Frame
   {
@@ -73,7 +73,8 @@ public:
    * be read or does not fit its intrinsics, or a file that cannot be written.
    */
   static RegistrationReport write(const RegistrationRecord* record, const std::string& resultFolder,
-    const std::vector<PerturbationRun>& runs, const std::string& outFolder, const Options& options);
+    const std::vector<PerturbationRun>& runs, const std::string& outFolder,
+    const RegistrationReportOptions& options);
 
   std::vector<Frame> frames;
   /// Mean over frames of the contour errors, pixels (0 without frames).

@@ -60,7 +60,7 @@ void evaluate(const State& x, const std::vector<PinholeCamera>& k,
 BundleAdjustment::Summary BundleAdjustment::adjust(std::vector<CameraPose>& cameras,
   std::vector<Eigen::Vector3d>& points, const std::vector<PinholeCamera>& intrinsics,
   const std::vector<Observation>& observations, const std::vector<int>& fixedCameras,
-  const Options& options)
+  const BundleAdjustmentOptions& options)
 {
   const int m = static_cast<int>(cameras.size());
   const int n = static_cast<int>(points.size());

@@ -11,6 +11,23 @@
 namespace vimlop
 {
 
+/// @brief Solver settings.
+struct BundleAdjustmentOptions
+{
+  int maxIterations = 50;
+  /// Residuals beyond this get Huber weights, pixels (default 1.5).
+  double huberPx = 1.5;
+  /// Stop when the cost decreases by less than this fraction (default 1e-8).
+  double relativeTolerance = 1e-8;
+  /// Initial Levenberg-Marquardt damping, relative to the diagonal (default 1e-4).
+  double initialDamping = 1e-4;
+  /// A camera whose largest translation component (of the world-to-camera
+  /// translation) is held as well: with a fixed camera at the world origin
+  /// this fixes the scale, the last freedom of the gauge (default -1: none;
+  /// the damping then holds the scale).
+  int scaleCamera = -1;
+};
+
 /**
  * @brief Bundle adjustment: camera poses and 3-D points that minimise the
  * robust sum of squared reprojection errors, with fixed intrinsics.
@@ -33,23 +50,6 @@ namespace vimlop
 class BundleAdjustment
 {
 public:
-  /// @brief Solver settings.
-  struct Options
-  {
-    int maxIterations = 50;
-    /// Residuals beyond this get Huber weights, pixels (default 1.5).
-    double huberPx = 1.5;
-    /// Stop when the cost decreases by less than this fraction (default 1e-8).
-    double relativeTolerance = 1e-8;
-    /// Initial Levenberg-Marquardt damping, relative to the diagonal (default 1e-4).
-    double initialDamping = 1e-4;
-    /// A camera whose largest translation component (of the world-to-camera
-    /// translation) is held as well: with a fixed camera at the world origin
-    /// this fixes the scale, the last freedom of the gauge (default -1: none;
-    /// the damping then holds the scale).
-    int scaleCamera = -1;
-  };
-
   /// @brief One measurement: point `point` seen by camera `camera` at `pixel`.
   struct Observation
   {
@@ -76,14 +76,15 @@ public:
    */
   static Summary adjust(std::vector<CameraPose>& cameras, std::vector<Eigen::Vector3d>& points,
     const std::vector<PinholeCamera>& intrinsics, const std::vector<Observation>& observations,
-    const std::vector<int>& fixedCameras, const Options& options);
+    const std::vector<int>& fixedCameras, const BundleAdjustmentOptions& options);
 
   /// @brief The same with the default options.
   static Summary adjust(std::vector<CameraPose>& cameras, std::vector<Eigen::Vector3d>& points,
     const std::vector<PinholeCamera>& intrinsics, const std::vector<Observation>& observations,
     const std::vector<int>& fixedCameras)
   {
-    return adjust(cameras, points, intrinsics, observations, fixedCameras, Options());
+    return adjust(
+      cameras, points, intrinsics, observations, fixedCameras, BundleAdjustmentOptions());
   }
 };
 

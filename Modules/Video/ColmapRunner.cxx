@@ -28,11 +28,11 @@ std::string quote(const std::string& s)
 } // namespace
 
 ColmapRunner::ColmapRunner()
-  : ColmapRunner(Options())
+  : ColmapRunner(ColmapRunnerOptions())
 {
 }
 
-ColmapRunner::ColmapRunner(const Options& options)
+ColmapRunner::ColmapRunner(const ColmapRunnerOptions& options)
   : Opts(options)
 {
 }

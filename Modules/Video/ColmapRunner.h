@@ -8,6 +8,22 @@
 namespace vimlop
 {
 
+/// @brief The program and how hard it works.
+struct ColmapRunnerOptions
+{
+  /// The COLMAP executable (default "colmap", looked up on the PATH).
+  std::string executable = "colmap";
+  /// Threads per step (default 2; -1 for all cores).
+  int threads = 2;
+  /// Least triangulation angle of COLMAP's initial pair, degrees (default
+  /// 4; COLMAP's 16 suits wide-baseline photographs, not a scope that
+  /// moves a few millimetres).
+  double initialMinAngleDeg = 4.0;
+  /// SIFT peak threshold (default 0.0017; COLMAP's 0.0067 finds a few dozen
+  /// features on low-contrast mucosa, this about as many as the built-in SfM).
+  double siftPeakThreshold = 0.0017;
+};
+
 /**
  * @brief Runs the `colmap` program (COLMAP 3.x, e.g. Debian's package) on a
  * folder of frames: CPU SIFT extraction with the given pinhole intrinsics
@@ -18,24 +34,8 @@ namespace vimlop
 class ColmapRunner
 {
 public:
-  /// @brief The program and how hard it works.
-  struct Options
-  {
-    /// The COLMAP executable (default "colmap", looked up on the PATH).
-    std::string executable = "colmap";
-    /// Threads per step (default 2; -1 for all cores).
-    int threads = 2;
-    /// Least triangulation angle of COLMAP's initial pair, degrees (default
-    /// 4; COLMAP's 16 suits wide-baseline photographs, not a scope that
-    /// moves a few millimetres).
-    double initialMinAngleDeg = 4.0;
-    /// SIFT peak threshold (default 0.0017; COLMAP's 0.0067 finds a few dozen
-    /// features on low-contrast mucosa, this about as many as the built-in SfM).
-    double siftPeakThreshold = 0.0017;
-  };
-
   ColmapRunner();
-  explicit ColmapRunner(const Options& options);
+  explicit ColmapRunner(const ColmapRunnerOptions& options);
 
   /// @brief True when the executable runs (`colmap help` succeeds).
   bool isAvailable() const;
@@ -54,7 +54,7 @@ public:
   static std::string textModelFolder(const std::string& workFolder);
 
 private:
-  Options Opts;
+  ColmapRunnerOptions Opts;
 };
 
 } // namespace vimlop

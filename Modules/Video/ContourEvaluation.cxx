@@ -11,11 +11,11 @@ namespace vimlop
 {
 
 ContourEvaluation::ContourEvaluation()
-  : ContourEvaluation(Options())
+  : ContourEvaluation(ContourEvaluationOptions())
 {
 }
 
-ContourEvaluation::ContourEvaluation(const Options& options)
+ContourEvaluation::ContourEvaluation(const ContourEvaluationOptions& options)
   : Opts(options)
 {
 }

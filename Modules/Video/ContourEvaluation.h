@@ -10,6 +10,19 @@
 namespace vimlop
 {
 
+/// @brief Matching tolerance and the visibility rule of the truth.
+struct ContourEvaluationOptions
+{
+  /// Distance within which a detection matches the truth, pixels (default 2).
+  double tolerancePx = 2.0;
+  /// Least relative depth step for a true sample to count for recall (default 0.15).
+  double minDepthGap = 0.15;
+  /// Distance along the normal at which the far side's depth is read, pixels (default 3).
+  double depthProbePx = 3.0;
+  /// True samples this close to the border are left out of recall, pixels (default 5).
+  double borderPx = 5.0;
+};
+
 /**
  * @brief Scores of detected contour points against the true occluding
  * contours of a simulated frame, pooled over any number of frames.
@@ -32,21 +45,8 @@ namespace vimlop
 class ContourEvaluation
 {
 public:
-  /// @brief Matching tolerance and the visibility rule of the truth.
-  struct Options
-  {
-    /// Distance within which a detection matches the truth, pixels (default 2).
-    double tolerancePx = 2.0;
-    /// Least relative depth step for a true sample to count for recall (default 0.15).
-    double minDepthGap = 0.15;
-    /// Distance along the normal at which the far side's depth is read, pixels (default 3).
-    double depthProbePx = 3.0;
-    /// True samples this close to the border are left out of recall, pixels (default 5).
-    double borderPx = 5.0;
-  };
-
   ContourEvaluation();
-  explicit ContourEvaluation(const Options& options);
+  explicit ContourEvaluation(const ContourEvaluationOptions& options);
 
   /**
    * @brief Adds one frame: its detected points, the visible true samples
@@ -72,7 +72,7 @@ public:
   int truthFound() const { return this->Found; }
 
 private:
-  Options Opts;
+  ContourEvaluationOptions Opts;
   int Detected = 0;
   int Correct = 0;
   int Truth = 0;

@@ -43,11 +43,11 @@ void gradient(const cv::Mat& image, cv::Mat& gx, cv::Mat& gy, cv::Mat& magnitude
 } // namespace
 
 OccludingContourDetector::OccludingContourDetector()
-  : OccludingContourDetector(Options())
+  : OccludingContourDetector(ContourDetectionOptions())
 {
 }
 
-OccludingContourDetector::OccludingContourDetector(const Options& options)
+OccludingContourDetector::OccludingContourDetector(const ContourDetectionOptions& options)
   : Opts(options)
 {
   if (!(options.smoothingSigmaPx > 0.0) || !(options.lowThreshold > 0.0) ||
@@ -61,7 +61,7 @@ OccludingContourDetector::OccludingContourDetector(const Options& options)
 
 std::vector<ContourPoint> OccludingContourDetector::detect(const cv::Mat& frame) const
 {
-  const Options& o = this->Opts;
+  const ContourDetectionOptions& o = this->Opts;
   if (frame.empty())
   {
     throw Error("contour detector: the frame is empty");

@@ -40,13 +40,10 @@ namespace vimlop
 class OccludingContourDetector
 {
 public:
-  /// @brief Parameters (see ContourDetectionOptions).
-  using Options = ContourDetectionOptions;
-
   OccludingContourDetector();
-  explicit OccludingContourDetector(const Options& options);
+  explicit OccludingContourDetector(const ContourDetectionOptions& options);
 
-  const Options& options() const { return this->Opts; }
+  const ContourDetectionOptions& options() const { return this->Opts; }
 
   /**
    * @brief The oriented contour points of an 8-bit BGR (or grey) frame.
@@ -62,7 +59,7 @@ public:
   static std::vector<ContourPoint> thin(const std::vector<ContourPoint>& points, double spacingPx);
 
 private:
-  Options Opts;
+  ContourDetectionOptions Opts;
 };
 
 } // namespace vimlop

@@ -9,7 +9,7 @@
 namespace vimlop::detail
 {
 
-SfmReconstructor::SfmReconstructor(const StructureFromMotion::Options& options,
+SfmReconstructor::SfmReconstructor(const StructureFromMotionOptions& options,
   const std::vector<cv::Mat>& frames, const PinholeCamera& k, std::ostream* log)
   : O(options)
   , Frames(frames)
@@ -58,7 +58,7 @@ void SfmReconstructor::adjust(int iterations)
       observations.push_back({ cameraOf[frame], static_cast<int>(p), pixel });
     }
   }
-  BundleAdjustment::Options options;
+  BundleAdjustmentOptions options;
   options.maxIterations = iterations;
   options.scaleCamera = cameraOf[this->ScaleCamera];
   BundleAdjustment::adjust(

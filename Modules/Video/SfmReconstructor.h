@@ -35,7 +35,7 @@ namespace vimlop::detail
 class SfmReconstructor
 {
 public:
-  SfmReconstructor(const StructureFromMotion::Options& options, const std::vector<cv::Mat>& frames,
+  SfmReconstructor(const StructureFromMotionOptions& options, const std::vector<cv::Mat>& frames,
     const PinholeCamera& k, std::ostream* log);
 
   SfmReconstruction run(const std::vector<std::string>& names);
@@ -81,7 +81,7 @@ private:
   void adjust(int iterations);
   SfmReconstruction result(const std::vector<std::string>& names);
 
-  const StructureFromMotion::Options& O;
+  const StructureFromMotionOptions& O;
   const std::vector<cv::Mat>& Frames;
   PinholeCamera K;
   std::ostream* Log;

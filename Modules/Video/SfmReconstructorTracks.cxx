@@ -91,7 +91,7 @@ void SfmReconstructor::detect()
   for (const cv::Mat& frame : this->Frames)
   {
     cv::Mat grey;
-    if (frame.channels() == 3 && this->O.channel == StructureFromMotion::Channel::Green)
+    if (frame.channels() == 3 && this->O.channel == StructureFromMotionChannel::Green)
     {
       cv::extractChannel(frame, grey, 1);
     }

@@ -7,11 +7,11 @@ namespace vimlop
 {
 
 StructureFromMotion::StructureFromMotion()
-  : StructureFromMotion(Options())
+  : StructureFromMotion(StructureFromMotionOptions())
 {
 }
 
-StructureFromMotion::StructureFromMotion(const Options& options)
+StructureFromMotion::StructureFromMotion(const StructureFromMotionOptions& options)
   : Opts(options)
 {
 }

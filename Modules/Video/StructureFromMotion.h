@@ -13,6 +13,52 @@
 namespace vimlop
 {
 
+/// @brief The image channel features are found in.
+enum class StructureFromMotionChannel
+{
+  /// Luminance (OpenCV's BGR to grey).
+  Luminance,
+  /// Green: the blood-borne texture of mucosa (vessels, mottling) has its
+  /// highest contrast there, since haemoglobin absorbs green most.
+  Green
+};
+
+/// @brief Parameters; pixels and degrees.
+struct StructureFromMotionOptions
+{
+  /// Channel of the SIFT features (default green).
+  StructureFromMotionChannel channel = StructureFromMotionChannel::Green;
+  /// SIFT: at most this many features per frame (default 4000; 0: all).
+  int maxFeatures = 4000;
+  /// SIFT contrast threshold (default 0.005; OpenCV's 0.04 finds a few
+  /// dozen features on low-contrast mucosa).
+  double contrastThreshold = 0.005;
+  /// Frames with fewer features than this are left out (default 40).
+  int minFeatures = 40;
+  /// Each frame is matched with the next `matchWindow` frames (default 5).
+  int matchWindow = 5;
+  /// Lowe's ratio test (default 0.8).
+  double ratio = 0.8;
+  /// RANSAC threshold of the essential matrix and of PnP, pixels (defaults 1 and 2).
+  double essentialThresholdPx = 1.0;
+  double pnpThresholdPx = 2.0;
+  /// Least verified matches of a pair of frames (default 30).
+  int minPairMatches = 30;
+  /// Pairs whose matches move less than this (median) are not used: no
+  /// epipolar geometry, pixels (default 0.5).
+  double minMotionPx = 0.5;
+  /// Least median triangulation angle of the initial pair, degrees (default 2).
+  double minInitialAngleDeg = 2.0;
+  /// Least ray angle for a new point, degrees (default 1.5).
+  double minTriangulationAngleDeg = 1.5;
+  /// Least 2-D to 3-D correspondences (PnP inliers) to register a frame (default 20).
+  int minRegistrationPoints = 20;
+  /// Observations with a larger reprojection error are removed, pixels (default 2.5).
+  double maxReprojectionErrorPx = 2.5;
+  /// Points seen in fewer frames are removed at the end (default 3).
+  int minTrackLength = 3;
+};
+
 /**
  * @brief Incremental structure from motion for short endoscopic sequences
  * (about 30 frames).
@@ -37,56 +83,10 @@ namespace vimlop
 class StructureFromMotion
 {
 public:
-  /// @brief The image channel features are found in.
-  enum class Channel
-  {
-    /// Luminance (OpenCV's BGR to grey).
-    Luminance,
-    /// Green: the blood-borne texture of mucosa (vessels, mottling) has its
-    /// highest contrast there, since haemoglobin absorbs green most.
-    Green
-  };
-
-  /// @brief Parameters; pixels and degrees.
-  struct Options
-  {
-    /// Channel of the SIFT features (default green).
-    Channel channel = Channel::Green;
-    /// SIFT: at most this many features per frame (default 4000; 0: all).
-    int maxFeatures = 4000;
-    /// SIFT contrast threshold (default 0.005; OpenCV's 0.04 finds a few
-    /// dozen features on low-contrast mucosa).
-    double contrastThreshold = 0.005;
-    /// Frames with fewer features than this are left out (default 40).
-    int minFeatures = 40;
-    /// Each frame is matched with the next `matchWindow` frames (default 5).
-    int matchWindow = 5;
-    /// Lowe's ratio test (default 0.8).
-    double ratio = 0.8;
-    /// RANSAC threshold of the essential matrix and of PnP, pixels (defaults 1 and 2).
-    double essentialThresholdPx = 1.0;
-    double pnpThresholdPx = 2.0;
-    /// Least verified matches of a pair of frames (default 30).
-    int minPairMatches = 30;
-    /// Pairs whose matches move less than this (median) are not used: no
-    /// epipolar geometry, pixels (default 0.5).
-    double minMotionPx = 0.5;
-    /// Least median triangulation angle of the initial pair, degrees (default 2).
-    double minInitialAngleDeg = 2.0;
-    /// Least ray angle for a new point, degrees (default 1.5).
-    double minTriangulationAngleDeg = 1.5;
-    /// Least 2-D to 3-D correspondences (PnP inliers) to register a frame (default 20).
-    int minRegistrationPoints = 20;
-    /// Observations with a larger reprojection error are removed, pixels (default 2.5).
-    double maxReprojectionErrorPx = 2.5;
-    /// Points seen in fewer frames are removed at the end (default 3).
-    int minTrackLength = 3;
-  };
-
   StructureFromMotion();
-  explicit StructureFromMotion(const Options& options);
+  explicit StructureFromMotion(const StructureFromMotionOptions& options);
 
-  const Options& options() const { return this->Opts; }
+  const StructureFromMotionOptions& options() const { return this->Opts; }
 
   /**
    * @brief Reconstructs `frames` (8-bit BGR or grey, one size) taken with
@@ -103,7 +103,7 @@ public:
     std::ostream* log = nullptr) const;
 
 private:
-  Options Opts;
+  StructureFromMotionOptions Opts;
 };
 
 } // namespace vimlop

@@ -66,7 +66,7 @@ std::vector<std::array<double, 3>> readOutputPoints(const std::string& path)
 
 } // namespace
 
-bool ElastixRegistration::available(const Options& options)
+bool ElastixRegistration::available(const ElastixRegistrationOptions& options)
 {
   const std::string quiet = " > /dev/null 2>&1";
   return std::system((quoted(options.elastix) + " --version" + quiet).c_str()) == 0 &&
@@ -74,7 +74,7 @@ bool ElastixRegistration::available(const Options& options)
 }
 
 ElastixRegistration ElastixRegistration::compute(const CTVolume& fixed, const CTVolume& moving,
-  const std::vector<std::array<double, 3>>& fixedPoints, const Options& options)
+  const std::vector<std::array<double, 3>>& fixedPoints, const ElastixRegistrationOptions& options)
 {
   if (options.parameterFiles.empty() || options.workDirectory.empty())
   {

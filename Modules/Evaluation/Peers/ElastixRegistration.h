@@ -10,6 +10,20 @@
 namespace vimlop
 {
 
+/// @brief How to run elastix.
+struct ElastixRegistrationOptions
+{
+  /// elastix parameter files, applied in order (e.g. affine then B-spline). Required.
+  std::vector<std::string> parameterFiles;
+  /// Folder for the images, points, logs and results; created if missing. Required.
+  std::string workDirectory;
+  /// The programs: names looked up on PATH, or paths. Defaults "elastix", "transformix".
+  std::string elastix = "elastix";
+  std::string transformix = "transformix";
+  /// Threads for elastix; 0 lets it choose. Default 0.
+  int threads = 0;
+};
+
 /**
  * @brief Registration by the elastix program (a peer for comparisons,
  * DESIGN section 8): runs `elastix` on a fixed and a moving CT with the
@@ -24,20 +38,6 @@ namespace vimlop
  */
 struct ElastixRegistration
 {
-  /// @brief How to run elastix.
-  struct Options
-  {
-    /// elastix parameter files, applied in order (e.g. affine then B-spline). Required.
-    std::vector<std::string> parameterFiles;
-    /// Folder for the images, points, logs and results; created if missing. Required.
-    std::string workDirectory;
-    /// The programs: names looked up on PATH, or paths. Defaults "elastix", "transformix".
-    std::string elastix = "elastix";
-    std::string transformix = "transformix";
-    /// Threads for elastix; 0 lets it choose. Default 0.
-    int threads = 0;
-  };
-
   /// The fixed points carried into the moving CT's frame (mm), in order.
   std::vector<std::array<double, 3>> movingPoints;
   /// Wall-clock time of the elastix run (s), and of the transformix run.
@@ -45,7 +45,7 @@ struct ElastixRegistration
   double transformSeconds = 0.0;
 
   /// @brief True when both programs can be run (`--version` succeeds).
-  static bool available(const Options& options);
+  static bool available(const ElastixRegistrationOptions& options);
 
   /**
    * @brief Registers `fixed` to `moving` and carries `fixedPoints` (fixed CT frame, mm) over.
@@ -53,7 +53,8 @@ struct ElastixRegistration
    * file), a parameter file is missing, or the output cannot be read.
    */
   static ElastixRegistration compute(const CTVolume& fixed, const CTVolume& moving,
-    const std::vector<std::array<double, 3>>& fixedPoints, const Options& options);
+    const std::vector<std::array<double, 3>>& fixedPoints,
+    const ElastixRegistrationOptions& options);
 };
 
 } // namespace vimlop

@@ -44,7 +44,7 @@ std::vector<Point> airwayPoints()
 TEST(SyntheticDeformation, HasTheRequestedSizeAndAnExactInverse)
 {
   const CTVolume ct = HeadPhantom::make();
-  SyntheticDeformation::Options options;
+  SyntheticDeformationOptions options;
   options.maxDisplacementMm = 3.0;
   options.controlSpacingMm = 16.0;
   options.seed = 5;
@@ -91,7 +91,7 @@ TEST(SyntheticDeformation, HasTheRequestedSizeAndAnExactInverse)
 TEST(SyntheticDeformation, MakesThePatientByResamplingThroughTheField)
 {
   const CTVolume ct = HeadPhantom::make();
-  SyntheticDeformation::Options options;
+  SyntheticDeformationOptions options;
   options.maxDisplacementMm = 2.5;
   options.controlSpacingMm = 20.0;
   const SyntheticDeformation d(ct, options);
@@ -122,14 +122,14 @@ TEST(SyntheticDeformation, MakesThePatientByResamplingThroughTheField)
 TEST(TemplateRegistration, RecoversAKnownDeformationOfThePhantom)
 {
   const CTVolume ct = HeadPhantom::make();
-  SyntheticDeformation::Options deformation;
+  SyntheticDeformationOptions deformation;
   deformation.maxDisplacementMm = 3.0;
   deformation.controlSpacingMm = 24.0;
   deformation.seed = 3;
   const SyntheticDeformation d(ct, deformation);
   const CTVolume patient = d.makePatient(ct, 10.0, 11);
 
-  TemplateRegistration::Options options;
+  TemplateRegistrationOptions options;
   const auto& box = HeadPhantom::kAirwayBox;
   options.regionMm = { double(box[0]), double(box[1]), double(box[2]), double(box[3]),
     double(box[4]), double(box[5]) };

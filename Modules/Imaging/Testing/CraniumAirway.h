@@ -29,8 +29,8 @@ inline const std::string& craniumPath()
 inline TriangleMesh craniumAirwayMesh()
 {
   const CTVolume ct = readCTVolume(craniumPath());
-  const AirwaySegmentation airway = AirwaySegmentation::compute(ct, AirwaySegmentation::Options());
-  const AirwaySurface surface = AirwaySurface::compute(airway.label, AirwaySurface::Options());
+  const AirwaySegmentation airway = AirwaySegmentation::compute(ct, AirwaySegmentationOptions());
+  const AirwaySurface surface = AirwaySurface::compute(airway.label, AirwaySurfaceOptions());
   return toTriangleMesh(surface.surface);
 }
 

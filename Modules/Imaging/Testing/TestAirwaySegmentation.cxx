@@ -12,7 +12,7 @@ using fixtures::HeadPhantom;
 namespace
 {
 
-std::string messageOf(const CTVolume& ct, const AirwaySegmentation::Options& options)
+std::string messageOf(const CTVolume& ct, const AirwaySegmentationOptions& options)
 {
   try
   {
@@ -58,7 +58,7 @@ TEST(AirwaySegmentation, ChoosesTheLargestAirSpaceInsideTheHead)
   int calls = 0;
   double last = -1.0;
   bool monotone = true;
-  const AirwaySegmentation s = AirwaySegmentation::compute(ct, AirwaySegmentation::Options(),
+  const AirwaySegmentation s = AirwaySegmentation::compute(ct, AirwaySegmentationOptions(),
     [&](double fraction, const std::string&)
     {
       monotone = monotone && fraction >= last;
@@ -104,7 +104,7 @@ TEST(AirwaySegmentation, ClosingTheHeadMaskCanEncloseAirAtTheHeadRest)
 {
   // Why the closing is off by default: it joins the head and the pad under
   // it, and the air between them becomes "inside the head".
-  AirwaySegmentation::Options closing;
+  AirwaySegmentationOptions closing;
   closing.bodyClosingRadiusMm = 2.0;
   const AirwaySegmentation s = AirwaySegmentation::compute(HeadPhantom::make(), closing);
   EXPECT_GT(s.interiorAirComponents, 3);
@@ -116,7 +116,7 @@ TEST(AirwaySegmentation, ClosingTheHeadMaskCanEncloseAirAtTheHeadRest)
 TEST(AirwaySegmentation, SeedAndSinusOptionsChangeTheChoice)
 {
   const CTVolume ct = HeadPhantom::make();
-  AirwaySegmentation::Options options;
+  AirwaySegmentationOptions options;
   options.minimumVolumeMm3 = 100.0;
   options.seedMm = std::array<double, 3>{ 40.0, 44.0, 18.0 }; // in the sinus
   const AirwaySegmentation sinus = AirwaySegmentation::compute(ct, options);
@@ -128,7 +128,7 @@ TEST(AirwaySegmentation, SeedAndSinusOptionsChangeTheChoice)
   // The wall between airway and sinus is one voxel: their voxel centres are
   // 2 mm apart. 1.5 mm leaves the sinus out, 2.5 mm brings it in, and the
   // air cell (far away) stays out.
-  AirwaySegmentation::Options near;
+  AirwaySegmentationOptions near;
   near.sinusInclusionDistanceMm = 1.5;
   EXPECT_EQ(AirwaySegmentation::compute(ct, near).includedSinuses, 0);
   near.sinusInclusionDistanceMm = 2.5;
@@ -159,8 +159,8 @@ TEST(AirwaySegmentation, WorksInTheCTFrameWithAReflectedDirection)
       }
     }
   }
-  const AirwaySegmentation a = AirwaySegmentation::compute(plain, AirwaySegmentation::Options());
-  const AirwaySegmentation b = AirwaySegmentation::compute(flipped, AirwaySegmentation::Options());
+  const AirwaySegmentation a = AirwaySegmentation::compute(plain, AirwaySegmentationOptions());
+  const AirwaySegmentation b = AirwaySegmentation::compute(flipped, AirwaySegmentationOptions());
   EXPECT_EQ(a.voxelCount, b.voxelCount);
   for (int axis = 0; axis < 3; ++axis)
   {
@@ -169,7 +169,7 @@ TEST(AirwaySegmentation, WorksInTheCTFrameWithAReflectedDirection)
     EXPECT_NEAR(a.boundsMm[2 * axis + 1], b.boundsMm[2 * axis + 1], 1e-9);
   }
   // A seed is a physical point: the same one works in both.
-  AirwaySegmentation::Options seeded;
+  AirwaySegmentationOptions seeded;
   seeded.seedMm = std::array<double, 3>{ 32.0, 44.0, 20.0 };
   EXPECT_EQ(AirwaySegmentation::compute(flipped, seeded).voxelCount, a.voxelCount);
 }
@@ -177,7 +177,7 @@ TEST(AirwaySegmentation, WorksInTheCTFrameWithAReflectedDirection)
 TEST(AirwaySegmentation, DeepestPointsAreInsideAndSeparated)
 {
   const AirwaySegmentation s =
-    AirwaySegmentation::compute(HeadPhantom::make(), AirwaySegmentation::Options());
+    AirwaySegmentation::compute(HeadPhantom::make(), AirwaySegmentationOptions());
   const std::vector<AirwaySegmentation::InteriorPoint> points = s.deepestPoints(5, 3.0);
   ASSERT_FALSE(points.empty());
   // The airway box is 9 x 13 x 11 voxels: its centre line is 4 voxels deep.
@@ -201,16 +201,16 @@ TEST(AirwaySegmentation, DeepestPointsAreInsideAndSeparated)
 TEST(AirwaySegmentation, BadInputGetsOneLineErrors)
 {
   const CTVolume ct = HeadPhantom::make();
-  const AirwaySegmentation::Options defaults;
+  const AirwaySegmentationOptions defaults;
 
   CTVolume flat = fixtures::emptyVolume({ 64, 64, 1 });
   EXPECT_EQ(messageOf(flat, defaults), "the CT is 64 x 64 x 1 voxels: a 3-D volume is needed");
 
-  AirwaySegmentation::Options nothing;
+  AirwaySegmentationOptions nothing;
   nothing.airThresholdHU = -2000.0;
   EXPECT_EQ(messageOf(ct, nothing),
     "the air threshold -2000 HU selects no voxel (intensities span -1000 HU .. 900 HU)");
-  AirwaySegmentation::Options everything;
+  AirwaySegmentationOptions everything;
   everything.airThresholdHU = 2000.0;
   EXPECT_EQ(messageOf(ct, everything),
     "the air threshold 2000 HU selects every voxel (intensities span -1000 HU .. 900 HU)");
@@ -225,11 +225,11 @@ TEST(AirwaySegmentation, BadInputGetsOneLineErrors)
     "no air inside the head: no voxel below -400 HU is enclosed by tissue above -500 HU");
   // No tissue at all.
   EXPECT_EQ(
-    messageOf(fixtures::emptyVolume({ 8, 8, 8 }), AirwaySegmentation::Options()).substr(0, 32),
+    messageOf(fixtures::emptyVolume({ 8, 8, 8 }), AirwaySegmentationOptions()).substr(0, 32),
     "the air threshold -400 HU select");
   CTVolume fog = fixtures::emptyVolume({ 8, 8, 8 });
   fog.intensities[0] = 100.0f;
-  AirwaySegmentation::Options dense;
+  AirwaySegmentationOptions dense;
   dense.bodyThresholdHU = 200.0;
   EXPECT_EQ(messageOf(fog, dense),
     "no tissue above 200 HU: there is no head (intensities span -1000 HU .. 100 HU)");
@@ -244,15 +244,15 @@ TEST(AirwaySegmentation, BadInputGetsOneLineErrors)
     "no airway inside the head: the largest air pocket below -400 HU is 27 mm^3 (at least 1000 "
     "mm^3 needed)");
 
-  AirwaySegmentation::Options outside;
+  AirwaySegmentationOptions outside;
   outside.seedMm = std::array<double, 3>{ 32.0, 44.0, -3.0 };
   EXPECT_EQ(
     messageOf(ct, outside), "the seed point (32.0, 44.0, -3.0) mm is outside the CT volume");
-  AirwaySegmentation::Options tissue;
+  AirwaySegmentationOptions tissue;
   tissue.seedMm = std::array<double, 3>{ 32.0, 30.0, 30.0 };
   EXPECT_EQ(messageOf(ct, tissue),
     "the seed point (32.0, 30.0, 30.0) mm is in tissue (40 HU), not in air inside the head");
-  AirwaySegmentation::Options outdoors;
+  AirwaySegmentationOptions outdoors;
   outdoors.seedMm = std::array<double, 3>{ 1.0, 60.0, 2.0 };
   EXPECT_EQ(messageOf(ct, outdoors),
     "the seed point (1.0, 60.0, 2.0) mm is in air outside the head (-1000 HU), not in air inside "

@@ -1,8 +1,11 @@
 #include "AirwayPhantom.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/OrientNormalsIntoAir.h>
 #include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Imaging/AirwaySurface.h>
+#include <vimlop/Imaging/MeshIO.h>
+#include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
 
 #include <gtest/gtest.h>
@@ -69,7 +72,7 @@ TEST_P(AirwaySurfaceOnGrids, LiesOnTheBallWithNormalsIntoTheAir)
   const CTVolume label =
     fixtures::sphereLabel(dims, grid.spacing, grid.origin, grid.direction, centre, radius);
 
-  AirwaySurface::Options options;
+  AirwaySurfaceOptions options;
   options.targetTriangles = 2000;
   const AirwaySurface s = AirwaySurface::compute(label, options);
   ASSERT_TRUE(s.surface);
@@ -110,6 +113,19 @@ TEST_P(AirwaySurfaceOnGrids, LiesOnTheBallWithNormalsIntoTheAir)
     const Eigen::Vector3d n(pointNormals->GetTuple3(p));
     EXPECT_GT(n.dot((c - mesh.vertices()[p]).normalized()), 0.5);
   }
+
+  // What compute() writes, a loader reads as it is: the producer and the
+  // loaders' rule (orientNormalsIntoAir) agree on the side of the air.
+  const std::string path =
+    std::string(VIMLOP_TEST_OUTPUT_DIR) + "/airway-surface-" + grid.name + ".vtp";
+  writePolyData(s.surface, path);
+  const TriangleMesh loaded = loadAirwayMesh(path);
+  ASSERT_EQ(loaded.numberOfFaces(), mesh.numberOfFaces());
+  for (int f = 0; f < mesh.numberOfFaces(); ++f)
+  {
+    ASSERT_EQ(loaded.faces()[f], mesh.faces()[f]) << "face " << f;
+  }
+  EXPECT_LT(loaded.signedVolume(), 0.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Directions, AirwaySurfaceOnGrids,
@@ -136,7 +152,7 @@ TEST(AirwaySurface, KeepsTheLargestPieceAndClosesAtTheVolumeBorder)
     [](int i, int j, int k) {
       return fixtures::inBox(i, j, k, { 18, 20, 15, 17, 12, 14 });
     });
-  AirwaySurface::Options options;
+  AirwaySurfaceOptions options;
   options.targetTriangles = 0; // keep the iso-surface as it is
   options.smoothingIterations = 0;
   const AirwaySurface s = AirwaySurface::compute(label, options);
@@ -157,11 +173,59 @@ TEST(AirwaySurface, KeepsTheLargestPieceAndClosesAtTheVolumeBorder)
   EXPECT_NEAR(bounds[1], 12.5, 1e-9);
 }
 
+// An open surface (here the ball's surface with a cap cut off) encloses
+// nothing, so the loaders' rule keeps whatever face order it has; the label
+// knows the air side, and orientIntoAir() turns the faces into the ball
+// either way. A closed surface follows the loaders' rule.
+TEST(AirwaySurface, OrientsAnOpenSurfaceByTheLabel)
+{
+  const std::array<int, 3> dims{ 30, 28, 22 };
+  const std::array<double, 3> spacing{ 0.9, 1.1, 1.2 };
+  const std::array<double, 9> reflected{ 1, 0, 0, 0, -1, 0, 0, 0, 1 };
+  CTVolume probe = fixtures::emptyVolume(dims, spacing);
+  probe.direction = reflected;
+  const std::array<double, 3> centre = probe.indexToPhysical({ 14.5, 13.2, 10.7 });
+  const CTVolume label =
+    fixtures::sphereLabel(dims, spacing, { 0.0, 0.0, 0.0 }, reflected, centre, 9.0);
+  AirwaySurfaceOptions options;
+  options.targetTriangles = 2000;
+  const TriangleMesh closed = toTriangleMesh(AirwaySurface::compute(label, options).surface);
+  ASSERT_EQ(closed.numberOfBoundaryEdges(), 0);
+  EXPECT_EQ(AirwaySurface::orientIntoAir(closed.flipped(), label).faces(), closed.faces());
+  EXPECT_EQ(AirwaySurface::orientIntoAir(closed, label).faces(), closed.faces());
+
+  std::vector<Eigen::Vector3i> kept;
+  for (int f = 0; f < closed.numberOfFaces(); ++f)
+  {
+    if (closed.faceCentroid(f).z() < centre[2] + 4.0)
+    {
+      kept.push_back(closed.faces()[f]);
+    }
+  }
+  const TriangleMesh open(closed.vertices(), kept);
+  ASSERT_GT(open.numberOfBoundaryEdges(), 0);
+  const Eigen::Vector3d c(centre[0], centre[1], centre[2]);
+  const auto facingCentre = [&c](const TriangleMesh& m)
+  {
+    int facing = 0;
+    for (int f = 0; f < m.numberOfFaces(); ++f)
+    {
+      facing += m.faceNormals()[f].dot(c - m.faceCentroid(f)) > 0.0 ? 1 : 0;
+    }
+    return facing;
+  };
+  ASSERT_GT(facingCentre(open), 0.99 * open.numberOfFaces());
+  // The loaders' rule cannot tell: it keeps the outward faces.
+  EXPECT_EQ(orientNormalsIntoAir(open.flipped()).faces(), open.flipped().faces());
+  EXPECT_EQ(AirwaySurface::orientIntoAir(open.flipped(), label).faces(), open.faces());
+  EXPECT_EQ(AirwaySurface::orientIntoAir(open, label).faces(), open.faces());
+}
+
 TEST(AirwaySurface, BadInputGetsOneLineErrors)
 {
   CTVolume empty = fixtures::emptyVolume({ 8, 8, 8 });
   std::fill(empty.intensities.begin(), empty.intensities.end(), 0.0f);
-  AirwaySurface::Options options;
+  AirwaySurfaceOptions options;
   try
   {
     AirwaySurface::compute(empty, options);

@@ -15,7 +15,7 @@ namespace
 {
 
 std::string registrationError(
-  const CTVolume& a, const CTVolume& b, const TemplateRegistration::Options& options)
+  const CTVolume& a, const CTVolume& b, const TemplateRegistrationOptions& options)
 {
   try
   {
@@ -42,7 +42,7 @@ TEST(TemplateRegistration, WarnsWithTheCorrelationWhenNothingMatches)
     state = state * 1664525u + 1013904223u; // a fixed linear congruential sequence
     v = static_cast<float>(state >> 20) - 2000.0f;
   }
-  TemplateRegistration::Options options;
+  TemplateRegistrationOptions options;
   const auto& box = HeadPhantom::kAirwayBox;
   options.regionMm = { double(box[0]), double(box[1]), double(box[2]), double(box[3]),
     double(box[4]), double(box[5]) };
@@ -61,7 +61,7 @@ TEST(TemplateRegistration, WarnsWithTheCorrelationWhenNothingMatches)
 TEST(TemplateRegistration, RefusesImagesThatDoNotOverlap)
 {
   const CTVolume ct = HeadPhantom::make();
-  TemplateRegistration::Options options;
+  TemplateRegistrationOptions options;
   const auto& box = HeadPhantom::kAirwayBox;
   options.regionMm = { double(box[0]), double(box[1]), double(box[2]), double(box[3]),
     double(box[4]), double(box[5]) };
@@ -73,14 +73,14 @@ TEST(TemplateRegistration, RefusesImagesThatDoNotOverlap)
     << message;
   EXPECT_NE(message.find("% of the template's region maps into the patient CT"), std::string::npos);
 
-  TemplateRegistration::Options empty = options;
+  TemplateRegistrationOptions empty = options;
   empty.regionMm = { 1.0, 0.0, 0.0, 1.0, 0.0, 1.0 };
   EXPECT_EQ(registrationError(ct, ct, empty), "the region to register is empty");
-  TemplateRegistration::Options away = options;
+  TemplateRegistrationOptions away = options;
   away.regionMm = { 500.0, 510.0, 0.0, 10.0, 0.0, 10.0 };
   away.marginMm = 0.0;
   EXPECT_EQ(registrationError(ct, ct, away), "the region to register lies outside the template CT");
-  TemplateRegistration::Options levels = options;
+  TemplateRegistrationOptions levels = options;
   levels.synIterations = { 10 };
   EXPECT_EQ(registrationError(ct, ct, levels).rfind("registration options:", 0), 0u);
   CTVolume flat = fixtures::emptyVolume({ 64, 64, 1 });

@@ -27,7 +27,7 @@ std::vector<Eigen::Vector3d> samplePoints(int n, unsigned seed)
 
 TEST(MucosaTexture, IsReproducibleAndDependsOnTheSeed)
 {
-  MucosaTexture::Options o;
+  MucosaTextureOptions o;
   o.seed = 7;
   const MucosaTexture a(o);
   const MucosaTexture b(o);

@@ -79,7 +79,7 @@ TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b)
 /// A texture without any pattern: the base colour everywhere.
 MucosaTexture plainTexture()
 {
-  MucosaTexture::Options o;
+  MucosaTextureOptions o;
   o.patchAmplitude = 0.0;
   o.mottleAmplitude.setZero();
   o.vesselTransmission.setOnes();

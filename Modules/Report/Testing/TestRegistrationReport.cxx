@@ -138,9 +138,9 @@ std::vector<PerturbationRun> makeRuns()
   return runs;
 }
 
-RegistrationReport::Options smallPictures()
+RegistrationReportOptions smallPictures()
 {
-  RegistrationReport::Options options;
+  RegistrationReportOptions options;
   options.sceneWidthPx = 320;
   options.sceneHeightPx = 240;
   options.chartWidthPx = 320;

@@ -81,7 +81,7 @@ TEST(BundleAdjustment, RecoversCamerasAndPointsFromAPerturbedStart)
   {
     p += 0.3 * Eigen::Vector3d(n(rng), n(rng), n(rng));
   }
-  BundleAdjustment::Options options;
+  BundleAdjustmentOptions options;
   options.scaleCamera = 5;
   const double fixedComponentBefore = [&]
   {
@@ -150,7 +150,7 @@ TEST(BundleAdjustment, HuberWeightsKeepOutliersFromPullingPoints)
   }
   Scene plain = withOutliers;
   Scene robust = withOutliers;
-  BundleAdjustment::Options leastSquares;
+  BundleAdjustmentOptions leastSquares;
   leastSquares.huberPx = 1e9;
   BundleAdjustment::adjust(
     plain.cameras, plain.points, plain.intrinsics, plain.observations, { 0, 1 }, leastSquares);

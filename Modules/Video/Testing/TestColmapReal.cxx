@@ -31,7 +31,7 @@ std::string runColmap()
   {
     cv::imwrite(images + "/" + s.names[f], s.frames[f]);
   }
-  ColmapRunner::Options options;
+  ColmapRunnerOptions options;
   options.executable = VIMLOP_COLMAP_EXECUTABLE;
   ColmapRunner(options).run(images, s.intrinsics, root + "/work");
   return root + "/work";

@@ -56,9 +56,9 @@ bool inDisc(double u, double v)
   return (Eigen::Vector2d(u, v) - DiscCentre).norm() < DiscRadius;
 }
 
-OccludingContourDetector::Options dense()
+ContourDetectionOptions dense()
 {
-  OccludingContourDetector::Options o;
+  ContourDetectionOptions o;
   o.spacingPx = 0.0;
   return o;
 }
@@ -117,7 +117,7 @@ TEST(OccludingContourDetector, DarkSideTestSuppressesVessels)
   const cv::Mat frame =
     picture([](double u, double) { return grey(std::abs(u - 80.2) < 2.0 ? 70.0 : 160.0); });
   EXPECT_TRUE(OccludingContourDetector(dense()).detect(frame).empty());
-  OccludingContourDetector::Options noDarkSideTest = dense();
+  ContourDetectionOptions noDarkSideTest = dense();
   noDarkSideTest.darkSideProbesPx.clear();
   EXPECT_GT(OccludingContourDetector(noDarkSideTest).detect(frame).size(), 100u);
 }
@@ -129,7 +129,7 @@ TEST(OccludingContourDetector, ScaleTestSuppressesGradualShading)
   { return grey(160.0 - 100.0 * std::clamp((u - 75.0) / 10.0, 0.0, 1.0)); };
   const cv::Mat frame = picture(ramp);
   EXPECT_TRUE(OccludingContourDetector(dense()).detect(frame).empty());
-  OccludingContourDetector::Options noScaleTest = dense();
+  ContourDetectionOptions noScaleTest = dense();
   noScaleTest.minScaleRatio = 0.0;
   EXPECT_GT(OccludingContourDetector(noScaleTest).detect(frame).size(), 100u);
   // A step of that height is kept.
@@ -146,7 +146,7 @@ TEST(OccludingContourDetector, RedChannelIgnoresBloodTexture)
       return u < 80.0 ? cv::Vec3d(60, 60, 180) : cv::Vec3d(140, 140, 180); // BGR
     });
   EXPECT_TRUE(OccludingContourDetector(dense()).detect(frame).empty());
-  OccludingContourDetector::Options luminance = dense();
+  ContourDetectionOptions luminance = dense();
   luminance.channel = ContourChannel::Luminance;
   EXPECT_GT(OccludingContourDetector(luminance).detect(frame).size(), 100u);
 }
@@ -155,7 +155,7 @@ TEST(OccludingContourDetector, ThinsPointsToTheSpacing)
 {
   const cv::Mat frame =
     picture([](double u, double v) { return grey(inDisc(u, v) ? 170.0 : 70.0); });
-  OccludingContourDetector::Options o;
+  ContourDetectionOptions o;
   o.spacingPx = 3.0;
   const std::vector<ContourPoint> points = OccludingContourDetector(o).detect(frame);
   for (size_t i = 0; i < points.size(); ++i)
@@ -177,7 +177,7 @@ TEST(OccludingContourDetector, RejectsBadFramesAndOptions)
   EXPECT_EQ(messageOf([&] { detector.detect(cv::Mat()); }), "contour detector: the frame is empty");
   EXPECT_EQ(messageOf([&] { detector.detect(cv::Mat(10, 10, CV_16UC3)); }),
     "contour detector: expected an 8-bit grey or BGR frame");
-  OccludingContourDetector::Options o;
+  ContourDetectionOptions o;
   o.highThreshold = 0.5 * o.lowThreshold;
   EXPECT_NE(
     messageOf([&] { OccludingContourDetector bad(o); }).find("high threshold at least the low one"),

@@ -16,7 +16,7 @@ using namespace vimlop;
 TEST(VideoOnRenderedFrames, ContourDetectorFindsTheTrueOccludingContours)
 {
   const fixtures::Sequence& s = fixtures::sequence();
-  OccludingContourDetector::Options options;
+  ContourDetectionOptions options;
   options.spacingPx = 0.0;
   const OccludingContourDetector detector(options);
   ContourEvaluation evaluation;
