@@ -9,7 +9,8 @@
 
 /**
  * @file CommandLine.h
- * @brief Small helpers the subcommands share: list parsing and safe output.
+ * @brief Small helpers the subcommands share: list parsing, the flags of
+ * the main job and of pose serving, and safe output.
  */
 
 namespace CLI
@@ -19,6 +20,9 @@ class App;
 
 namespace vimlop
 {
+
+struct PoseServingOptions;
+struct VideoRegistrationOptions;
 
 /// @brief "a,b" as two numbers with 0 <= a <= b; `what` names the option in errors.
 std::pair<double, double> parseRange(const std::string& text, const std::string& what);
@@ -34,6 +38,22 @@ std::string joinList(const std::vector<std::string>& items);
 /// @brief Adds --mesh and --ct, each excluding the other: the airway a command reads with
 /// airwayMeshFrom (Imaging/ModelLoading.h).
 void addModelOptions(CLI::App& command, std::string& mesh, std::string& ct);
+
+/**
+ * @brief Adds a flag for every setting of the main job to `command`, stored
+ * into `options`, which must outlive the parse: one per row of
+ * RegistrationOptionTable.h and VideoRegistrationOptionTable.h (with the
+ * row's range as the check), Σ2d and the scale factors. The defaults shown
+ * are those `options` holds: the pipeline's.
+ */
+void addPipelineOptions(CLI::App& command, VideoRegistrationOptions& options);
+
+/**
+ * @brief Adds --host, --port, --allow-remote, --max-clients and --duration-s
+ * to `command`, stored into `options` (which must outlive the parse): the
+ * flags of every subcommand that serves poses (VIMLOP::Server's servePoses).
+ */
+void addPoseServingOptions(CLI::App& command, PoseServingOptions& options);
 
 /// @brief Prints each of `lines` (a report's summaryLines) to stdout.
 void printLines(const std::vector<std::string>& lines);

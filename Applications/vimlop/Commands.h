@@ -4,7 +4,7 @@
 /**
  * @file Commands.h
  * @brief The subcommands of `vimlop`, each in its own file, which main.cxx
- * adds (`vimlop register` in RegisterCommand.h).
+ * adds.
  */
 
 namespace CLI
@@ -28,6 +28,12 @@ CLI::App* addEvaluateCommand(CLI::App& app);
 void addEvaluateWarpCommand(CLI::App& evaluate);
 /// @brief Adds `vimlop info <file>`: what a CT, mesh or intrinsics file holds.
 void addInfoCommand(CLI::App& app);
+/**
+ * @brief Adds `vimlop register`, the main job: flags over
+ * VideoRegistrationPipeline, then the result folder, the summary and,
+ * with --serve, the poses over OpenIGTLink.
+ */
+void addRegisterCommand(CLI::App& app);
 /// @brief Adds `vimlop report`: the rendered report of a result folder and/or a perturbation study.
 void addReportCommand(CLI::App& app);
 /// @brief Adds `vimlop segment`: the nasal airway surface of a head CT.

@@ -1,7 +1,6 @@
 #include "Commands.h"
 
 #include "CommandLine.h"
-#include "PipelineFlags.h"
 #include "TerminalEvaluationProgress.h"
 #include <vimlop/Evaluation/PerturbationProtocol.h>
 #include <vimlop/Evaluation/SyntheticProtocol.h>

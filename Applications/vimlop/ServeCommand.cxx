@@ -1,9 +1,10 @@
+#include "CommandLine.h"
 #include "Commands.h"
 
-#include "PoseServingFlags.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
+#include <vimlop/Server/PoseServing.h>
 
 #include <CLI/CLI.hpp>
 

@@ -4,7 +4,6 @@
 
 #include "CommandLine.h"
 #include "Commands.h"
-#include "RegisterCommand.h"
 #include <vimlop/Core/Error.h>
 
 #include <CLI/CLI.hpp>

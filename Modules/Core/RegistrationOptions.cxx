@@ -26,6 +26,19 @@ const char* toString(RegistrationMethod method)
   return "unknown";
 }
 
+RegistrationMethod registrationMethodFromString(const std::string& name)
+{
+  for (RegistrationMethod method :
+    { RegistrationMethod::VIMLOP, RegistrationMethod::IMLP, RegistrationMethod::TrimmedICP })
+  {
+    if (name == toString(method))
+    {
+      return method;
+    }
+  }
+  throw Error("unknown registration method '" + name + "' (expected vimlop, imlp or trimmed-icp)");
+}
+
 void RegistrationOptions::validate() const
 {
   const std::string context = "registration options";

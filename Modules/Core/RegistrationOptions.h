@@ -5,6 +5,7 @@
 #include <vimlop/Core/PoseUpdate.h>
 
 #include <limits>
+#include <string>
 
 namespace vimlop
 {
@@ -19,6 +20,8 @@ enum class RegistrationMethod
 
 /// @brief Name of a method as used on the command line: "vimlop", "imlp", "trimmed-icp".
 const char* toString(RegistrationMethod method);
+/// @brief "vimlop", "imlp" or "trimmed-icp" as a method. @throws vimlop::Error for others.
+RegistrationMethod registrationMethodFromString(const std::string& name);
 
 /**
  * @brief Every parameter of a registration, with the paper's values where it

@@ -3,6 +3,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Statistics.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Pipeline/SimilarityFromCameras.h>
 #include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
 #include <vimlop/Report/RegisteredVideo.h>
@@ -149,6 +150,28 @@ nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline
     summary["camera_angle_error_deg"] = { { "mean", a.mean }, { "max", a.max } };
   }
   return summary;
+}
+
+std::vector<std::string> registrationSummaryLines(const nlohmann::json& summary)
+{
+  std::vector<std::string> lines = { formatText(
+    "registered %d frames (%d SfM points) from %s (%d candidates) in %.1f s: scale %.4f "
+    "mm/unit, residual %.3f mm, contour error %.2f px%s",
+    summary.at("frames").get<int>(), summary.at("points").get<int>(),
+    summary.at("init").get<std::string>().c_str(), summary.at("candidates").get<int>(),
+    summary.at("runtime_s").get<double>(), summary.at("scale").get<double>(),
+    summary.at("residual_error_mm").get<double>(), summary.at("contour_error_px").get<double>(),
+    summary.at("failure").get<bool>() ? " -- FLAGGED AS A FAILURE (above the threshold)" : "") };
+  if (summary.contains("camera_position_error_mm"))
+  {
+    const nlohmann::json& p = summary.at("camera_position_error_mm");
+    const nlohmann::json& a = summary.at("camera_angle_error_deg");
+    lines.push_back(
+      formatText("camera error against the truth: %.3f mm (max %.3f), %.3f deg (max %.3f)",
+        p.at("mean").get<double>(), p.at("max").get<double>(), a.at("mean").get<double>(),
+        a.at("max").get<double>()));
+  }
+  return lines;
 }
 
 nlohmann::json registrationOptionsJson(const VideoRegistrationOptions& o)

@@ -60,6 +60,13 @@ nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline
   const RegistrationRecord& record, const std::string& resultPath, double seconds);
 
 /**
+ * @brief registrationSummaryJson() as the lines `vimlop register` prints:
+ * frames, candidates, runtime, scale, errors and the failure flag, then the
+ * camera errors against the truth when the summary has them.
+ */
+std::vector<std::string> registrationSummaryLines(const nlohmann::json& summary);
+
+/**
  * @brief Every setting of the pipeline as JSON (the registration options in
  * the layout of result.json's "options", then the pipeline's own), so that
  * the faces can show, and a test compare, the defaults they use.

@@ -15,7 +15,7 @@ enum class StartMode
 
 /**
  * @brief The inputs of the main job as files, what `vimlop register` and
- * vtkVIMLOPVideoRegistration take (see runVideoRegistration()).
+ * vtkVIMLOPVideoRegistration take (see VideoRegistrationPipeline::run()).
  */
 struct VideoRegistrationInputs
 {
@@ -41,6 +41,19 @@ struct VideoRegistrationInputs
   /// `startPosesPath`), or a manual start (the first pose of `startPosesPath`).
   StartMode startMode = StartMode::Canonical;
   std::string startPosesPath;
+
+  /**
+   * @brief Sets the start from its text form: "canonical" (generated along
+   * the airway), "canonical:POSES.json" or "manual:POSE.json".
+   * @throws vimlop::Error naming `what` (e.g. the flag) for any other text.
+   */
+  void setStart(const std::string& text, const std::string& what);
+  /**
+   * @brief Sets the structure from motion from its text form: "builtin" or
+   * "colmap:DIR" (a COLMAP sparse model folder).
+   * @throws vimlop::Error naming `what` for any other text.
+   */
+  void setStructureFromMotion(const std::string& text, const std::string& what);
 };
 
 } // namespace vimlop

@@ -197,19 +197,6 @@ int resultFormatVersion()
   return 1;
 }
 
-RegistrationMethod registrationMethodFromString(const std::string& name)
-{
-  for (RegistrationMethod method :
-    { RegistrationMethod::VIMLOP, RegistrationMethod::IMLP, RegistrationMethod::TrimmedICP })
-  {
-    if (name == toString(method))
-    {
-      return method;
-    }
-  }
-  throw Error("unknown registration method '" + name + "' (expected vimlop, imlp or trimmed-icp)");
-}
-
 void writeRegistrationRecord(const RegistrationRecord& record, const std::string& folder)
 {
   const fs::path dir(folder);

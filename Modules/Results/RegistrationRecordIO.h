@@ -74,9 +74,6 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
  */
 RegistrationRecord readRegistrationRecord(const std::string& folder);
 
-/// @brief "vimlop", "imlp" or "trimmed-icp" as a method. @throws vimlop::Error for others.
-RegistrationMethod registrationMethodFromString(const std::string& name);
-
 } // namespace vimlop
 
 #endif

@@ -1,8 +1,8 @@
-#include "PipelineFlags.h"
-
 #include "CommandLine.h"
 #include <vimlop/Core/RegistrationOptionTable.h>
 #include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
+#include <vimlop/Pipeline/VideoRegistrationOptions.h>
+#include <vimlop/Server/PoseServing.h>
 
 #include <CLI/CLI.hpp>
 
@@ -67,6 +67,19 @@ void addPipelineOptions(CLI::App& c, VideoRegistrationOptions& p)
      { p.multiStart.scaleFactors = parseNumbers(list, "--scale-factors"); },
      "V13: variations of the initial scale per canonical start")
     ->default_str(factors);
+}
+
+void addPoseServingOptions(CLI::App& command, PoseServingOptions& options)
+{
+  command.add_option("--host", options.server.host, "address to listen on")->capture_default_str();
+  command.add_option("--port", options.server.port, "TCP port (0: any free one)")
+    ->capture_default_str();
+  command.add_flag("--allow-remote", options.server.allowRemote, "allow a non-loopback address");
+  command.add_option("--max-clients", options.server.maxClients, "clients served at once")
+    ->capture_default_str();
+  command
+    .add_option("--duration-s", options.durationS, "stop after this many seconds (0: until Ctrl-C)")
+    ->capture_default_str();
 }
 
 } // namespace vimlop
