@@ -1,4 +1,4 @@
-#include "TextFormat.h"
+#include <vimlop/Core/TextFormat.h>
 
 #include <cstdarg>
 #include <cstdio>

@@ -7,9 +7,9 @@
 #include <vimlop/Core/RegistrationOptionTable.h>
 #include <vimlop/Core/RegistrationOptions.h>
 #include <vimlop/Core/RegistrationResult.h>
+#include <vimlop/Registration/VTKOptionMacros.h>
 
 #include "VIMLOPRegistrationModule.h"
-#include "VTKOptionMacros.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCommand.h>
