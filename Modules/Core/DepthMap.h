@@ -1,6 +1,7 @@
 #ifndef vimlop_DepthMap_h
 #define vimlop_DepthMap_h
 
+#include <cstddef>
 #include <limits>
 #include <vector>
 
