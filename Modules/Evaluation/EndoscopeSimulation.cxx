@@ -1,6 +1,8 @@
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
+#include <vimlop/Evaluation/LensDistortionRendering.h>
 #include <vimlop/Rendering/MucosaTexture.h>
 #include <vimlop/Rendering/vtkVIMLOPVirtualEndoscope.h>
 #include <vimlop/Video/IntrinsicsIO.h>
@@ -8,6 +10,7 @@
 #include <vtkNew.h>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
@@ -17,6 +20,8 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
 namespace vimlop
 {
@@ -41,31 +46,139 @@ double SimulatedVideo::leastWallDistanceMm(const RegistrationModel& model) const
   return distance;
 }
 
-SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
-  const EndoscopeSimulationOptions& o, const EvaluationProgress& progress)
+bool EndoscopeSimulationOptions::isIdealWorld() const
 {
-  if (o.frames < 2)
+  return !hasLensDistortion(this->intrinsics) && this->fieldStop.isOff() &&
+    this->calibrationFocalErrorRelative == 0.0 &&
+    this->calibrationPrincipalPointErrorPx.isZero(0.0) && this->trackerLatencyS == 0.0 &&
+    this->trackerClockOffsetS == 0.0;
+}
+
+void EndoscopeSimulationOptions::validate() const
+{
+  if (this->frames < 2)
   {
     throw Error("a simulated sequence needs at least 2 frames");
   }
-  o.intrinsics.validate();
+  this->intrinsics.validate();
+  this->fieldStop.validate();
+  const Eigen::Index coefficients = this->intrinsics.distortion.size();
+  if (coefficients != 0 && coefficients != 4 && coefficients != 5 && coefficients != 8)
+  {
+    throw Error("the lens distortion needs 4, 5 or 8 coefficients (OpenCV's k1, k2, p1, p2[, k3[, "
+                "k4, k5, k6]]), not " +
+      std::to_string(coefficients));
+  }
+  if (!this->intrinsics.distortion.allFinite() ||
+    (coefficients > 0 && this->intrinsics.distortion.cwiseAbs().maxCoeff() > 10.0))
+  {
+    throw Error("the lens distortion coefficients must be finite and within [-10, 10]");
+  }
+  if (!(std::abs(this->calibrationFocalErrorRelative) < 0.5))
+  {
+    throw Error("the calibration's relative focal error must lie in (-0.5, 0.5), not " +
+      formatText("%g", this->calibrationFocalErrorRelative));
+  }
+  if (!this->calibrationPrincipalPointErrorPx.allFinite())
+  {
+    throw Error("the calibration's principal point error must be finite");
+  }
+  if (!(this->trackerRateHz > 0.0 && std::isfinite(this->trackerRateHz)))
+  {
+    throw Error("the tracker rate must be a finite number > 0 Hz");
+  }
+  if (!(this->trackerLatencyS >= 0.0 && std::isfinite(this->trackerLatencyS)))
+  {
+    throw Error("the tracker latency must be a finite number >= 0 s, not " +
+      formatText("%g", this->trackerLatencyS));
+  }
+  if (!std::isfinite(this->trackerClockOffsetS))
+  {
+    throw Error("the tracker's clock offset must be finite");
+  }
+}
+
+namespace
+{
+
+/// The intrinsics a user is given: the true ones with the calibration error.
+PinholeCamera calibratedIntrinsics(const EndoscopeSimulationOptions& o)
+{
+  PinholeCamera k = o.intrinsics;
+  k.fx *= 1.0 + o.calibrationFocalErrorRelative;
+  k.fy *= 1.0 + o.calibrationFocalErrorRelative;
+  k.cx += o.calibrationPrincipalPointErrorPx.x();
+  k.cy += o.calibrationPrincipalPointErrorPx.y();
+  return k;
+}
+
+/// Sensor noise on a frame of the realistic world, after the lens and the
+/// field stop; rounded to 8 bits as the renderer does.
+cv::Mat addSensorNoise(const cv::Mat& bgr32f, double sigma, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed * 0x2545f4914f6cdd1dull + 977u);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  cv::Mat out(bgr32f.rows, bgr32f.cols, CV_8UC3);
+  for (int v = 0; v < bgr32f.rows; ++v)
+  {
+    for (int u = 0; u < bgr32f.cols; ++u)
+    {
+      const cv::Vec3f in = bgr32f.at<cv::Vec3f>(v, u);
+      cv::Vec3b& pixel = out.at<cv::Vec3b>(v, u);
+      for (int c = 0; c < 3; ++c)
+      {
+        const double value = in[c] + (sigma > 0.0 ? sigma * noise(rng) : 0.0);
+        pixel[c] = static_cast<std::uint8_t>(std::clamp(std::lround(value), 0L, 255L));
+      }
+    }
+  }
+  return out;
+}
+
+} // namespace
+
+SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
+  const EndoscopeSimulationOptions& o, const EvaluationProgress& progress)
+{
+  o.validate();
   EndoscopeTrajectoryOptions path = o.trajectory;
   path.frames = o.frames;
   path.intrinsics = o.intrinsics;
   SimulatedVideo video;
   video.intrinsics = o.intrinsics;
+  video.calibratedIntrinsics = calibratedIntrinsics(o);
   video.camerasCT = makeEndoscopeTrajectory(model, path, o.seed);
+
+  // The lens and the field stop act on the picture the optics form, before
+  // the sensor adds its noise; without them the renderer's own noise is kept,
+  // so that the ideal world stays as it was.
+  const bool distorted = hasLensDistortion(o.intrinsics);
+  const bool optics = distorted || !o.fieldStop.isOff();
+  PinholeCamera renderCamera = o.intrinsics;
+  renderCamera.distortion.resize(0);
+  cv::Mat lensMap;
+  if (distorted)
+  {
+    renderCamera = pinholeCameraCovering(o.intrinsics);
+    lensMap = distortedToPinholeMap(o.intrinsics, renderCamera);
+  }
+  cv::Mat gain; // per colour channel
+  if (!o.fieldStop.isOff())
+  {
+    const cv::Mat grey = fieldStopGain(o.fieldStop, o.intrinsics.widthPx, o.intrinsics.heightPx);
+    cv::merge(std::vector<cv::Mat>{ grey, grey, grey }, gain);
+  }
 
   MucosaTextureOptions textureOptions;
   textureOptions.seed = o.seed;
   vtkNew<vtkVIMLOPVirtualEndoscope> endoscope;
   endoscope->SetBlurSigmaPx(o.blurSigmaPx);
-  endoscope->SetNoiseSigma(o.noiseSigma);
+  endoscope->SetNoiseSigma(optics ? 0.0 : o.noiseSigma);
   endoscope->SetMesh(model.mesh(), MucosaTexture(textureOptions));
   for (int f = 0; f < o.frames; ++f)
   {
-    const EndoscopeImage image = endoscope->Render(
-      o.intrinsics, video.camerasCT[f], o.seed * 100003ull + static_cast<std::uint64_t>(f));
+    const std::uint64_t noiseSeed = o.seed * 100003ull + static_cast<std::uint64_t>(f);
+    const EndoscopeImage image = endoscope->Render(renderCamera, video.camerasCT[f], noiseSeed);
     cv::Mat bgr(image.heightPx, image.widthPx, CV_8UC3);
     for (int v = 0; v < image.heightPx; ++v)
     {
@@ -78,30 +191,57 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
     char name[32];
     std::snprintf(name, sizeof(name), "frame%03d.png", f);
     video.names.emplace_back(name);
+    DepthMap depth = image.depth;
+    if (distorted)
+    {
+      bgr = renderLensDistortion(bgr, lensMap);
+      depth = renderLensDistortion(depth, lensMap);
+    }
+    if (optics)
+    {
+      cv::Mat light;
+      bgr.convertTo(light, CV_32FC3);
+      if (!gain.empty())
+      {
+        light = light.mul(gain);
+      }
+      bgr = addSensorNoise(light, o.noiseSigma, noiseSeed);
+    }
     video.frames.push_back(bgr);
-    video.depth.push_back(image.depth);
+    video.depth.push_back(depth);
     video.frameTimesS.push_back(f / o.framesPerSecond);
     reportEvaluationCount(progress, "simulate: frame", f + 1, o.frames);
   }
 
-  // The tracker follows the tip (linear between frames, extrapolated at
-  // constant velocity before the first and after the last) with Gaussian noise.
+  video.tracker = simulateTrackerRecording(video.camerasCT, o);
+  return video;
+}
+
+TrackerTrajectory simulateTrackerRecording(
+  const std::vector<CameraPose>& camerasCT, const EndoscopeSimulationOptions& o)
+{
+  if (camerasCT.size() < 2)
+  {
+    throw Error("a tracker recording needs at least 2 camera poses");
+  }
+  const int frames = static_cast<int>(camerasCT.size());
   std::mt19937_64 rng(o.seed * 7919ull + 17ull);
   std::normal_distribution<double> noise(0.0, o.trackerNoiseMm);
   std::vector<TrackerTrajectory::Sample> samples;
   const double start = -o.trackerMarginS;
-  const double end = video.frameTimesS.back() + o.trackerMarginS;
+  const double end = (frames - 1) / o.framesPerSecond + o.trackerMarginS;
   for (double t = start; t <= end + 1e-9; t += 1.0 / o.trackerRateHz)
   {
-    const double frame = t * o.framesPerSecond;
-    const int a = std::clamp(static_cast<int>(std::floor(frame)), 0, o.frames - 2);
+    // Where the tip was when the sample was measured: the stamp on the
+    // tracker's clock, back to the video's, less the latency.
+    const double seenS = t - o.trackerClockOffsetS - o.trackerLatencyS;
+    const double frame = seenS * o.framesPerSecond;
+    const int a = std::clamp(static_cast<int>(std::floor(frame)), 0, frames - 2);
     const double w = frame - a;
-    const Eigen::Vector3d tip =
-      (1.0 - w) * video.camerasCT[a].centre + w * video.camerasCT[a + 1].centre;
+    const Eigen::Vector3d tip = (1.0 - w) * camerasCT[a].centre + w * camerasCT[a + 1].centre;
     samples.push_back({ t, tip + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)) });
   }
-  video.tracker = TrackerTrajectory(samples);
-  return video;
+  return TrackerTrajectory(samples);
 }
 
 void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder)
@@ -150,7 +290,14 @@ void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder)
     frames.push_back({ { "frame_id", f }, { "name", video.names[f] },
       { "time_s", video.frameTimesS[f] }, { "camera_to_ct", rows } });
   }
-  writeIntrinsics(video.intrinsics, (fs::path(folder) / "intrinsics.yaml").string());
+  writeIntrinsics(video.calibratedIntrinsics, (fs::path(folder) / "intrinsics.yaml").string());
+  // The true intrinsics are truth, apart from what a user would have.
+  fs::create_directories(fs::path(folder) / "truth", ec);
+  if (ec)
+  {
+    throw Error("'" + folder + "/truth': cannot create the folder (" + ec.message() + ")");
+  }
+  writeIntrinsics(video.intrinsics, (fs::path(folder) / "truth" / "intrinsics.yaml").string());
   // The layout of FramePoseIO.h (with each frame's name and time), so that
   // every pose reader of VIMLOP reads it.
   const nlohmann::json poses = { { "frame", "CT (LPS, mm); camera x right, y down, z forward" },

@@ -6,6 +6,7 @@
 #include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Core/RegistrationModel.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Evaluation/FieldStop.h>
 #include <vimlop/Rendering/EndoscopeTrajectory.h>
 #include <vimlop/Video/TrackerTrajectory.h>
 
@@ -18,15 +19,39 @@
 namespace vimlop
 {
 
-/// @brief Settings of a simulated endoscope sequence (the virtual endoscope of P2).
+/**
+ * @brief Settings of a simulated endoscope sequence (the virtual endoscope of P2).
+ *
+ * The error sources of a realistic world (issue 14) are named knobs, each off
+ * by default so that the default sequence is the ideal world of P1–P3, bit
+ * for bit: the field stop and vignetting (`fieldStop`), lens distortion
+ * (`intrinsics.distortion`), calibration error of the intrinsics given to the
+ * user (`calibrationFocalErrorRelative`, `calibrationPrincipalPointErrorPx`)
+ * and tracker latency and clock offset (`trackerLatencyS`,
+ * `trackerClockOffsetS`). Realistic values and their sources:
+ * Documentation/Simulation.md.
+ */
 struct EndoscopeSimulationOptions
 {
   /// Number of frames (default 30).
   int frames = 30;
   /// Seed of the path, the texture, the picture noise and the tracker noise (default 1).
   std::uint64_t seed = 1;
-  /// The endoscope camera (default 320 x 240 pixels, fx = fy = 200: 77° x 62°).
+  /// The true endoscope camera (default 320 x 240 pixels, fx = fy = 200: 77°
+  /// x 62°). Its distortion coefficients (OpenCV's k1, k2, p1, p2[, k3]) are
+  /// rendered into the frames (default none; wide-angle rigid endoscopes: k1
+  /// about -0.3 to -0.4, Documentation/Simulation.md).
   PinholeCamera intrinsics = PinholeCamera::simulatedEndoscope();
+  /// Calibration error: the intrinsics given to the user (intrinsics.yaml)
+  /// have focal lengths (1 + this) times the true ones (default 0; a
+  /// checkerboard calibration of an endoscope: about 1 %, an estimate from
+  /// Documentation/Simulation.md). In (-0.5, 0.5).
+  double calibrationFocalErrorRelative = 0.0;
+  /// Calibration error: the given principal point minus the true one, pixels
+  /// (default (0, 0); a few pixels, Documentation/Simulation.md).
+  Eigen::Vector2d calibrationPrincipalPointErrorPx = Eigen::Vector2d::Zero();
+  /// The endoscope's image circle and vignetting (default none).
+  FieldStopOptions fieldStop;
   /// The path: frames, step, clearance, sway (frames and intrinsics are set from above).
   EndoscopeTrajectoryOptions trajectory;
   /// Video frame rate, frames per second (default 30).
@@ -37,20 +62,46 @@ struct EndoscopeSimulationOptions
   double trackerRateHz = 40.0;
   double trackerNoiseMm = 0.2;
   double trackerMarginS = 0.3;
+  /// Tracker latency, s: each sample reports where the tip was this long
+  /// before its time stamp (default 0; electromagnetic trackers: tens of ms,
+  /// Documentation/Simulation.md). At least 0.
+  double trackerLatencyS = 0.0;
+  /// The tracker's clock minus the video's, s: a sample stamped t was taken
+  /// at video time t - offset (default 0; unsynchronised clocks: tens to
+  /// hundreds of ms, an estimate). In the recorded trajectory it adds to the
+  /// latency; they are apart because a system may know one and not the other.
+  double trackerClockOffsetS = 0.0;
   /// Picture blur and noise (see vtkVIMLOPVirtualEndoscope).
   /// Defaults 0.5 px and 1.5 grey levels.
   double blurSigmaPx = 0.5;
   double noiseSigma = 1.5;
+
+  /// @brief True when every error source of the realistic world is off (the defaults).
+  bool isIdealWorld() const;
+
+  /**
+   * @brief Checks the settings.
+   * @throws vimlop::Error naming the first problem: fewer than 2 frames,
+   * invalid intrinsics or field stop, non-finite or out-of-range distortion,
+   * calibration error, tracker rate, latency or clock offset.
+   */
+  void validate() const;
 };
 
 /// @brief A simulated sequence and its ground truth.
 struct SimulatedVideo
 {
-  PinholeCamera intrinsics;
+  PinholeCamera intrinsics; ///< the true intrinsics the frames are rendered with
+  /// The intrinsics a user is given (as calibrated: the true ones with the
+  /// options' calibration error).
+  PinholeCamera calibratedIntrinsics;
   std::vector<CameraPose> camerasCT; ///< true camera-to-CT poses
   std::vector<double> frameTimesS;
   std::vector<std::string> names; ///< frame file names
   std::vector<cv::Mat> frames;    ///< 8-bit BGR
+  /// Per frame, the camera z of the surface seen at each pixel of the frame
+  /// as rendered (through the lens distortion when there is one; the field
+  /// stop hides no depth).
   std::vector<DepthMap> depth;
   TrackerTrajectory tracker; ///< tracked tip positions, in the CT frame (mm)
 
@@ -67,16 +118,37 @@ struct SimulatedVideo
  * endoscope (vtkVIMLOPVirtualEndoscope with a MucosaTexture seeded from
  * `seed`), and a noisy tracker recording of the tip. Counts the frames to
  * `progress` as "simulate: frame". Needs an X display.
- * @throws vimlop::Error if no path fits in the airway, or on cancellation.
+ *
+ * With lens distortion or a field stop, each frame is rendered without noise
+ * by a pinhole camera that covers the distorted field (pinholeCameraCovering),
+ * distorted (renderLensDistortion), multiplied by the field stop's gain, and
+ * only then given the sensor noise (so that the black border is noisy, as a
+ * real sensor's is). Without them, the renderer's own noise is kept, as before.
+ * @throws vimlop::Error for invalid options (validate()), if no path fits in
+ * the airway, or on cancellation.
  */
 SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
   const EndoscopeSimulationOptions& options, const EvaluationProgress& progress);
 
 /**
+ * @brief The simulated tracker's recording of the optical centres of
+ * `camerasCT` (frame f at time f / framesPerSecond): samples at
+ * trackerRateHz from trackerMarginS before the first frame to as long after
+ * the last, stamped on the tracker's clock, each the tip where it was at
+ * video time (stamp - trackerClockOffsetS - trackerLatencyS), linear between
+ * frames and extrapolated at constant velocity beyond them, plus Gaussian
+ * noise of trackerNoiseMm per axis (seeded from `seed`).
+ */
+TrackerTrajectory simulateTrackerRecording(
+  const std::vector<CameraPose>& camerasCT, const EndoscopeSimulationOptions& options);
+
+/**
  * @brief Writes a simulated sequence to `folder`: `frames/frame000.png`, ...;
  * `depth/frame000.tiff`, ... (32-bit float camera depth in mm, 0 where no
- * surface is seen); `intrinsics.yaml`; `poses.json` (per frame: name, time,
- * true camera-to-CT 4x4 matrix, row-major); `tracker.csv`.
+ * surface is seen); `intrinsics.yaml` (the calibrated intrinsics, with the
+ * distortion coefficients); `poses.json` (per frame: name, time, true
+ * camera-to-CT 4x4 matrix, row-major); `tracker.csv`; and the truth a user
+ * would not have, apart: `truth/intrinsics.yaml` (the true intrinsics).
  * @throws vimlop::Error if the folder cannot be written.
  */
 void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder);

@@ -1,9 +1,17 @@
 #include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
+#include <vimlop/Evaluation/FieldStop.h>
+#include <vimlop/Rendering/MucosaTexture.h>
+#include <vimlop/Rendering/vtkVIMLOPVirtualEndoscope.h>
+#include <vimlop/Video/IntrinsicsIO.h>
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <vtkNew.h>
 
+#include <cmath>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,4 +68,160 @@ TEST(EndoscopeSimulation, RefusesASequenceOfOneFrameAndStopsWhenCancelled)
   {
     EXPECT_STREQ(e.what(), "simulate: frame: cancelled");
   }
+}
+
+namespace
+{
+
+/// Mean absolute difference of two frames over a square of half-width `halfPx` around (u, v).
+double meanDifference(const cv::Mat& a, const cv::Mat& b, int u, int v, int halfPx)
+{
+  const cv::Rect square(u - halfPx, v - halfPx, 2 * halfPx + 1, 2 * halfPx + 1);
+  cv::Mat difference;
+  cv::absdiff(a(square), b(square), difference);
+  const cv::Scalar mean = cv::mean(difference);
+  return (mean[0] + mean[1] + mean[2]) / 3.0;
+}
+
+} // namespace
+
+TEST(EndoscopeSimulation, WithEveryErrorSourceOffTheFramesAreTheRenderersOwn)
+{
+  // The ideal world as it was before the error sources: the virtual
+  // endoscope's frames, noise included, unchanged.
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeSimulationOptions o;
+  o.frames = 2;
+  ASSERT_TRUE(o.isIdealWorld());
+  const SimulatedVideo video = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  MucosaTextureOptions texture;
+  texture.seed = o.seed;
+  vtkNew<vtkVIMLOPVirtualEndoscope> endoscope;
+  endoscope->SetBlurSigmaPx(o.blurSigmaPx);
+  endoscope->SetNoiseSigma(o.noiseSigma);
+  endoscope->SetMesh(model.mesh(), MucosaTexture(texture));
+  for (int f = 0; f < 2; ++f)
+  {
+    const EndoscopeImage image =
+      endoscope->Render(o.intrinsics, video.camerasCT[f], o.seed * 100003ull + f);
+    int differing = 0;
+    for (int v = 0; v < image.heightPx; ++v)
+    {
+      for (int u = 0; u < image.widthPx; ++u)
+      {
+        const cv::Vec3b bgr = video.frames[f].at<cv::Vec3b>(v, u);
+        differing +=
+          bgr != cv::Vec3b(image.channel(u, v, 2), image.channel(u, v, 1), image.channel(u, v, 0));
+      }
+    }
+    EXPECT_EQ(differing, 0) << "frame " << f;
+    EXPECT_EQ(video.depth[f].depthMm, image.depth.depthMm);
+  }
+  EXPECT_EQ(video.calibratedIntrinsics.fx, video.intrinsics.fx);
+  EXPECT_EQ(video.calibratedIntrinsics.distortion.size(), 0);
+}
+
+TEST(EndoscopeSimulation, TheFieldStopBlackensTheBorderLeavesTheCentreAndKeepsTheSensorNoise)
+{
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeSimulationOptions o;
+  o.frames = 2;
+  o.noiseSigma = 0.0;
+  const SimulatedVideo open = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  o.fieldStop.radiusFraction = 0.6; // 120 px
+  const SimulatedVideo stopped = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  const cv::Mat gain = fieldStopGain(o.fieldStop, 320, 240);
+  int inside = 0;
+  int outside = 0;
+  for (int v = 0; v < 240; ++v)
+  {
+    for (int u = 0; u < 320; ++u)
+    {
+      const cv::Vec3b seen = stopped.frames[1].at<cv::Vec3b>(v, u);
+      if (gain.at<float>(v, u) == 1.0f)
+      {
+        ++inside;
+        ASSERT_EQ(seen, open.frames[1].at<cv::Vec3b>(v, u)) << u << ", " << v;
+      }
+      else if (gain.at<float>(v, u) == 0.0f)
+      {
+        ++outside;
+        ASSERT_EQ(seen, cv::Vec3b(0, 0, 0)) << u << ", " << v;
+      }
+    }
+  }
+  EXPECT_GT(inside, 40000);  // about pi 119^2
+  EXPECT_GT(outside, 25000); // about 320 x 240 - pi 121^2
+  EXPECT_GT(cv::countNonZero(open.frames[1].reshape(1) != 0), 0.9 * 320 * 240 * 3);
+
+  // With vignetting the edge of the circle is darker than its centre by the set amount.
+  o.fieldStop.vignettingStrength = 0.5;
+  const SimulatedVideo vignetted = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  const cv::Mat& a = open.frames[1];
+  const cv::Mat& b = vignetted.frames[1];
+  EXPECT_LE(meanDifference(a, b, 160, 120, 2), 0.5);
+  // 110 px out (r / R = 0.917): the gain is 1 - 0.5 * 0.84 = 0.58.
+  const cv::Vec3b edgeOpen = a.at<cv::Vec3b>(120, 270);
+  const cv::Vec3b edgeDark = b.at<cv::Vec3b>(120, 270);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(edgeDark[c], 0.58 * edgeOpen[c], 1.0) << c;
+  }
+
+  // A real sensor is noisy in the black border too.
+  o.noiseSigma = 3.0;
+  o.fieldStop.vignettingStrength = 0.0;
+  const SimulatedVideo noisy = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  EXPECT_GT(cv::countNonZero(noisy.frames[1](cv::Rect(0, 0, 20, 20)).reshape(1)), 100);
+}
+
+TEST(EndoscopeSimulation, LensDistortionKeepsTheCentreAndMovesTheRestOfTheFrame)
+{
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeSimulationOptions o;
+  o.frames = 2;
+  o.noiseSigma = 0.0;
+  const SimulatedVideo pinhole = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  o.intrinsics.distortion = Eigen::Vector4d(-0.3, 0.0, 0.0, 0.0);
+  const SimulatedVideo distorted = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  ASSERT_EQ(distorted.camerasCT[1].centre, pinhole.camerasCT[1].centre);
+  // The optical axis sees the same through both lenses (the renderer draws the
+  // wider pinhole view on the same pixel grid) ...
+  EXPECT_LE(meanDifference(pinhole.frames[1], distorted.frames[1], 160, 120, 1), 2.0);
+  EXPECT_NEAR(distorted.depth[1].at(160, 120), pinhole.depth[1].at(160, 120),
+    1e-3 * pinhole.depth[1].at(160, 120));
+  // ... and farther out the barrel lens shows what lies farther out.
+  EXPECT_GT(meanDifference(pinhole.frames[1], distorted.frames[1], 40, 40, 10), 5.0);
+  EXPECT_EQ(distorted.calibratedIntrinsics.distortion, o.intrinsics.distortion);
+}
+
+TEST(EndoscopeSimulation, WritesTheCalibratedIntrinsicsForTheUserAndTheTrueOnesApart)
+{
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeSimulationOptions o;
+  o.frames = 2;
+  o.intrinsics.distortion = Eigen::Vector4d(-0.1, 0.01, 0.0, 0.0);
+  const SimulatedVideo exact = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  o.calibrationFocalErrorRelative = 0.02;
+  o.calibrationPrincipalPointErrorPx = Eigen::Vector2d(3.0, -2.0);
+  const SimulatedVideo video = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  // The frames are the true camera's, whatever the calibration says.
+  EXPECT_EQ(cv::countNonZero(exact.frames[1].reshape(1) != video.frames[1].reshape(1)), 0);
+
+  const std::filesystem::path folder =
+    std::filesystem::path(::testing::TempDir()) / "simulated-calibration";
+  std::filesystem::remove_all(folder);
+  writeSimulatedVideo(video, folder.string());
+  const PinholeCamera given = readIntrinsics((folder / "intrinsics.yaml").string());
+  const PinholeCamera truth = readIntrinsics((folder / "truth" / "intrinsics.yaml").string());
+  EXPECT_DOUBLE_EQ(given.fx, 1.02 * 200.0);
+  EXPECT_DOUBLE_EQ(given.fy, 1.02 * 200.0);
+  EXPECT_DOUBLE_EQ(given.cx, 159.5 + 3.0);
+  EXPECT_DOUBLE_EQ(given.cy, 119.5 - 2.0);
+  EXPECT_EQ(given.distortion, o.intrinsics.distortion);
+  EXPECT_DOUBLE_EQ(truth.fx, 200.0);
+  EXPECT_DOUBLE_EQ(truth.fy, 200.0);
+  EXPECT_DOUBLE_EQ(truth.cx, 159.5);
+  EXPECT_DOUBLE_EQ(truth.cy, 119.5);
+  EXPECT_EQ(truth.distortion, o.intrinsics.distortion);
 }

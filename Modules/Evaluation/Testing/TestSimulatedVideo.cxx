@@ -1,10 +1,14 @@
 #include "TestMeshes.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
 
 using namespace vimlop;
 
@@ -25,4 +29,108 @@ TEST(SimulatedVideo, MeasuresItsPathAndItsLeastDistanceToTheWall)
   const RegistrationModel model = makeEmbreeRegistrationModel(fixtures::makeSphere(20.0, 4));
   EXPECT_NEAR(video.leastWallDistanceMm(model), 15.0, 0.2);
   EXPECT_TRUE(std::isinf(SimulatedVideo().leastWallDistanceMm(model)));
+}
+
+namespace
+{
+
+/// Ten cameras 1 mm apart along x, one per frame at 30 frames per second: 30 mm/s.
+std::vector<CameraPose> straightPath()
+{
+  std::vector<CameraPose> cameras(10);
+  for (int f = 0; f < 10; ++f)
+  {
+    cameras[f].centre = Eigen::Vector3d(f, 0.0, 0.0);
+  }
+  return cameras;
+}
+
+std::string validationMessage(const EndoscopeSimulationOptions& o)
+{
+  try
+  {
+    o.validate();
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "no error";
+}
+
+} // namespace
+
+TEST(SimulatedVideo, TrackerLatencyAndClockOffsetShiftTheRecordedTrajectoryInTime)
+{
+  EndoscopeSimulationOptions o;
+  o.trackerNoiseMm = 0.0;
+  const TrackerTrajectory ideal = simulateTrackerRecording(straightPath(), o);
+  o.trackerLatencyS = 0.05;
+  const TrackerTrajectory late = simulateTrackerRecording(straightPath(), o);
+  o.trackerLatencyS = 0.03;
+  o.trackerClockOffsetS = 0.02;
+  const TrackerTrajectory lateAndOffset = simulateTrackerRecording(straightPath(), o);
+
+  // The same time stamps; each sample reports where the tip was 50 ms earlier.
+  ASSERT_EQ(late.samples().size(), ideal.samples().size());
+  for (size_t i = 0; i < late.samples().size(); ++i)
+  {
+    const double t = late.samples()[i].timeS;
+    EXPECT_DOUBLE_EQ(t, ideal.samples()[i].timeS);
+    const std::optional<Eigen::Vector3d> before = ideal.positionAt(t - 0.05);
+    if (before)
+    {
+      EXPECT_NEAR((late.samples()[i].positionMm - *before).norm(), 0.0, 1e-9) << t;
+    }
+    // At 30 mm/s, 50 ms is 1.5 mm behind the tip.
+    EXPECT_NEAR(ideal.samples()[i].positionMm.x() - late.samples()[i].positionMm.x(), 1.5, 1e-9);
+    EXPECT_NEAR(
+      (lateAndOffset.samples()[i].positionMm - late.samples()[i].positionMm).norm(), 0.0, 1e-9);
+  }
+}
+
+TEST(SimulatedVideo, TheDefaultWorldIsIdealAndEachErrorSourceMakesItReal)
+{
+  EXPECT_TRUE(EndoscopeSimulationOptions().isIdealWorld());
+  EXPECT_EQ(validationMessage(EndoscopeSimulationOptions()), "no error");
+  auto real = [](auto change)
+  {
+    EndoscopeSimulationOptions o;
+    change(o);
+    return !o.isIdealWorld();
+  };
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.fieldStop.radiusFraction = 0.6; }));
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.fieldStop.vignettingStrength = 0.3; }));
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o)
+    { o.intrinsics.distortion = Eigen::Vector4d(-0.3, 0.0, 0.0, 0.0); }));
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.calibrationFocalErrorRelative = 0.01; }));
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o)
+    { o.calibrationPrincipalPointErrorPx = Eigen::Vector2d(0.0, 2.0); }));
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.trackerLatencyS = 0.02; }));
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.trackerClockOffsetS = -0.1; }));
+  // Zero coefficients are no distortion.
+  EXPECT_FALSE(
+    real([](EndoscopeSimulationOptions& o) { o.intrinsics.distortion = Eigen::Vector4d::Zero(); }));
+}
+
+TEST(SimulatedVideo, RefusesANegativeLatencyAWildFocalErrorAndAnOddNumberOfCoefficients)
+{
+  EndoscopeSimulationOptions o;
+  o.trackerLatencyS = -0.01;
+  EXPECT_EQ(validationMessage(o), "the tracker latency must be a finite number >= 0 s, not -0.01");
+  o = EndoscopeSimulationOptions();
+  o.calibrationFocalErrorRelative = 0.7;
+  EXPECT_EQ(validationMessage(o),
+    "the calibration's relative focal error must lie in (-0.5, 0.5), not 0.7");
+  o = EndoscopeSimulationOptions();
+  o.intrinsics.distortion = Eigen::Vector3d(-0.3, 0.1, 0.0);
+  EXPECT_EQ(validationMessage(o),
+    "the lens distortion needs 4, 5 or 8 coefficients (OpenCV's k1, k2, p1, p2[, k3[, k4, k5, "
+    "k6]]), not 3");
+  o = EndoscopeSimulationOptions();
+  o.fieldStop.vignettingStrength = 2.0;
+  EXPECT_EQ(validationMessage(o), "the vignetting strength must lie in [0, 1], not 2");
+  o = EndoscopeSimulationOptions();
+  o.trackerClockOffsetS = std::nan("");
+  EXPECT_EQ(validationMessage(o), "the tracker's clock offset must be finite");
 }
