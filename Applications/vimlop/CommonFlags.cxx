@@ -67,6 +67,15 @@ void addPipelineOptions(CLI::App& c, VideoRegistrationOptions& p)
      { p.multiStart.scaleFactors = parseNumbers(list, "--scale-factors"); },
      "V13: variations of the initial scale per canonical start")
     ->default_str(factors);
+  c.add_option_function<std::string>(
+     "--field-stop",
+     [&p](const std::string& value)
+     { p.fieldOfView = FieldOfViewOptions::fromText(value, p.fieldOfView); },
+     "the endoscope's field stop (black disc border): auto (detected from the frames; frames "
+     "without a dark border are used whole), none, circle:U,V,R (centre and radius, px) or a "
+     "mask image, white inside; contour points and SfM features outside it and within "
+     "--field-stop-margin-px of its edge are not used")
+    ->default_str(p.fieldOfView.toText());
 }
 
 void addPoseServingOptions(CLI::App& command, PoseServingOptions& options)

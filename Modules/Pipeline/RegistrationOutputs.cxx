@@ -178,7 +178,8 @@ nlohmann::json registrationOptionsJson(const VideoRegistrationOptions& o)
 {
   nlohmann::json j = { { "registration", recordjson::optionsJson(o.registration) },
     { "scale_factors", o.multiStart.scaleFactors }, { "canonical_rolls_deg", o.canonical.rollsDeg },
-    { "contour_channel", o.contours.channel == ContourChannel::Red ? "red" : "luminance" } };
+    { "contour_channel", o.contours.channel == ContourChannel::Red ? "red" : "luminance" },
+    { "field_stop", o.fieldOfView.toText() } };
 #define VIMLOP_VALUE_JSON(Name, Type, member, key, flag, min, max, help) j[key] = o.member;
   VIMLOP_VIDEO_REGISTRATION_VALUES(VIMLOP_VALUE_JSON)
 #undef VIMLOP_VALUE_JSON

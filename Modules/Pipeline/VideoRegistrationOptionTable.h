@@ -10,7 +10,8 @@
  * properties of vtkVIMLOPVideoRegistration, the flags of `vimlop register`
  * and `vimlop evaluate video`, the JSON of `--print-options` and
  * VideoRegistrationOptions::validate(). Not in the table: the lists (scale
- * factors, canonical rolls) and the contour detector's channel.
+ * factors, canonical rolls), the contour detector's channel and the field
+ * stop's mode (`--field-stop`).
  */
 
 // clang-format off
@@ -47,7 +48,13 @@
   X(ContourLowThreshold, double, contours.lowThreshold, "contour_low_threshold", \
     "--contour-low-threshold", 1e-4, 10.0, "V1: lower hysteresis threshold on the log-intensity gradient") \
   X(ContourSpacingPx, double, contours.spacingPx, "contour_spacing_px", "--contour-spacing-px", \
-    0.0, 100.0, "V1: least distance between detected contour points, px")
+    0.0, 100.0, "V1: least distance between detected contour points, px") \
+  X(FieldStopMarginPx, double, fieldOfView.marginPx, "field_stop_margin_px", \
+    "--field-stop-margin-px", 0.0, 200.0, \
+    "pixels within this distance of the field stop's edge are not used, px") \
+  X(FieldStopThreshold, double, fieldOfView.autoThresholdGrey, "field_stop_threshold", \
+    "--field-stop-threshold", 0.0, 254.0, \
+    "automatic field stop: brightest grey level over the frames at or below which a pixel is border")
 // clang-format on
 
 #endif

@@ -5,6 +5,7 @@
 #include <vimlop/Core/MultiStartRegistration.h>
 #include <vimlop/Core/RegistrationOptions.h>
 #include <vimlop/Video/ContourDetectionOptions.h>
+#include <vimlop/Video/FieldOfViewOptions.h>
 
 namespace vimlop
 {
@@ -31,6 +32,10 @@ struct VideoRegistrationOptions
   double pointNoiseFloorMm = 0.1;
   /// V1: the video contour detector (see OccludingContourDetector).
   ContourDetectionOptions contours;
+  /// The field stop: contour points and SfM features outside it (and within
+  /// its margin) are not used (default Auto: detected from the frames;
+  /// frames without a dark border are used whole, as with None).
+  FieldOfViewOptions fieldOfView;
   /// V13 b: the canonical poses generated along the airway when no pose file is given.
   CanonicalPoseOptions canonical;
   /// V13: the multi-start and its failure flag (screening, finalists,

@@ -10,6 +10,7 @@
 #include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Pipeline/VideoRegistrationData.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Video/FieldOfView.h>
 #include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Video/IntrinsicsIO.h>
 #include <vimlop/Video/OccludingContourDetector.h>
@@ -20,6 +21,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <ostream>
 #include <sstream>
@@ -44,6 +46,21 @@ void VideoRegistrationOptions::validate() const
   this->registration.validate();
   this->multiStart.validate();
   this->canonical.validate();
+  if (this->fieldOfView.mode == FieldStopMode::File && this->fieldOfView.maskFile.empty())
+  {
+    throw Error("video registration options: the field stop's mask file is not given");
+  }
+  std::error_code ignored;
+  if (this->fieldOfView.mode == FieldStopMode::File &&
+    !std::filesystem::is_regular_file(this->fieldOfView.maskFile, ignored))
+  {
+    throw Error("video registration options: the field stop's mask file '" +
+      this->fieldOfView.maskFile + "' does not exist");
+  }
+  if (this->fieldOfView.mode == FieldStopMode::Circle && !(this->fieldOfView.radiusPx > 0.0))
+  {
+    throw Error("video registration options: the field stop's circle needs a positive radius");
+  }
 }
 
 struct VideoRegistrationPipeline::Internals
@@ -60,6 +77,8 @@ struct VideoRegistrationPipeline::Internals
   bool FramesLoaded = false;
   std::vector<cv::Mat> Frames;
   std::vector<std::string> Names;
+  /// The frames' field of view (field stop), found with the frames.
+  std::optional<FieldOfView> View;
   bool ContoursDetected = false;
   std::vector<std::vector<ContourPoint>> Contours;
   std::optional<SfmReconstruction> Sfm;
@@ -184,6 +203,19 @@ void VideoRegistrationPipeline::loadFrames(const std::string& path, const Pinhol
     d.Names.push_back(sequence.name(f));
   }
   d.Intrinsics = intrinsics;
+  d.View = FieldOfView::ofSequence(d.Frames, d.Opts.fieldOfView);
+  if (!d.View->isEverything())
+  {
+    std::ostringstream text;
+    text << "field stop (" << fieldStopModeName(d.Opts.fieldOfView.mode)
+         << "): " << 100.0 * d.View->validFraction() << " % of the frame used";
+    if (d.View->isCircular())
+    {
+      text << ", circle at (" << d.View->centreUPx() << ", " << d.View->centreVPx()
+           << ") px of radius " << d.View->radiusPx() << " px";
+    }
+    d.say(text.str());
+  }
   d.FramesLoaded = true;
   d.progress("frames", 1.0);
 }
@@ -195,10 +227,25 @@ void VideoRegistrationPipeline::detectContours()
   d.say("contours of " + std::to_string(d.Frames.size()) + " frames");
   const OccludingContourDetector detector{ d.Opts.contours };
   d.Contours.clear();
+  // Every pixel valid: no mask at all, so a sequence without a field stop
+  // gives exactly the points it always did.
+  const cv::Mat mask = d.View && !d.View->isEverything() ? d.View->mask() : cv::Mat();
+  size_t detected = 0;
+  size_t dropped = 0;
   for (size_t f = 0; f < d.Frames.size(); ++f)
   {
     d.progress("contours", static_cast<double>(f) / d.Frames.size());
-    d.Contours.push_back(detector.detect(d.Frames[f]));
+    OccludingContourDetector::MaskedDetectionCounts counts;
+    d.Contours.push_back(detector.detect(d.Frames[f], mask, &counts));
+    detected += counts.detected;
+    dropped += counts.dropped;
+  }
+  if (!mask.empty())
+  {
+    std::ostringstream text;
+    text << "field stop: " << dropped << " of " << detected << " contour points ("
+         << (detected > 0 ? 100.0 * dropped / detected : 0.0) << " %) dropped";
+    d.say(text.str());
   }
   d.ContoursDetected = true;
   d.progress("contours", 1.0);
@@ -211,7 +258,8 @@ void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
   d.progress("sfm", 0.0);
   PinholeCamera ideal = d.Intrinsics;
   ideal.distortion.resize(0);
-  SfmReconstruction sfm = reconstructFrames(d.Frames, d.Names, ideal, colmapFolder, d.Log);
+  const cv::Mat mask = d.View && !d.View->isEverything() ? d.View->mask() : cv::Mat();
+  SfmReconstruction sfm = reconstructFrames(d.Frames, d.Names, ideal, colmapFolder, d.Log, mask);
   if (sfm.numberOfRegisteredFrames() < 2 || sfm.points.size() < 10)
   {
     throw Error("SfM registered " + std::to_string(sfm.numberOfRegisteredFrames()) +

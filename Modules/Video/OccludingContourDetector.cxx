@@ -59,7 +59,7 @@ OccludingContourDetector::OccludingContourDetector(const ContourDetectionOptions
   }
 }
 
-std::vector<ContourPoint> OccludingContourDetector::detect(const cv::Mat& frame) const
+std::vector<ContourPoint> OccludingContourDetector::edgePoints(const cv::Mat& frame) const
 {
   const ContourDetectionOptions& o = this->Opts;
   if (frame.empty())
@@ -250,7 +250,62 @@ std::vector<ContourPoint> OccludingContourDetector::detect(const cv::Mat& frame)
   {
     points.push_back(c.point);
   }
-  return o.spacingPx > 0.0 ? thin(points, o.spacingPx) : points;
+  return points;
+}
+
+std::vector<ContourPoint> OccludingContourDetector::detect(const cv::Mat& frame) const
+{
+  return thin(this->edgePoints(frame), this->Opts.spacingPx);
+}
+
+std::vector<ContourPoint> OccludingContourDetector::detect(
+  const cv::Mat& frame, const cv::Mat& validMask, MaskedDetectionCounts* counts) const
+{
+  if (validMask.empty())
+  {
+    std::vector<ContourPoint> all = this->detect(frame);
+    if (counts)
+    {
+      counts->detected = all.size();
+      counts->dropped = 0;
+    }
+    return all;
+  }
+  if (validMask.type() != CV_8U || validMask.cols != frame.cols || validMask.rows != frame.rows)
+  {
+    throw Error(
+      "contour detector: the mask must be an 8-bit single-channel image of the frame's size");
+  }
+  const std::vector<ContourPoint> points = this->edgePoints(frame);
+  auto inside = [&validMask](const ContourPoint& p)
+  {
+    const int u = static_cast<int>(std::lround(p.pixel.x()));
+    const int v = static_cast<int>(std::lround(p.pixel.y()));
+    return u >= 0 && v >= 0 && u < validMask.cols && v < validMask.rows &&
+      validMask.at<unsigned char>(v, u) != 0;
+  };
+  // Masked before thinning, so that a point on the field stop's edge does
+  // not push out a real contour point near it.
+  std::vector<ContourPoint> kept;
+  kept.reserve(points.size());
+  for (const ContourPoint& p : points)
+  {
+    if (inside(p))
+    {
+      kept.push_back(p);
+    }
+  }
+  kept = thin(kept, this->Opts.spacingPx);
+  if (counts)
+  {
+    // What the detector would have returned without the mask, and how many
+    // of those the mask removes.
+    const std::vector<ContourPoint> all = thin(points, this->Opts.spacingPx);
+    counts->detected = all.size();
+    counts->dropped = static_cast<size_t>(std::count_if(
+      all.begin(), all.end(), [&inside](const ContourPoint& p) { return !inside(p); }));
+  }
+  return kept;
 }
 
 std::vector<ContourPoint> OccludingContourDetector::thin(

@@ -6,6 +6,7 @@
 
 #include <opencv2/core/mat.hpp>
 
+#include <cstddef>
 #include <vector>
 
 namespace vimlop
@@ -51,6 +52,27 @@ public:
    */
   std::vector<ContourPoint> detect(const cv::Mat& frame) const;
 
+  /// @brief How many points a masked detection removed.
+  struct MaskedDetectionCounts
+  {
+    /// The points detect(frame) would return (without the mask).
+    size_t detected = 0;
+    /// Those of them on an invalid pixel of the mask.
+    size_t dropped = 0;
+  };
+
+  /**
+   * @brief The oriented contour points of a frame that lie on valid
+   * (non-zero) pixels of `validMask` (a CV_8U image of the frame's size,
+   * e.g. FieldOfView::mask(); empty: every pixel valid, as detect(frame)).
+   * Points are masked before they are thinned, so none on the field stop's
+   * edge pushes out a real contour point. `counts`, when given, receives
+   * what the mask removed.
+   * @throws vimlop::Error as detect(frame), or for a mask of another size or type.
+   */
+  std::vector<ContourPoint> detect(
+    const cv::Mat& frame, const cv::Mat& validMask, MaskedDetectionCounts* counts = nullptr) const;
+
   /**
    * @brief Keeps points, in the given order, that lie at least `spacingPx`
    * from every point kept before them (detect() orders its points by edge
@@ -59,6 +81,9 @@ public:
   static std::vector<ContourPoint> thin(const std::vector<ContourPoint>& points, double spacingPx);
 
 private:
+  /// Every edge point that passes the tests, strongest first, not thinned.
+  std::vector<ContourPoint> edgePoints(const cv::Mat& frame) const;
+
   ContourDetectionOptions Opts;
 };
 

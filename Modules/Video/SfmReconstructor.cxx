@@ -10,9 +10,11 @@ namespace vimlop::detail
 {
 
 SfmReconstructor::SfmReconstructor(const StructureFromMotionOptions& options,
-  const std::vector<cv::Mat>& frames, const PinholeCamera& k, std::ostream* log)
+  const std::vector<cv::Mat>& frames, const PinholeCamera& k, std::ostream* log,
+  const cv::Mat& featureMask)
   : O(options)
   , Frames(frames)
+  , FeatureMask(featureMask)
   , K(k)
   , Log(log)
 {

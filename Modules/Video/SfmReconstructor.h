@@ -36,7 +36,7 @@ class SfmReconstructor
 {
 public:
   SfmReconstructor(const StructureFromMotionOptions& options, const std::vector<cv::Mat>& frames,
-    const PinholeCamera& k, std::ostream* log);
+    const PinholeCamera& k, std::ostream* log, const cv::Mat& featureMask);
 
   SfmReconstruction run(const std::vector<std::string>& names);
 
@@ -83,6 +83,8 @@ private:
 
   const StructureFromMotionOptions& O;
   const std::vector<cv::Mat>& Frames;
+  /// Where features are detected (empty: everywhere).
+  cv::Mat FeatureMask;
   PinholeCamera K;
   std::ostream* Log;
   std::vector<FrameFeatures> Features;

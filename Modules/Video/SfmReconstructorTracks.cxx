@@ -104,7 +104,16 @@ void SfmReconstructor::detect()
       grey = frame;
     }
     FrameFeatures f;
-    sift->detectAndCompute(grey, cv::noArray(), f.keypoints, f.descriptors);
+    // Outside the mask (the field stop's border and edge) there is no
+    // texture of the anatomy, only the edge's corners, which do not move with it.
+    if (this->FeatureMask.empty())
+    {
+      sift->detectAndCompute(grey, cv::noArray(), f.keypoints, f.descriptors);
+    }
+    else
+    {
+      sift->detectAndCompute(grey, this->FeatureMask, f.keypoints, f.descriptors);
+    }
     counts.push_back(static_cast<double>(f.keypoints.size()));
     if (static_cast<int>(f.keypoints.size()) < this->O.minFeatures)
     {

@@ -45,7 +45,13 @@ SfmReconstruction StructureFromMotion::reconstruct(const std::vector<cv::Mat>& f
       std::to_string(intrinsics.heightPx) + " pixels but the frames are " +
       std::to_string(frames[0].cols) + "x" + std::to_string(frames[0].rows));
   }
-  detail::SfmReconstructor reconstructor(this->Opts, frames, intrinsics, log);
+  if (!this->FeatureMask.empty() &&
+    (this->FeatureMask.type() != CV_8U || this->FeatureMask.cols != frames[0].cols ||
+      this->FeatureMask.rows != frames[0].rows))
+  {
+    throw Error("SfM: the feature mask must be an 8-bit single-channel image of the frames' size");
+  }
+  detail::SfmReconstructor reconstructor(this->Opts, frames, intrinsics, log, this->FeatureMask);
   return reconstructor.run(names);
 }
 

@@ -102,8 +102,17 @@ public:
     const std::vector<std::string>& names = std::vector<std::string>(),
     std::ostream* log = nullptr) const;
 
+  /**
+   * @brief Features are detected only on the non-zero pixels of this CV_8U
+   * mask of the frames' size (e.g. FieldOfView::mask()); empty (the
+   * default): everywhere.
+   */
+  void setFeatureMask(const cv::Mat& mask) { this->FeatureMask = mask; }
+  const cv::Mat& featureMask() const { return this->FeatureMask; }
+
 private:
   StructureFromMotionOptions Opts;
+  cv::Mat FeatureMask;
 };
 
 } // namespace vimlop

@@ -56,12 +56,14 @@ std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCam
 
 SfmReconstruction reconstructFrames(const std::vector<cv::Mat>& frames,
   const std::vector<std::string>& names, const PinholeCamera& ideal,
-  const std::string& colmapFolder, std::ostream* log)
+  const std::string& colmapFolder, std::ostream* log, const cv::Mat& featureMask)
 {
   SfmReconstruction sfm;
   if (colmapFolder.empty())
   {
-    sfm = StructureFromMotion().reconstruct(frames, ideal, names, log);
+    StructureFromMotion engine;
+    engine.setFeatureMask(featureMask);
+    sfm = engine.reconstruct(frames, ideal, names, log);
   }
   else
   {

@@ -78,3 +78,39 @@ TEST(StructureFromMotion, CannotInitialiseWithoutMotion)
     "SfM cannot initialise: the camera hardly moves (features move by at most 0.00 px between the "
     "frames compared, at least 0.50 px needed)");
 }
+
+TEST(StructureFromMotion, FindsNoFeatureOutsideTheFeatureMask)
+{
+  // Textured frames that do not move: with every pixel valid SfM finds the
+  // features and fails only for want of motion; with a mask that excludes
+  // every pixel it finds none.
+  const cv::Mat frame = texture(4);
+  const std::vector<cv::Mat> still = { frame, frame.clone(), frame.clone() };
+  StructureFromMotion masked;
+  masked.setFeatureMask(cv::Mat(240, 320, CV_8U, cv::Scalar(0)));
+  std::string message = "no error";
+  try
+  {
+    masked.reconstruct(still, camera());
+  }
+  catch (const Error& e)
+  {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("too little texture (median 0 SIFT features"), std::string::npos)
+    << message;
+  EXPECT_NE(messageOf(still, camera()).find("the camera hardly moves"), std::string::npos);
+
+  masked.setFeatureMask(cv::Mat(10, 10, CV_8U, cv::Scalar(255)));
+  message = "no error";
+  try
+  {
+    masked.reconstruct(still, camera());
+  }
+  catch (const Error& e)
+  {
+    message = e.what();
+  }
+  EXPECT_EQ(
+    message, "SfM: the feature mask must be an 8-bit single-channel image of the frames' size");
+}
