@@ -6,20 +6,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include <sstream>
-
 namespace vimlop
 {
 
 namespace
 {
-
-std::string text(double value)
-{
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 template <typename T>
 void addValue(CLI::App& c, const char* flag, T& field, T min, T max, const char* help)
@@ -43,7 +34,7 @@ void addPipelineOptions(CLI::App& c, VideoRegistrationOptions& p)
      "--contour-variance-px2",
      [&r](double v) { r.contourMatch.positionCovariancePx2 = v * Eigen::Matrix2d::Identity(); },
      "V5: contour position noise Σ2d (isotropic), px² (paper: 1 for video)")
-    ->default_str(text(r.contourMatch.positionCovariancePx2(0, 0)))
+    ->default_str(joinNumbers({ r.contourMatch.positionCovariancePx2(0, 0) }))
     ->check(CLI::PositiveNumber);
 #define VIMLOP_REGISTRATION_FLAG(Name, Type, member, key, flag, min, max, help)                    \
   addValue<Type>(c, flag, r.member, min, max, help);
@@ -56,17 +47,12 @@ void addPipelineOptions(CLI::App& c, VideoRegistrationOptions& p)
 #undef VIMLOP_REGISTRATION_FLAG
 #undef VIMLOP_PIPELINE_FLAG
 #undef VIMLOP_SWITCH_FLAG
-  std::string factors;
-  for (double f : p.multiStart.scaleFactors)
-  {
-    factors += (factors.empty() ? "" : ",") + text(f);
-  }
   c.add_option_function<std::string>(
      "--scale-factors",
      [&p](const std::string& list)
      { p.multiStart.scaleFactors = parseNumbers(list, "--scale-factors"); },
      "V13: variations of the initial scale per canonical start")
-    ->default_str(factors);
+    ->default_str(joinNumbers(p.multiStart.scaleFactors));
   c.add_option_function<std::string>(
      "--field-stop",
      [&p](const std::string& value)

@@ -21,15 +21,6 @@ json boundJson(double value)
   return std::isfinite(value) ? json(value) : json(nullptr);
 }
 
-double boundFrom(const json& j, const char* key, double infinity)
-{
-  if (!j.contains(key) || j.at(key).is_null())
-  {
-    return infinity;
-  }
-  return j.at(key).get<double>();
-}
-
 } // namespace
 
 int intValue(const json& j, const char* key, int fallback)
@@ -139,7 +130,7 @@ RegistrationOptions optionsFrom(const json& j)
       matrixFrom(j.at("contour_position_covariance_px2"), 2, "contour_position_covariance_px2");
   }
   o.minScale = j.value("min_scale", o.minScale);
-  o.maxScale = boundFrom(j, "max_scale", std::numeric_limits<double>::infinity());
+  readValue(j, "max_scale", o.maxScale);
 #define VIMLOP_VALUE_FROM(Name, Type, member, key, flag, min, max, help)                           \
   readValue(j, key, o.member);
 #define VIMLOP_SWITCH_FROM(Name, member, key, flag, help) readValue(j, key, o.member);
