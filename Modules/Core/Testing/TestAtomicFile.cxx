@@ -1,6 +1,8 @@
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
 
+#include "TestFolders.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -13,14 +15,6 @@ namespace
 {
 
 namespace fs = std::filesystem;
-
-fs::path freshFolder(const std::string& name)
-{
-  const fs::path dir = fs::path(VIMLOP_TEST_OUTPUT_DIR) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 std::string contentsOf(const fs::path& path)
 {
@@ -47,7 +41,7 @@ std::string messageOf(const std::string& path, const std::string& contents)
 
 TEST(AtomicFile, WritesTheContentsAndLeavesNoTemporaryFile)
 {
-  const fs::path file = freshFolder("atomic-write") / "result.json";
+  const fs::path file = fixtures::freshTestFolder("atomic-write") / "result.json";
   const std::string contents = "{\n  \"a\": 1\n}\n";
   writeFileAtomically(file.string(), contents);
   EXPECT_EQ(contentsOf(file), contents);
@@ -56,7 +50,7 @@ TEST(AtomicFile, WritesTheContentsAndLeavesNoTemporaryFile)
 
 TEST(AtomicFile, ReplacesAnExistingFileWhole)
 {
-  const fs::path file = freshFolder("atomic-replace") / "notes.txt";
+  const fs::path file = fixtures::freshTestFolder("atomic-replace") / "notes.txt";
   std::ofstream(file) << "an older and much longer text than the new one\n";
   writeFileAtomically(file.string(), "new\n");
   EXPECT_EQ(contentsOf(file), "new\n");
@@ -64,14 +58,14 @@ TEST(AtomicFile, ReplacesAnExistingFileWhole)
 
 TEST(AtomicFile, CreatesMissingParentFolders)
 {
-  const fs::path file = freshFolder("atomic-parents") / "a" / "b" / "c.txt";
+  const fs::path file = fixtures::freshTestFolder("atomic-parents") / "a" / "b" / "c.txt";
   writeFileAtomically(file.string(), "x");
   EXPECT_EQ(contentsOf(file), "x");
 }
 
 TEST(AtomicFile, APathUnderARegularFileNamesThePath)
 {
-  const fs::path blocker = freshFolder("atomic-blocked") / "not-a-folder";
+  const fs::path blocker = fixtures::freshTestFolder("atomic-blocked") / "not-a-folder";
   std::ofstream(blocker) << "a file where a folder would have to be\n";
   const std::string path = (blocker / "out.json").string();
   EXPECT_EQ(messageOf(path, "{}"), "'" + path + "': cannot write the file");
@@ -80,7 +74,7 @@ TEST(AtomicFile, APathUnderARegularFileNamesThePath)
 
 TEST(AtomicFile, AFolderInTheWayGivesTheReasonAndKeepsTheFolder)
 {
-  const fs::path target = freshFolder("atomic-folder-in-the-way") / "out.json";
+  const fs::path target = fixtures::freshTestFolder("atomic-folder-in-the-way") / "out.json";
   fs::create_directories(target / "inside");
   const std::string message = messageOf(target.string(), "{}");
   EXPECT_EQ(message.rfind("'" + target.string() + "': cannot write the file (", 0), 0u) << message;

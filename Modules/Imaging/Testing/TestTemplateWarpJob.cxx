@@ -1,4 +1,5 @@
 #include "AirwayPhantom.h"
+#include "TestFolders.h"
 #include "TestMeshes.h"
 #include <vimlop/Core/CameraPose.h>
 #include <vimlop/Core/Error.h>
@@ -25,8 +26,6 @@ namespace
 
 namespace fs = std::filesystem;
 
-const fs::path out = fs::path(VIMLOP_TEST_OUTPUT_DIR) / "template-warp-job";
-
 std::string jobError(const TemplateWarpJobOptions& options)
 {
   try
@@ -44,8 +43,7 @@ std::string jobError(const TemplateWarpJobOptions& options)
 
 TEST(TemplateWarpJob, CarriesAMeshAndAPoseIntoAShiftedPatient)
 {
-  fs::remove_all(out);
-  fs::create_directories(out);
+  const fs::path out = fixtures::freshTestFolder("template-warp-job");
   // The patient is the template phantom moved by `shiftMm`: the same voxels
   // on a grid whose origin moved, so template point x is patient point x + shift.
   const Eigen::Vector3d shiftMm(2.5, -1.5, 1.25);
@@ -133,6 +131,7 @@ TEST(TemplateWarpJob, CarriesAMeshAndAPoseIntoAShiftedPatient)
 
 TEST(TemplateWarpJob, RefusesMeshesItCannotNameApartBeforeReadingAnything)
 {
+  const fs::path out = fixtures::freshTestFolder("template-warp-job");
   TemplateWarpJobOptions options;
   options.templateCTPath = (out / "no-such-template.mha").string();
   options.patientCTPath = (out / "no-such-patient.mha").string();

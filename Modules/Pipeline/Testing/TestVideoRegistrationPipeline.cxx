@@ -1,6 +1,7 @@
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
 #include "RenderedSequence.h"
+#include "TestFolders.h"
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Pipeline/SimilarityFromCameras.h>
 
@@ -19,14 +20,13 @@ namespace
 
 namespace fs = std::filesystem;
 
-/// The fixture's frames as a folder of pictures, written once.
+/// The fixture's frames as a folder of pictures, written once by each test
+/// (its own folder: ctest runs the tests of this file in parallel processes).
 std::string framesFolder()
 {
   static const std::string folder = []
   {
-    const fs::path dir = fs::path(VIMLOP_TEST_OUTPUT_DIR) / "pipeline-frames";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = fixtures::freshTestFolder("pipeline-frames");
     const fixtures::Sequence& s = fixtures::sequence();
     for (size_t f = 0; f < s.frames.size(); ++f)
     {

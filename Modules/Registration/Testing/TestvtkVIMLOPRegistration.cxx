@@ -7,6 +7,8 @@
 #include <vimlop/Registration/RegistrationInputConversion.h>
 #include <vimlop/Registration/vtkVIMLOPRegistration.h>
 
+#include "TestFolders.h"
+
 #include <gtest/gtest.h>
 
 #include <vtkActor.h>
@@ -97,13 +99,6 @@ SimilarityTransform transformOf(vtkLinearTransform* transform)
   return SimilarityTransform::fromMatrix(m, 1e-6);
 }
 
-std::string outputFolder(const std::string& name)
-{
-  const std::filesystem::path dir = std::filesystem::path(VIMLOP_TEST_OUTPUT_DIR) / name;
-  std::filesystem::create_directories(dir);
-  return dir.string();
-}
-
 void writeVtp(vtkPolyData* data, const std::string& path)
 {
   vtkNew<vtkXMLPolyDataWriter> writer;
@@ -151,7 +146,7 @@ TEST(vtkVIMLOPRegistration, RecoversP1InAPipelineAndFollowsParameterChanges)
   const TriangleMesh mesh = fixtures::craniumAirwayMesh();
   const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
   const SyntheticTrial trial = makeSyntheticTrial(model, SyntheticOptions(), 3);
-  const std::string dir = outputFolder("pipeline-p1");
+  const std::string dir = fixtures::freshTestFolder("pipeline-p1").string();
   writeVtp(toPolyData(mesh), dir + "/model.vtp");
   writeVtp(makeSfmPointPolyData(trial.data), dir + "/sfm-points.vtp");
   writeVtt(makeFrameTable(trial.data.frames), dir + "/frame-table.vtt");

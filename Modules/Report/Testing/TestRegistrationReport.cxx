@@ -13,6 +13,8 @@
 #include <vimlop/Report/RegistrationReport.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 
+#include "TestFolders.h"
+
 #include <gtest/gtest.h>
 
 #include <vtkImageData.h>
@@ -46,14 +48,6 @@ namespace fs = std::filesystem;
  */
 constexpr int pixelThreshold = 16;
 constexpr double maxError = 25.0;
-
-std::string freshFolder(const std::string& name)
-{
-  const fs::path dir = fs::path(VIMLOP_TEST_OUTPUT_DIR) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
 
 struct Comparison
 {
@@ -153,10 +147,10 @@ RegistrationReportOptions smallPictures()
 
 TEST(RegistrationReport, WritesEveryPictureAsInTheBaselines)
 {
-  const std::string result = freshFolder("report-fixture-result");
+  const std::string result = fixtures::freshTestFolder("report-fixture-result").string();
   writeRegistrationRecord(fixtures::makeReportRecord(result), result);
   const RegistrationRecord record = readRegistrationRecord(result);
-  const std::string out = freshFolder("report-fixture");
+  const std::string out = fixtures::freshTestFolder("report-fixture").string();
   const RegistrationReport report =
     RegistrationReport::write(&record, result, makeRuns(), out, smallPictures());
 
@@ -211,7 +205,7 @@ TEST(RegistrationReport, TheBaselineComparisonFailsOnAShiftedOverlay)
 {
   // The overlay of the first test, composed again: as is it passes; with the
   // model contours of the right half moved 3 pixels it must fail.
-  const std::string result = freshFolder("report-shift-result");
+  const std::string result = fixtures::freshTestFolder("report-shift-result").string();
   const RegistrationRecord record = fixtures::makeReportRecord(result);
   const VideoFrame& frame = record.data.frames.front();
   vtkSmartPointer<vtkImageData> picture = readPNG(result + "/" + record.frameImages.front());
@@ -255,7 +249,8 @@ TEST(RegistrationReport, ReportsNothingToReport)
 {
   try
   {
-    RegistrationReport::write(nullptr, "", {}, freshFolder("report-nothing"), {});
+    RegistrationReport::write(
+      nullptr, "", {}, fixtures::freshTestFolder("report-nothing").string(), {});
     FAIL();
   }
   catch (const Error& e)

@@ -3,6 +3,8 @@
 #include <vimlop/Results/PerturbationRuns.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 
+#include "TestFolders.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,13 +14,6 @@ using namespace vimlop;
 
 namespace
 {
-
-std::string freshFolder(const std::string& name)
-{
-  const std::filesystem::path dir = std::filesystem::path(VIMLOP_TEST_OUTPUT_DIR) / name;
-  std::filesystem::remove_all(dir);
-  return dir.string();
-}
 
 void expectMessage(const std::function<void()>& action, const std::string& expected)
 {
@@ -37,7 +32,7 @@ void expectMessage(const std::function<void()>& action, const std::string& expec
 
 static std::string freshRecordWithoutConfidence()
 {
-  const std::string dir = freshFolder("record-without-confidence");
+  const std::string dir = fixtures::freshTestFolder("record-without-confidence").string();
   writeRegistrationRecord(fixtures::makeReportRecord(), dir);
   return dir;
 }
@@ -52,7 +47,7 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   changed.options.method = RegistrationMethod::IMLP;
   changed.confidence = RegistrationRecord::Confidence{ true, 6.5, "canonical", 120, 17 };
   changed.versions["opencv"] = "4.6.0";
-  const std::string dir = freshFolder("record-round-trip");
+  const std::string dir = fixtures::freshTestFolder("record-round-trip").string();
   writeRegistrationRecord(changed, dir);
   for (const char* file :
     { "result.json", "model.vtp", "sfm-points.vtp", "frame-table.vtt", "video-contours.vtp",
@@ -127,12 +122,12 @@ TEST(RegistrationRecordIO, ReportsFoldersThatAreNotResults)
 {
   expectMessage(
     [] { readRegistrationRecord("no-such-folder"); }, "'no-such-folder': no such folder");
-  const std::string empty = freshFolder("record-empty");
+  const std::string empty = fixtures::freshTestFolder("record-empty").string();
   std::filesystem::create_directories(empty);
   expectMessage([&] { readRegistrationRecord(empty); },
     "'" + empty + "': not a VIMLOP result folder (no result.json)");
 
-  const std::string other = freshFolder("record-other");
+  const std::string other = fixtures::freshTestFolder("record-other").string();
   std::filesystem::create_directories(other);
   std::ofstream(other + "/result.json") << "{\"format\": \"something-else\"}\n";
   expectMessage([&] { readRegistrationRecord(other); },
@@ -143,7 +138,7 @@ TEST(RegistrationRecordIO, ReportsFoldersThatAreNotResults)
     "'" + other + "/result.json': format version 99 is newer than this program reads (1)");
 
   // A result folder that lost a file names the file.
-  const std::string partial = freshFolder("record-partial");
+  const std::string partial = fixtures::freshTestFolder("record-partial").string();
   writeRegistrationRecord(fixtures::makeReportRecord(), partial);
   std::filesystem::remove(partial + "/registered-points.vtp");
   expectMessage([&] { readRegistrationRecord(partial); },
@@ -152,7 +147,7 @@ TEST(RegistrationRecordIO, ReportsFoldersThatAreNotResults)
 
 TEST(PerturbationRuns, RoundTripAndBadInput)
 {
-  const std::string dir = freshFolder("perturbation-runs");
+  const std::string dir = fixtures::freshTestFolder("perturbation-runs").string();
   std::filesystem::create_directories(dir);
   const std::vector<PerturbationRun> runs = { { 2.0, 2.0, 0.3, 1.1, true },
     { 8.0, 8.0, 6.5, 9.0, false } };
