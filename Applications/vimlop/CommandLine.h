@@ -21,6 +21,7 @@ class App;
 namespace vimlop
 {
 
+struct EndoscopeSimulationOptions;
 struct PoseServingOptions;
 struct VideoRegistrationOptions;
 
@@ -47,6 +48,16 @@ void addModelOptions(CLI::App& command, std::string& mesh, std::string& ct);
  * are those `options` holds: the pipeline's.
  */
 void addPipelineOptions(CLI::App& command, VideoRegistrationOptions& options);
+
+/**
+ * @brief Adds a flag for every error source of the simulated world
+ * (Documentation/Simulation.md) to `command`, stored into `options` (which
+ * must outlive the parse): the image circle and vignetting, lens distortion,
+ * calibration error and the tracker's latency and clock offset. All are off
+ * by default: the ideal world. Shared by `vimlop simulate` and the protocols
+ * that simulate (`vimlop evaluate video`).
+ */
+void addSimulationOptions(CLI::App& command, EndoscopeSimulationOptions& options);
 
 /**
  * @brief Adds --host, --port, --allow-remote, --max-clients and --duration-s

@@ -174,6 +174,7 @@ CLI::App* addEvaluateCommand(CLI::App& app)
       "with --init canonical: the simulated scope's image up stays this close to superior, deg")
     ->capture_default_str()
     ->check(CLI::Range(0.0, 180.0));
+  addSimulationOptions(*p2, p2Options.simulation);
   addPipelineOptions(*p2, p2Options.pipeline);
   p2->callback([video] { runVideo(*video); });
 

@@ -27,14 +27,6 @@ struct SimulateOptions
   std::string ct;
   std::string out;
   EndoscopeSimulationOptions simulation;
-  /// OpenCV's k1, k2, p1, p2; the intrinsics carry them only when one is non-zero,
-  /// so that the ideal world's intrinsics.yaml stays as it was.
-  double k1 = 0.0;
-  double k2 = 0.0;
-  double p1 = 0.0;
-  double p2 = 0.0;
-  std::vector<double> fieldStopOffsetPx{ 0.0, 0.0 };
-  std::vector<double> principalPointErrorPx{ 0.0, 0.0 };
 };
 
 void runSimulate(SimulateOptions o)
@@ -44,14 +36,6 @@ void runSimulate(SimulateOptions o)
   k.fy = k.fx; // square pixels, principal point at the centre
   k.cx = 0.5 * (k.widthPx - 1);
   k.cy = 0.5 * (k.heightPx - 1);
-  if (o.k1 != 0.0 || o.k2 != 0.0 || o.p1 != 0.0 || o.p2 != 0.0)
-  {
-    k.distortion = Eigen::Vector4d(o.k1, o.k2, o.p1, o.p2);
-  }
-  o.simulation.fieldStop.centreOffsetPx =
-    Eigen::Vector2d(o.fieldStopOffsetPx[0], o.fieldStopOffsetPx[1]);
-  o.simulation.calibrationPrincipalPointErrorPx =
-    Eigen::Vector2d(o.principalPointErrorPx[0], o.principalPointErrorPx[1]);
   // Before the display check: a wrong setting is reported wherever it runs.
   o.simulation.validate();
   requireOffscreenRendering("vimlop simulate");
@@ -112,57 +96,7 @@ void addSimulateCommand(CLI::App& app)
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
 
-  // The error sources of a realistic world (Documentation/Simulation.md): all off by default.
-  FieldStopOptions& stop = o->simulation.fieldStop;
-  simulate
-    ->add_option("--field-stop", stop.radiusFraction,
-      "radius of the endoscope's image circle, fraction of the half-diagonal (0: none; about 0.6 "
-      "for a circle as tall as a 4:3 frame)")
-    ->capture_default_str()
-    ->check(CLI::NonNegativeNumber);
-  simulate
-    ->add_option("--field-stop-px", stop.radiusPx,
-      "radius of the image circle, pixels (0: none; instead of --field-stop)")
-    ->capture_default_str()
-    ->check(CLI::NonNegativeNumber);
-  simulate
-    ->add_option("--field-stop-offset-px", o->fieldStopOffsetPx,
-      "centre of the image circle relative to the image centre, pixels: u,v")
-    ->delimiter(',')
-    ->expected(2)
-    ->capture_default_str();
-  simulate
-    ->add_option("--field-stop-edge-px", stop.edgeSoftnessPx,
-      "width of the image circle's soft edge, pixels (0: a hard step)")
-    ->capture_default_str()
-    ->check(CLI::NonNegativeNumber);
-  simulate
-    ->add_option("--vignetting", stop.vignettingStrength,
-      "fraction of brightness lost at the circle's edge (gain 1 - s (r/R)^2; 0: none)")
-    ->capture_default_str();
-  simulate->add_option("--k1", o->k1, "radial distortion k1 rendered into the frames (OpenCV)")
-    ->capture_default_str();
-  simulate->add_option("--k2", o->k2, "radial distortion k2 (OpenCV)")->capture_default_str();
-  simulate->add_option("--p1", o->p1, "tangential distortion p1 (OpenCV)")->capture_default_str();
-  simulate->add_option("--p2", o->p2, "tangential distortion p2 (OpenCV)")->capture_default_str();
-  simulate
-    ->add_option("--focal-error", o->simulation.calibrationFocalErrorRelative,
-      "relative error of the focal length written to intrinsics.yaml (the frames use the true one)")
-    ->capture_default_str();
-  simulate
-    ->add_option("--principal-point-error-px", o->principalPointErrorPx,
-      "error of the principal point written to intrinsics.yaml, pixels: u,v")
-    ->delimiter(',')
-    ->expected(2)
-    ->capture_default_str();
-  simulate
-    ->add_option("--tracker-latency-s", o->simulation.trackerLatencyS,
-      "tracker latency, seconds: each sample reports the tip this long before its time stamp")
-    ->capture_default_str();
-  simulate
-    ->add_option("--tracker-offset-s", o->simulation.trackerClockOffsetS,
-      "tracker clock minus video clock, seconds")
-    ->capture_default_str();
+  addSimulationOptions(*simulate, o->simulation);
   simulate->callback([o] { runSimulate(*o); });
 }
 

@@ -1,0 +1,86 @@
+#include "CommandLine.h"
+#include <vimlop/Evaluation/EndoscopeSimulation.h>
+
+#include <CLI/CLI.hpp>
+
+namespace vimlop
+{
+
+namespace
+{
+
+/// Sets coefficient `index` of OpenCV's (k1, k2, p1, p2). The intrinsics carry
+/// coefficients only once one is set, so that the ideal world's
+/// intrinsics.yaml stays as it was.
+void setDistortion(PinholeCamera& k, int index, double value)
+{
+  if (k.distortion.size() < 4)
+  {
+    k.distortion = Eigen::Vector4d::Zero();
+  }
+  k.distortion(index) = value;
+}
+
+Eigen::Vector2d pair(const std::vector<double>& v)
+{
+  return Eigen::Vector2d(v[0], v[1]);
+}
+
+} // namespace
+
+void addSimulationOptions(CLI::App& c, EndoscopeSimulationOptions& s)
+{
+  FieldStopOptions& stop = s.fieldStop;
+  c.add_option("--image-circle", stop.radiusFraction,
+     "radius of the endoscope's image circle, fraction of the half-diagonal (0: none; about 0.6 "
+     "for a circle as tall as a 4:3 frame)")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  c.add_option("--image-circle-px", stop.radiusPx,
+     "radius of the image circle, pixels (0: none; instead of --image-circle)")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  c.add_option_function<std::vector<double>>(
+     "--image-circle-offset-px",
+     [&stop](const std::vector<double>& v) { stop.centreOffsetPx = pair(v); },
+     "centre of the image circle relative to the image centre, pixels: u,v")
+    ->delimiter(',')
+    ->expected(2)
+    ->default_str("0,0");
+  c.add_option("--image-circle-edge-px", stop.edgeSoftnessPx,
+     "width of the image circle's soft edge, pixels (0: a hard step)")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  c.add_option("--vignetting", stop.vignettingStrength,
+     "fraction of brightness lost at the circle's edge (gain 1 - s (r/R)^2; 0: none)")
+    ->capture_default_str();
+  PinholeCamera& k = s.intrinsics;
+  const char* names[] = { "--k1", "--k2", "--p1", "--p2" };
+  const char* helps[] = { "radial distortion k1 rendered into the frames (OpenCV's model)",
+    "radial distortion k2 (OpenCV)", "tangential distortion p1 (OpenCV)",
+    "tangential distortion p2 (OpenCV)" };
+  for (int i = 0; i < 4; ++i)
+  {
+    c.add_option_function<double>(
+       names[i], [&k, i](double v) { setDistortion(k, i, v); }, helps[i])
+      ->default_str("0");
+  }
+  c.add_option("--focal-error", s.calibrationFocalErrorRelative,
+     "relative error of the focal length written to intrinsics.yaml (the frames use the true one)")
+    ->capture_default_str();
+  c.add_option_function<std::vector<double>>(
+     "--principal-point-error-px",
+     [&s](const std::vector<double>& v) { s.calibrationPrincipalPointErrorPx = pair(v); },
+     "error of the principal point written to intrinsics.yaml, pixels: u,v")
+    ->delimiter(',')
+    ->expected(2)
+    ->default_str("0,0");
+  c.add_option("--tracker-latency-s", s.trackerLatencyS,
+     "tracker latency, seconds: each sample reports the tip this long before its time stamp")
+    ->capture_default_str();
+  c.add_option(
+     "--tracker-offset-s", s.trackerClockOffsetS, "tracker clock minus video clock, seconds")
+    ->capture_default_str();
+}
+
+} // namespace vimlop
