@@ -23,6 +23,7 @@ namespace vimlop
 
 struct EndoscopeSimulationOptions;
 struct PoseServingOptions;
+struct SimulatedWorldOptions;
 struct VideoRegistrationOptions;
 
 /// @brief "a,b" as two numbers with 0 <= a <= b; `what` names the option in errors.
@@ -58,6 +59,14 @@ void addPipelineOptions(CLI::App& command, VideoRegistrationOptions& options);
  * that simulate (`vimlop evaluate video`).
  */
 void addSimulationOptions(CLI::App& command, EndoscopeSimulationOptions& options);
+
+/**
+ * @brief Adds a flag for every model error of the simulated world
+ * (SimulatedWorldOptions: the anatomy's deformation, the segmentation
+ * offset, the truth's resolution, the swelling) to `command`, stored into
+ * `options`. All off by default.
+ */
+void addWorldOptions(CLI::App& command, SimulatedWorldOptions& options);
 
 /**
  * @brief Adds --host, --port, --allow-remote, --max-clients and --duration-s

@@ -4,6 +4,8 @@
 #include "TerminalEvaluationProgress.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
+#include <vimlop/Evaluation/SimulatedWorld.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Rendering/OffscreenRendering.h>
@@ -27,6 +29,7 @@ struct SimulateOptions
   std::string ct;
   std::string out;
   EndoscopeSimulationOptions simulation;
+  SimulatedWorldOptions world;
 };
 
 void runSimulate(SimulateOptions o)
@@ -38,12 +41,22 @@ void runSimulate(SimulateOptions o)
   k.cy = 0.5 * (k.heightPx - 1);
   // Before the display check: a wrong setting is reported wherever it runs.
   o.simulation.validate();
+  o.world.validate();
+  if (o.mesh.empty() == o.ct.empty())
+  {
+    throw Error("give exactly one of --mesh and --ct");
+  }
   requireOffscreenRendering("vimlop simulate");
-  const TriangleMesh mesh = airwayMeshFrom(o.mesh, o.ct);
-  const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
+  // The truth is what the endoscope sees and where its path runs; a user
+  // gets the model (model.vtp), never the truth.
+  const SimulatedWorld world = o.ct.empty()
+    ? makeSimulatedWorld(loadAirwayMesh(o.mesh), o.world)
+    : makeSimulatedWorld(readCTVolume(o.ct), o.world, terminalEvaluationProgress());
+  const RegistrationModel model = makeEmbreeRegistrationModel(world.truth);
   const SimulatedVideo video =
     simulateEndoscopeVideo(model, o.simulation, terminalEvaluationProgress());
   writeSimulatedVideo(video, o.out);
+  writeSimulatedWorld(world, o.out);
   std::printf("simulated %d frames of %dx%d px along a %.1f mm path (least wall distance %.2f mm) "
               "in %.1f s; wrote '%s'\n",
     o.simulation.frames, k.widthPx, k.heightPx, video.pathLengthMm(),
@@ -97,6 +110,7 @@ void addSimulateCommand(CLI::App& app)
     ->check(CLI::NonNegativeNumber);
 
   addSimulationOptions(*simulate, o->simulation);
+  addWorldOptions(*simulate, o->world);
   simulate->callback([o] { runSimulate(*o); });
 }
 

@@ -1,5 +1,6 @@
 #include "CommandLine.h"
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
+#include <vimlop/Evaluation/SimulatedWorld.h>
 
 #include <CLI/CLI.hpp>
 
@@ -81,6 +82,30 @@ void addSimulationOptions(CLI::App& c, EndoscopeSimulationOptions& s)
   c.add_option(
      "--tracker-offset-s", s.trackerClockOffsetS, "tracker clock minus video clock, seconds")
     ->capture_default_str();
+}
+
+void addWorldOptions(CLI::App& c, SimulatedWorldOptions& w)
+{
+  c.add_option("--anatomy-deformation-mm", w.anatomyDeformationMm,
+     "model error from the template warp: the patient is the CT deformed by a smooth field of "
+     "this largest displacement, the model the CT's airway warped to it (0: the CT is the patient)")
+    ->capture_default_str()
+    ->check(CLI::Range(0.0, 20.0));
+  c.add_option("--anatomy-seed", w.anatomySeed, "seed of the anatomy's deformation")
+    ->capture_default_str();
+  c.add_option("--segmentation-offset-hu", w.segmentationOffsetHU,
+     "segmentation error: the truth is segmented at the model's air threshold plus this, HU")
+    ->capture_default_str()
+    ->check(CLI::Range(-300.0, 300.0));
+  c.add_option("--truth-triangles", w.truthTriangles,
+     "triangles of the truth surface (0: the full iso-surface; the model keeps its 30000)")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  c.add_option("--swelling-mm", w.swelling.swellingMm,
+     "erectile tissue: the nasal cavity's turbinate and septal mucosa swollen into the air by up "
+     "to this, mm")
+    ->capture_default_str()
+    ->check(CLI::Range(0.0, 5.0));
 }
 
 } // namespace vimlop
