@@ -24,6 +24,7 @@ namespace vimlop
 struct EndoscopeSimulationOptions;
 struct PoseServingOptions;
 struct SimulatedWorldOptions;
+struct WorldSettings;
 struct VideoRegistrationOptions;
 
 /// @brief "a,b" as two numbers with 0 <= a <= b; `what` names the option in errors.
@@ -67,6 +68,13 @@ void addSimulationOptions(CLI::App& command, EndoscopeSimulationOptions& options
  * `options`. All off by default.
  */
 void addWorldOptions(CLI::App& command, SimulatedWorldOptions& options);
+
+/**
+ * @brief Adds --world ideal|clinical to `command`: every error source of
+ * `settings` set at once (applyWorldPreset), applied when parsed so that the
+ * flags of single sources override it.
+ */
+void addWorldPresetOption(CLI::App& command, WorldSettings& settings);
 
 /**
  * @brief Adds --host, --port, --allow-remote, --max-clients and --duration-s

@@ -5,6 +5,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
+#include <vimlop/Evaluation/WorldPreset.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
@@ -28,38 +29,42 @@ struct SimulateOptions
   std::string mesh;
   std::string ct;
   std::string out;
-  EndoscopeSimulationOptions simulation;
-  SimulatedWorldOptions world;
+  /// The world: its model errors and its video's (an ideal world by default).
+  WorldSettings settings;
 };
 
 void runSimulate(SimulateOptions o)
 {
   const auto start = std::chrono::steady_clock::now();
-  PinholeCamera& k = o.simulation.intrinsics;
+  PinholeCamera& k = o.settings.video.intrinsics;
   k.fy = k.fx; // square pixels, principal point at the centre
   k.cx = 0.5 * (k.widthPx - 1);
   k.cy = 0.5 * (k.heightPx - 1);
   // Before the display check: a wrong setting is reported wherever it runs.
-  o.simulation.validate();
-  o.world.validate();
+  o.settings.video.validate();
+  o.settings.model.validate();
   if (o.mesh.empty() == o.ct.empty())
   {
     throw Error("give exactly one of --mesh and --ct");
+  }
+  if (o.ct.empty())
+  {
+    o.settings.model.requireMeshWorld();
   }
   requireOffscreenRendering("vimlop simulate");
   // The truth is what the endoscope sees and where its path runs; a user
   // gets the model (model.vtp), never the truth.
   const SimulatedWorld world = o.ct.empty()
-    ? makeSimulatedWorld(loadAirwayMesh(o.mesh), o.world)
-    : makeSimulatedWorld(readCTVolume(o.ct), o.world, terminalEvaluationProgress());
+    ? makeSimulatedWorld(loadAirwayMesh(o.mesh), o.settings.model)
+    : makeSimulatedWorld(readCTVolume(o.ct), o.settings.model, terminalEvaluationProgress());
   const RegistrationModel model = makeEmbreeRegistrationModel(world.truth);
   const SimulatedVideo video =
-    simulateEndoscopeVideo(model, o.simulation, terminalEvaluationProgress());
+    simulateEndoscopeVideo(model, o.settings.video, terminalEvaluationProgress());
   writeSimulatedVideo(video, o.out);
   writeSimulatedWorld(world, o.out);
   std::printf("simulated %d frames of %dx%d px along a %.1f mm path (least wall distance %.2f mm) "
               "in %.1f s; wrote '%s'\n",
-    o.simulation.frames, k.widthPx, k.heightPx, video.pathLengthMm(),
+    o.settings.video.frames, k.widthPx, k.heightPx, video.pathLengthMm(),
     video.leastWallDistanceMm(model),
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), o.out.c_str());
 }
@@ -74,12 +79,12 @@ void addSimulateCommand(CLI::App& app)
     "tracker CSV");
   addModelOptions(*simulate, o->mesh, o->ct);
   simulate->add_option("--out", o->out, "output folder")->required();
-  simulate->add_option("--frames", o->simulation.frames, "number of frames")
+  simulate->add_option("--frames", o->settings.video.frames, "number of frames")
     ->capture_default_str()
     ->check(CLI::Range(2, 10000));
-  simulate->add_option("--seed", o->simulation.seed, "random seed (path, texture, noise)")
+  simulate->add_option("--seed", o->settings.video.seed, "random seed (path, texture, noise)")
     ->capture_default_str();
-  PinholeCamera& k = o->simulation.intrinsics;
+  PinholeCamera& k = o->settings.video.intrinsics;
   simulate->add_option("--width", k.widthPx, "image width, pixels")
     ->capture_default_str()
     ->check(CLI::Range(16, 8192));
@@ -89,28 +94,29 @@ void addSimulateCommand(CLI::App& app)
   simulate->add_option("--focal", k.fx, "focal length, pixels (principal point at the centre)")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
-  simulate->add_option("--step-mm", o->simulation.trajectory.stepMm, "advance per frame, mm")
+  simulate->add_option("--step-mm", o->settings.video.trajectory.stepMm, "advance per frame, mm")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
   simulate
-    ->add_option("--clearance-mm", o->simulation.trajectory.minClearanceMm,
+    ->add_option("--clearance-mm", o->settings.video.trajectory.minClearanceMm,
       "least distance of the optical centre to the wall, mm")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
   simulate
-    ->add_option("--upright-deg", o->simulation.trajectory.uprightRollDeg,
+    ->add_option("--upright-deg", o->settings.video.trajectory.uprightRollDeg,
       "keep the image up within this many degrees of superior (negative: any roll)")
     ->capture_default_str()
     ->check(CLI::Range(-1.0, 180.0));
-  simulate->add_option("--noise", o->simulation.noiseSigma, "picture noise std, grey levels")
+  simulate->add_option("--noise", o->settings.video.noiseSigma, "picture noise std, grey levels")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
-  simulate->add_option("--blur-px", o->simulation.blurSigmaPx, "picture blur std, pixels")
+  simulate->add_option("--blur-px", o->settings.video.blurSigmaPx, "picture blur std, pixels")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
 
-  addSimulationOptions(*simulate, o->simulation);
-  addWorldOptions(*simulate, o->world);
+  addWorldPresetOption(*simulate, o->settings);
+  addSimulationOptions(*simulate, o->settings.video);
+  addWorldOptions(*simulate, o->settings.model);
   simulate->callback([o] { runSimulate(*o); });
 }
 

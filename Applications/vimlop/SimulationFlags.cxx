@@ -1,6 +1,7 @@
 #include "CommandLine.h"
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
+#include <vimlop/Evaluation/WorldPreset.h>
 
 #include <CLI/CLI.hpp>
 
@@ -106,6 +107,18 @@ void addWorldOptions(CLI::App& c, SimulatedWorldOptions& w)
      "to this, mm")
     ->capture_default_str()
     ->check(CLI::Range(0.0, 5.0));
+}
+
+void addWorldPresetOption(CLI::App& c, WorldSettings& settings)
+{
+  // Applied as soon as it is parsed, so that the knobs given with it, in any
+  // order, change the preset rather than the other way round.
+  c.add_option_function<std::string>(
+     "--world", [&settings](const std::string& name) { applyWorldPreset(settings, name); },
+     "every error source at once: ideal (all off, the scope upright within 10 deg) or clinical "
+     "(all at their realistic values, Documentation/Simulation.md); the flags of single sources "
+     "change it")
+    ->trigger_on_parse();
 }
 
 } // namespace vimlop

@@ -93,6 +93,15 @@ bool SimulatedWorldOptions::needsCT() const
     this->truthTriangles != this->surface.targetTriangles;
 }
 
+void SimulatedWorldOptions::requireMeshWorld() const
+{
+  if (this->needsCT())
+  {
+    throw Error("this model error (a deformation, a segmentation offset or a finer truth) needs "
+                "the CT (--ct), not a mesh");
+  }
+}
+
 void SimulatedWorldOptions::validate() const
 {
   requireRange(this->anatomyDeformationMm, 0.0, 20.0, "anatomy's deformation", "mm");
@@ -153,11 +162,7 @@ nlohmann::json SimulatedWorld::toJson() const
 SimulatedWorld makeSimulatedWorld(const TriangleMesh& airway, const SimulatedWorldOptions& o)
 {
   o.validate();
-  if (o.needsCT())
-  {
-    throw Error("this model error (a deformation, a segmentation offset or a finer truth) needs "
-                "the CT (--ct), not a mesh");
-  }
+  o.requireMeshWorld();
   SimulatedWorld world;
   world.model = airway;
   world.truth = airway;

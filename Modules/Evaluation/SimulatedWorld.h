@@ -67,6 +67,11 @@ struct SimulatedWorldOptions
   /// segmentation offset or a finer truth); swelling alone works on a mesh.
   bool needsCT() const;
   /**
+   * @brief Checks that a world can be made of a mesh alone.
+   * @throws vimlop::Error when needsCT(): "this model error (...) needs the CT (--ct), not a mesh".
+   */
+  void requireMeshWorld() const;
+  /**
    * @brief Checks the settings.
    * @throws vimlop::Error naming the first problem (a value out of its range).
    */

@@ -1,0 +1,94 @@
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/WorldPreset.h>
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+using namespace vimlop;
+
+namespace
+{
+
+std::string errorOf(const std::function<void()>& action)
+{
+  try
+  {
+    action();
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "no error";
+}
+
+bool isIdeal(const WorldSettings& w)
+{
+  return w.model.isIdealWorld() && w.video.isIdealWorld();
+}
+
+} // namespace
+
+TEST(WorldPreset, ClinicalTurnsOnEverySourceAndIdealTurnsThemAllOffAgain)
+{
+  WorldSettings w;
+  w.video.frames = 12; // not an error source: kept
+  applyWorldPreset(w, "clinical");
+  EXPECT_EQ(w.video.frames, 12);
+  EXPECT_EQ(w.model.anatomyDeformationMm, 5.0);
+  EXPECT_EQ(w.model.segmentationOffsetHU, -100.0);
+  EXPECT_EQ(w.model.truthTriangles, 0);
+  EXPECT_EQ(w.model.swelling.swellingMm, 1.5);
+  EXPECT_EQ(w.video.fieldStop.radiusFraction, 0.6);
+  EXPECT_EQ(w.video.fieldStop.vignettingStrength, 0.4);
+  ASSERT_EQ(w.video.intrinsics.distortion.size(), 4);
+  EXPECT_DOUBLE_EQ(w.video.intrinsics.distortion(1), 0.1);
+  EXPECT_EQ(w.video.calibrationFocalErrorRelative, 0.01);
+  EXPECT_EQ(w.video.trackerLatencyS, 0.03);
+  EXPECT_DOUBLE_EQ(w.video.trackerClockOffsetS, 0.05);
+  EXPECT_EQ(w.video.trajectory.uprightRollDeg, 45.0);
+  EXPECT_NO_THROW(w.model.validate());
+  EXPECT_NO_THROW(w.video.validate());
+
+  applyWorldPreset(w, "ideal");
+  EXPECT_TRUE(isIdeal(w));
+  EXPECT_EQ(w.video.trajectory.uprightRollDeg, 10.0);
+  EXPECT_EQ(w.video.frames, 12);
+}
+
+TEST(WorldPreset, EachSourceAloneLeavesTheIdealWorldAndComesBackToIt)
+{
+  std::set<std::string> names;
+  for (const ErrorSource& source : errorSources())
+  {
+    EXPECT_TRUE(names.insert(source.name).second) << source.name << " twice";
+    WorldSettings w;
+    applyWorldPreset(w, "ideal");
+    source.set(w, source.clinicalValue);
+    // Roll is a path setting, not an error of the world's model or video.
+    if (source.name != "roll")
+    {
+      EXPECT_FALSE(isIdeal(w)) << source.name;
+    }
+    for (const ErrorSource& other : errorSources())
+    {
+      if (other.name != source.name)
+      {
+        // Only its own knobs: the others' are still off.
+        WorldSettings alone = w;
+        other.set(alone, other.offValue);
+        EXPECT_EQ(isIdeal(alone), isIdeal(w)) << source.name << " and " << other.name;
+      }
+    }
+    source.set(w, source.offValue);
+    EXPECT_TRUE(isIdeal(w)) << source.name;
+    EXPECT_EQ(&errorSource(source.name), &source);
+  }
+  EXPECT_EQ(errorOf([] { errorSource("weather"); }),
+    "unknown error source 'weather' (expected one of anatomy, segmentation, swelling, "
+    "image-circle, lens, calibration, tracker, roll)");
+  WorldSettings w;
+  EXPECT_EQ(errorOf([&] { applyWorldPreset(w, "mars"); }),
+    "unknown world 'mars' (expected ideal or clinical)");
+}
