@@ -26,6 +26,8 @@ void addContoursCommand(CLI::App& app);
 CLI::App* addEvaluateCommand(CLI::App& app);
 /// @brief Adds `warp` (protocol P4, template warp) to the `vimlop evaluate` group.
 void addEvaluateWarpCommand(CLI::App& evaluate);
+/// @brief Adds `budget` (protocol P5, the error budget) to the `vimlop evaluate` group.
+void addEvaluateBudgetCommand(CLI::App& evaluate);
 /// @brief Adds `vimlop info <file>`: what a CT, mesh or intrinsics file holds.
 void addInfoCommand(CLI::App& app);
 /**

@@ -27,6 +27,7 @@ int main(int argc, char** argv)
   vimlop::addWarpCommand(app);
   CLI::App* evaluate = vimlop::addEvaluateCommand(app);
   vimlop::addEvaluateWarpCommand(*evaluate);
+  vimlop::addEvaluateBudgetCommand(*evaluate);
   vimlop::addSimulateCommand(app);
   vimlop::addContoursCommand(app);
   vimlop::addSfmCommand(app);

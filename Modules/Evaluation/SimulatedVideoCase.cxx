@@ -87,8 +87,7 @@ SimulatedVideoCase prepareSimulatedVideoCase(
     std::to_string(sfm.frames.size()) + " frames, " + std::to_string(sfm.points.size()) +
     " points, RMS reprojection error " + std::to_string(sfm.rmsReprojectionErrorPx()) + " px");
 
-  // Ground truth and the initial scale from the tracker (V14).
-  c.truth = similarityFromCameras(sfm, video.camerasCT);
+  // The initial scale from the tracker (V14).
   std::vector<Eigen::Vector3d> centres;
   for (const SfmReconstruction::Frame& f : sfm.frames)
   {
@@ -103,24 +102,29 @@ SimulatedVideoCase prepareSimulatedVideoCase(
     say(w);
   }
   c.initialScale = trackerScale.scale;
-  say("scale: tracker " + std::to_string(c.initialScale) + ", truth " +
-    std::to_string(c.truth.scale));
 
   // Registration data: the registered frames with their contours.
   c.data = makeVideoRegistrationData(
     sfm, contours, c.initialScale, o.pipeline.pointNoiseFloorMm, &c.frameOf);
-  c.centroidCT = Eigen::Vector3d::Zero();
-  for (const SfmReconstruction::Point& p : sfm.points)
-  {
-    c.centroidCT += c.truth.apply(p.position);
-  }
-  c.centroidCT /= static_cast<double>(sfm.points.size());
-
-  // What SfM alone allows: its cameras moved by the true similarity.
-  c.floor = cameraErrors(c, c.truth, 0.0);
+  setCaseTruth(c);
+  say("scale: tracker " + std::to_string(c.initialScale) + ", truth " +
+    std::to_string(c.truth.scale));
   say("SfM cameras through the true similarity: " + std::to_string(c.floor.positionMeanMm) +
     " mm, " + std::to_string(c.floor.angleMeanDeg) + " deg (the floor)");
   return c;
+}
+
+void setCaseTruth(SimulatedVideoCase& c)
+{
+  c.truth = similarityFromCameras(c.sfm, c.video.camerasCT);
+  c.centroidCT = Eigen::Vector3d::Zero();
+  for (const SfmReconstruction::Point& p : c.sfm.points)
+  {
+    c.centroidCT += c.truth.apply(p.position);
+  }
+  c.centroidCT /= static_cast<double>(c.sfm.points.size());
+  // What SfM alone allows: its cameras moved by the true similarity.
+  c.floor = cameraErrors(c, c.truth, 0.0);
 }
 
 VideoCameraErrors cameraErrors(

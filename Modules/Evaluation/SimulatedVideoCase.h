@@ -38,6 +38,13 @@ struct SimulatedVideoCase
 SimulatedVideoCase prepareSimulatedVideoCase(const RegistrationModel& model,
   const VideoProtocolOptions& o, const EvaluationProgress& progress);
 
+/**
+ * @brief Sets the truth of a case whose video, SfM, data and frameOf are
+ * set: the true SfM-to-CT similarity (SfM cameras against the true ones),
+ * the points' centroid through it, and the SfM floor.
+ */
+void setCaseTruth(SimulatedVideoCase& c);
+
 /// @brief Mean/max camera position (mm) and angle (deg) errors and the scale error of `sfmToCT`.
 VideoCameraErrors cameraErrors(
   const SimulatedVideoCase& c, const SimilarityTransform& sfmToCT, double seconds);

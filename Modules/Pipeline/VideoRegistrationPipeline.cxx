@@ -122,6 +122,12 @@ const VideoRegistrationOptions& VideoRegistrationPipeline::options() const
   return this->Impl->Opts;
 }
 
+void VideoRegistrationPipeline::setRegistrationOptions(const RegistrationOptions& options)
+{
+  options.validate();
+  this->Impl->Opts.registration = options;
+}
+
 void VideoRegistrationPipeline::setLog(std::ostream* log)
 {
   this->Impl->Log = log;

@@ -63,6 +63,13 @@ public:
   VideoRegistrationPipeline& operator=(const VideoRegistrationPipeline&) = delete;
 
   const VideoRegistrationOptions& options() const;
+  /**
+   * @brief Replaces the options of stage 8 (the method, noise model, outlier
+   * rejection, ...) for the next run(), keeping the data and the starts:
+   * e.g. to compare methods on one sequence, as P5 does.
+   * @throws vimlop::Error for invalid options (RegistrationOptions::validate).
+   */
+  void setRegistrationOptions(const RegistrationOptions& options);
 
   /// @brief Where progress lines go (nullptr, the default: nowhere).
   void setLog(std::ostream* log);

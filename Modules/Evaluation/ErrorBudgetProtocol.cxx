@@ -1,0 +1,535 @@
+#include <vimlop/Evaluation/ErrorBudgetProtocol.h>
+
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
+#include <vimlop/Evaluation/SimulatedVideoCase.h>
+#include <vimlop/Evaluation/SimulatedWorld.h>
+#include <vimlop/Imaging/CTVolume.h>
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Rendering/PNGImageIO.h>
+#include <vimlop/Rendering/ReportCharts.h>
+#include <vimlop/Video/IntrinsicsIO.h>
+#include <vimlop/Video/TrackerTrajectory.h>
+
+#include <nlohmann/json.hpp>
+
+#include <vtkImageData.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <random>
+
+namespace vimlop
+{
+
+namespace
+{
+
+namespace fs = std::filesystem;
+
+double secondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// A condition to run: its account and its world's settings.
+struct ConditionPlan
+{
+  BudgetCondition account;
+  WorldSettings settings;
+};
+
+std::vector<ConditionPlan> planConditions(const ErrorBudgetOptions& o)
+{
+  WorldSettings ideal;
+  ideal.video.frames = o.frames;
+  applyWorldPreset(ideal, "ideal");
+  std::vector<ConditionPlan> plans;
+  if (o.ideal)
+  {
+    plans.push_back({ BudgetCondition{}, ideal });
+    plans.back().account.name = "ideal";
+  }
+  std::vector<std::string> names = o.sources;
+  if (names.empty())
+  {
+    for (const ErrorSource& s : errorSources())
+    {
+      names.push_back(s.name);
+    }
+  }
+  for (const std::string& name : names)
+  {
+    const ErrorSource& source = errorSource(name);
+    for (double level : o.levels)
+    {
+      ConditionPlan plan{ BudgetCondition{}, ideal };
+      const double value = source.offValue + level * (source.clinicalValue - source.offValue);
+      source.set(plan.settings, value);
+      plan.account.name = level == 1.0 ? name : name + formatText("@%g", level);
+      plan.account.source = name;
+      plan.account.knob = source.knob;
+      plan.account.value = value;
+      plans.push_back(plan);
+    }
+  }
+  if (o.clinical)
+  {
+    WorldSettings clinical = ideal;
+    applyWorldPreset(clinical, "clinical");
+    plans.push_back({ BudgetCondition{}, clinical });
+    plans.back().account.name = "clinical";
+  }
+  return plans;
+}
+
+/// Targets for the TRE, CT frame: every 500th vertex of the truth (points on
+/// the airway wall) and, near the sinus roof, points 3 mm above the five
+/// highest vertices of the airway's front half (the skull base, which
+/// navigation must not breach).
+std::vector<Eigen::Vector3d> targetPoints(const TriangleMesh& truth)
+{
+  std::vector<Eigen::Vector3d> targets;
+  const std::vector<Eigen::Vector3d>& v = truth.vertices();
+  for (std::size_t i = 0; i < v.size(); i += 500)
+  {
+    targets.push_back(v[i]);
+  }
+  double yLow = 1e300;
+  double yHigh = -1e300;
+  for (const Eigen::Vector3d& p : v)
+  {
+    yLow = std::min(yLow, p.y());
+    yHigh = std::max(yHigh, p.y());
+  }
+  std::vector<Eigen::Vector3d> front;
+  for (const Eigen::Vector3d& p : v)
+  {
+    if (p.y() < 0.5 * (yLow + yHigh))
+    {
+      front.push_back(p);
+    }
+  }
+  const std::size_t roof = std::min<std::size_t>(5, front.size());
+  std::partial_sort(front.begin(), front.begin() + roof, front.end(),
+    [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.z() > b.z(); });
+  for (std::size_t i = 0; i < roof; ++i)
+  {
+    targets.push_back(front[i] + Eigen::Vector3d(0.0, 0.0, 3.0));
+  }
+  return targets;
+}
+
+/// One registration's outcome.
+struct Run
+{
+  double positionMm = 0.0;
+  double angleDeg = 0.0;
+  std::vector<double> treMm;
+  double contourErrorPx = 0.0;
+  bool flagged = false;
+  double seconds = 0.0;
+};
+
+/// The figures of a method over its runs.
+BudgetMethodFigures figuresOf(const std::vector<Run>& runs, double successMm)
+{
+  BudgetMethodFigures f;
+  f.registrations = static_cast<int>(runs.size());
+  if (runs.empty())
+  {
+    return f;
+  }
+  std::vector<double> position, angle, tre, failed, succeeded;
+  double seconds = 0.0;
+  int successes = 0;
+  int flagged = 0;
+  for (const Run& r : runs)
+  {
+    position.push_back(r.positionMm);
+    angle.push_back(r.angleDeg);
+    tre.insert(tre.end(), r.treMm.begin(), r.treMm.end());
+    const bool success = r.positionMm <= successMm;
+    successes += success ? 1 : 0;
+    flagged += r.flagged ? 1 : 0;
+    (success ? succeeded : failed).push_back(r.contourErrorPx);
+    seconds += r.seconds;
+  }
+  f.cameraPositionMm = summarize(position);
+  f.cameraAngleDeg = summarize(angle);
+  f.treMm = summarize(tre);
+  f.successRate = static_cast<double>(successes) / runs.size();
+  f.flaggedRate = static_cast<double>(flagged) / runs.size();
+  if (!failed.empty() && !succeeded.empty())
+  {
+    f.failureAuc = rocAuc(failed, succeeded);
+  }
+  f.meanRuntimeS = seconds / runs.size();
+  return f;
+}
+
+nlohmann::json summaryJson(const Summary& s)
+{
+  return { { "mean", s.mean }, { "median", s.median }, { "p95", s.p95 } };
+}
+
+nlohmann::json methodsJson(const std::map<std::string, BudgetMethodFigures>& methods)
+{
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [name, f] : methods)
+  {
+    j[name] = { { "camera_position_mm", summaryJson(f.cameraPositionMm) },
+      { "camera_angle_deg", summaryJson(f.cameraAngleDeg) },
+      { "tre_mm", { { "median", f.treMm.median }, { "p95", f.treMm.p95 } } },
+      { "success_rate", f.successRate },
+      { "failure_auc", f.failureAuc ? nlohmann::json(*f.failureAuc) : nlohmann::json(nullptr) },
+      { "flagged_rate", f.flaggedRate }, { "mean_runtime_s", f.meanRuntimeS },
+      { "registrations", f.registrations } };
+  }
+  return j;
+}
+
+} // namespace
+
+void ErrorBudgetOptions::validate() const
+{
+  if (this->seeds < 1)
+  {
+    throw Error("P5: --seeds must be at least 1");
+  }
+  if (this->frames < 3)
+  {
+    throw Error("P5: --frames must be at least 3");
+  }
+  for (const std::string& name : this->sources)
+  {
+    errorSource(name);
+  }
+  for (double level : this->levels)
+  {
+    if (!(level > 0.0 && level <= 4.0))
+    {
+      throw Error("P5: each level must lie in (0, 4], not " + formatText("%g", level));
+    }
+  }
+  if (this->methods.empty())
+  {
+    throw Error("P5: no method to compare");
+  }
+  if (!this->canonicalStarts && !this->perturbedStarts)
+  {
+    throw Error("P5: neither canonical nor perturbed starts");
+  }
+  if (!(this->successMm > 0.0))
+  {
+    throw Error("P5: the success threshold must be positive");
+  }
+  if (this->workFolder.empty())
+  {
+    throw Error("P5: a work folder is required");
+  }
+  this->pipeline.validate();
+}
+
+ErrorBudgetReport runErrorBudgetProtocol(
+  const CTVolume& ct, const ErrorBudgetOptions& o, const EvaluationProgress& progress)
+{
+  o.validate();
+  const auto start = std::chrono::steady_clock::now();
+  auto say = [&](const std::string& text) { reportEvaluationNote(progress, "P5: " + text); };
+  std::vector<ConditionPlan> plans = planConditions(o);
+  ErrorBudgetReport report;
+  report.seeds = o.seeds;
+  report.frames = o.frames;
+  const int total = static_cast<int>(plans.size()) * o.seeds;
+  int done = 0;
+
+  // Worlds whose model is the truth are all the ideal one: made once.
+  std::unique_ptr<SimulatedWorld> idealWorld;
+  for (ConditionPlan& plan : plans)
+  {
+    BudgetCondition& condition = plan.account;
+    const auto conditionStart = std::chrono::steady_clock::now();
+    say("condition " + condition.name);
+    std::unique_ptr<SimulatedWorld> own;
+    if (plan.settings.model.isIdealWorld() && !idealWorld)
+    {
+      idealWorld =
+        std::make_unique<SimulatedWorld>(makeSimulatedWorld(ct, plan.settings.model, progress));
+    }
+    if (!plan.settings.model.isIdealWorld())
+    {
+      own = std::make_unique<SimulatedWorld>(makeSimulatedWorld(ct, plan.settings.model, progress));
+    }
+    const SimulatedWorld& world = own ? *own : *idealWorld;
+    condition.truthToModelMeanMm = world.truthToModel.meanMm;
+    const RegistrationModel truthModel = makeEmbreeRegistrationModel(world.truth);
+    const std::vector<Eigen::Vector3d> targets = targetPoints(world.truth);
+
+    std::map<std::string, std::vector<Run>> canonicalRuns, perturbedRuns;
+    std::vector<double> floorPosition, floorAngle;
+    for (int k = 0; k < o.seeds; ++k)
+    {
+      const std::uint64_t seed = o.firstSeed + static_cast<std::uint64_t>(k);
+      try
+      {
+        // The sequence, written as a user has it; the pipeline reads those
+        // files and never the truth.
+        EndoscopeSimulationOptions video = plan.settings.video;
+        video.seed = seed;
+        SimulatedVideoCase c;
+        c.video = simulateEndoscopeVideo(truthModel, video, progress);
+        const std::string folder = (fs::path(o.workFolder) / "sequence").string();
+        std::error_code ec;
+        fs::remove_all(folder, ec);
+        writeSimulatedVideo(c.video, folder);
+        fs::remove_all(fs::path(folder) / "truth", ec);
+
+        VideoRegistrationPipeline pipeline(o.pipeline);
+        pipeline.setWarningHandler([](const std::string&) {});
+        pipeline.loadModel(world.model);
+        pipeline.loadFrames((fs::path(folder) / "frames").string(),
+          readIntrinsics((fs::path(folder) / "intrinsics.yaml").string()));
+        pipeline.detectContours();
+        pipeline.reconstruct();
+        const TrackerTrajectory tracker =
+          TrackerTrajectory::readCsv((fs::path(folder) / "tracker.csv").string());
+        pipeline.estimateInitialScale(&tracker, video.framesPerSecond, 0.0, 0.0);
+        pipeline.makeData();
+
+        // The truth, for the evaluation only.
+        c.sfm = pipeline.sfm();
+        c.data = pipeline.data();
+        c.frameOf = pipeline.frameOf();
+        c.initialScale = pipeline.initialScale();
+        setCaseTruth(c);
+        floorPosition.push_back(c.floor.positionMeanMm);
+        floorAngle.push_back(c.floor.angleMeanDeg);
+        const SimilarityTransform sfmFromCT = c.truth.inverse();
+
+        auto registerEach = [&](std::map<std::string, std::vector<Run>>& runs)
+        {
+          for (RegistrationMethod method : o.methods)
+          {
+            RegistrationOptions r = o.pipeline.registration;
+            r.method = method;
+            pipeline.setRegistrationOptions(r);
+            const auto t0 = std::chrono::steady_clock::now();
+            pipeline.run();
+            Run run;
+            run.seconds = secondsSince(t0);
+            const SimilarityTransform& estimate = pipeline.result().sfmToCT;
+            const VideoCameraErrors e = cameraErrors(c, estimate, run.seconds);
+            run.positionMm = e.positionMeanMm;
+            run.angleDeg = e.angleMeanDeg;
+            for (const Eigen::Vector3d& t : targets)
+            {
+              run.treMm.push_back((estimate.apply(sfmFromCT.apply(t)) - t).norm());
+            }
+            run.contourErrorPx = pipeline.result().contourErrorPx;
+            run.flagged = pipeline.flaggedAsFailure();
+            runs[toString(method)].push_back(run);
+          }
+        };
+        if (o.canonicalStarts)
+        {
+          pipeline.makeCanonicalStarts(
+            world.canonicalPosesCT.empty() ? nullptr : &world.canonicalPosesCT,
+            "the template's canonical poses");
+          registerEach(canonicalRuns);
+        }
+        if (o.perturbedStarts)
+        {
+          std::mt19937_64 rng(seed * 2654435761ull + 7ull);
+          pipeline.setStarts({ perturbedStart(c, pipeline.model(), rng, o.perturbMinMm,
+                               o.perturbMaxMm, o.perturbMinDeg, o.perturbMaxDeg) },
+            StartMode::Manual);
+          registerEach(perturbedRuns);
+        }
+      }
+      catch (const PipelineCancelled&)
+      {
+        throw Error("P5: cancelled");
+      }
+      catch (const Error& e)
+      {
+        if (std::string(e.what()).find("cancelled") != std::string::npos)
+        {
+          throw;
+        }
+        condition.failedSequences.push_back(
+          formatText("seed %llu: ", static_cast<unsigned long long>(seed)) + e.what());
+        say(condition.name + ": " + condition.failedSequences.back());
+      }
+      reportEvaluationCount(progress, "P5: sequence", ++done, total);
+    }
+    for (const auto& [name, runs] : canonicalRuns)
+    {
+      condition.canonical[name] = figuresOf(runs, o.successMm);
+    }
+    for (const auto& [name, runs] : perturbedRuns)
+    {
+      condition.perturbed[name] = figuresOf(runs, o.successMm);
+    }
+    condition.floorPositionMm = summarize(floorPosition);
+    condition.floorAngleDeg = summarize(floorAngle);
+    condition.runtimeS = secondsSince(conditionStart);
+    report.conditions.push_back(condition);
+    for (const std::string& line : ErrorBudgetReport{ 0, 0, { condition }, 0.0 }.summaryLines())
+    {
+      reportEvaluationNote(progress, line);
+    }
+  }
+  report.runtimeS = secondsSince(start);
+  return report;
+}
+
+nlohmann::json ErrorBudgetReport::toJson() const
+{
+  nlohmann::json conditions = nlohmann::json::object();
+  for (const BudgetCondition& c : this->conditions)
+  {
+    nlohmann::json j;
+    j["methods"] = methodsJson(c.canonical);
+    j["perturbed_start"] = { { "methods", methodsJson(c.perturbed) } };
+    j["sfm_floor"] = { { "camera_position_mm", summaryJson(c.floorPositionMm) },
+      { "camera_angle_deg", summaryJson(c.floorAngleDeg) } };
+    if (!c.source.empty())
+    {
+      j["source"] = c.source;
+      j["knob"] = c.knob;
+      j["value"] = c.value;
+    }
+    j["truth_to_model_mean_mm"] = c.truthToModelMeanMm;
+    j["failed_sequences"] = c.failedSequences;
+    j["runtime_s"] = c.runtimeS;
+    conditions[c.name] = j;
+  }
+  return { { "protocol", "P5" }, { "seeds", this->seeds }, { "frames", this->frames },
+    { "conditions", conditions }, { "runtime_s", this->runtimeS } };
+}
+
+std::vector<std::string> ErrorBudgetReport::summaryLines() const
+{
+  std::vector<std::string> lines;
+  for (const BudgetCondition& c : this->conditions)
+  {
+    for (const auto& [name, f] : c.canonical)
+    {
+      lines.push_back(formatText("P5 %-14s %-11s camera %.3f mm (p95 %.3f) / %.3f deg, TRE "
+                                 "median %.3f mm, success %.0f %%, flagged %.0f %%",
+        c.name.c_str(), name.c_str(), f.cameraPositionMm.median, f.cameraPositionMm.p95,
+        f.cameraAngleDeg.median, f.treMm.median, 100.0 * f.successRate, 100.0 * f.flaggedRate));
+    }
+    for (const auto& [name, f] : c.perturbed)
+    {
+      lines.push_back(formatText("P5 %-14s %-11s from perturbed: camera %.3f mm (p95 %.3f) / "
+                                 "%.3f deg, success %.0f %%",
+        c.name.c_str(), name.c_str(), f.cameraPositionMm.median, f.cameraPositionMm.p95,
+        f.cameraAngleDeg.median, 100.0 * f.successRate));
+    }
+    lines.push_back(formatText("P5 %-14s SfM floor %.3f mm / %.3f deg; truth to model %.3f mm; "
+                               "%zu sequences failed",
+      c.name.c_str(), c.floorPositionMm.median, c.floorAngleDeg.median, c.truthToModelMeanMm,
+      c.failedSequences.size()));
+  }
+  return lines;
+}
+
+void writeErrorBudgetPage(const ErrorBudgetReport& report, const std::string& folder)
+{
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec)
+  {
+    throw Error("'" + folder + "': cannot create the folder (" + ec.message() + ")");
+  }
+  const BudgetCondition* ideal = nullptr;
+  for (const BudgetCondition& c : report.conditions)
+  {
+    ideal = c.name == "ideal" ? &c : ideal;
+  }
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>VIMLOP P5: the error "
+          "budget</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:"
+          "collapse}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}</style>"
+          "</head><body>\n<h1>P5: the error budget</h1>\n";
+  html << "<p>" << report.seeds << " sequences of " << report.frames
+       << " frames per condition; median over the registrations of their mean camera error; "
+          "from the canonical multi-start unless said. Runtime "
+       << formatText("%.0f", report.runtimeS) << " s.</p>\n";
+  html << "<table><tr><th>condition</th><th>method</th><th>camera mm (median)</th><th>p95</th>"
+          "<th>angle deg</th><th>TRE mm (median)</th><th>success</th><th>failure AUC</th>"
+          "<th>from perturbed: camera mm</th><th>SfM floor mm</th></tr>\n";
+  for (const BudgetCondition& c : report.conditions)
+  {
+    for (const auto& [name, f] : c.canonical)
+    {
+      const auto p = c.perturbed.find(name);
+      html << "<tr><td>" << c.name << "</td><td>" << name << "</td><td>"
+           << formatText("%.3f", f.cameraPositionMm.median) << "</td><td>"
+           << formatText("%.3f", f.cameraPositionMm.p95) << "</td><td>"
+           << formatText("%.3f", f.cameraAngleDeg.median) << "</td><td>"
+           << formatText("%.3f", f.treMm.median) << "</td><td>"
+           << formatText("%.0f %%", 100.0 * f.successRate) << "</td><td>"
+           << (f.failureAuc ? formatText("%.2f", *f.failureAuc) : std::string("-")) << "</td><td>"
+           << (p != c.perturbed.end() ? formatText("%.3f", p->second.cameraPositionMm.median)
+                                      : std::string("-"))
+           << "</td><td>" << formatText("%.3f", c.floorPositionMm.median) << "</td></tr>\n";
+    }
+  }
+  html << "</table>\n";
+
+  // One chart per source: the camera error against its value, the ideal world at its off value.
+  std::map<std::string, std::vector<const BudgetCondition*>> bySource;
+  for (const BudgetCondition& c : report.conditions)
+  {
+    if (!c.source.empty())
+    {
+      bySource[c.source].push_back(&c);
+    }
+  }
+  const std::array<std::array<unsigned char, 3>, 3> colours{ { { 31, 119, 180 }, { 255, 127, 14 },
+    { 44, 160, 44 } } };
+  for (const auto& [source, conditions] : bySource)
+  {
+    ChartSpec chart;
+    chart.title = "P5: " + source;
+    chart.xTitle = conditions.front()->knob;
+    chart.yTitle = "camera position error, mm (median)";
+    std::map<std::string, ChartSpec::Series> series;
+    for (const BudgetCondition* c : conditions)
+    {
+      for (const auto& [name, f] : c->canonical)
+      {
+        series[name].x.push_back(c->value);
+        series[name].y.push_back(f.cameraPositionMm.median);
+      }
+    }
+    std::size_t i = 0;
+    for (auto& [name, s] : series)
+    {
+      if (ideal && ideal->canonical.count(name))
+      {
+        s.x.insert(s.x.begin(), errorSource(source).offValue);
+        s.y.insert(s.y.begin(), ideal->canonical.at(name).cameraPositionMm.median);
+      }
+      s.name = name;
+      s.colour = colours[i++ % colours.size()];
+      s.points = s.x.size() < 2;
+      chart.series.push_back(s);
+    }
+    const std::string png = "source-" + source + ".png";
+    writePNG(renderCharts({ chart }, 560, 360), (fs::path(folder) / png).string());
+    html << "<h2>" << source << "</h2><img src=\"" << png << "\" alt=\"" << source << "\">\n";
+  }
+  html << "</body></html>\n";
+  std::ofstream((fs::path(folder) / "index.html").string()) << html.str();
+}
+
+} // namespace vimlop

@@ -1,0 +1,132 @@
+#include "CraniumAirway.h"
+#include "TestFolders.h"
+#include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/ErrorBudgetProtocol.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+using namespace vimlop;
+
+namespace
+{
+
+std::string errorOf(const ErrorBudgetOptions& o)
+{
+  try
+  {
+    o.validate();
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "no error";
+}
+
+} // namespace
+
+TEST(ErrorBudgetProtocol, RefusesSettingsItCannotRun)
+{
+  ErrorBudgetOptions o;
+  EXPECT_EQ(errorOf(o), "P5: a work folder is required");
+  o.workFolder = "work";
+  EXPECT_EQ(errorOf(o), "no error");
+  ErrorBudgetOptions bad = o;
+  bad.seeds = 0;
+  EXPECT_EQ(errorOf(bad), "P5: --seeds must be at least 1");
+  bad = o;
+  bad.sources = { "weather" };
+  EXPECT_EQ(errorOf(bad).rfind("unknown error source 'weather' (expected one of anatomy,", 0), 0u);
+  bad = o;
+  bad.levels = { 0.5, 5.0 };
+  EXPECT_EQ(errorOf(bad), "P5: each level must lie in (0, 4], not 5");
+  bad = o;
+  bad.canonicalStarts = bad.perturbedStarts = false;
+  EXPECT_EQ(errorOf(bad), "P5: neither canonical nor perturbed starts");
+}
+
+TEST(ErrorBudgetProtocol, ReportsInTheLayoutOfTheIssue)
+{
+  ErrorBudgetReport report;
+  report.seeds = 2;
+  BudgetCondition clinical;
+  clinical.name = "clinical";
+  BudgetMethodFigures f;
+  f.cameraPositionMm = { 0.6, 0.5, 1.2, 1.5 };
+  f.successRate = 0.5;
+  f.failureAuc = 0.75;
+  clinical.canonical["vimlop"] = f;
+  f.failureAuc.reset();
+  clinical.perturbed["imlp"] = f;
+  BudgetCondition lens;
+  lens.name = "lens";
+  lens.source = "lens";
+  lens.knob = "k1";
+  lens.value = -0.35;
+  report.conditions = { clinical, lens };
+  const nlohmann::json j = report.toJson();
+  EXPECT_EQ(j["protocol"], "P5");
+  EXPECT_EQ(j["seeds"], 2);
+  const nlohmann::json& v = j["conditions"]["clinical"]["methods"]["vimlop"];
+  EXPECT_EQ(v["camera_position_mm"]["median"], 0.5);
+  EXPECT_EQ(v["camera_position_mm"]["p95"], 1.2);
+  EXPECT_EQ(v["failure_auc"], 0.75);
+  EXPECT_EQ(v["success_rate"], 0.5);
+  for (const char* key : { "camera_angle_deg", "tre_mm" })
+  {
+    EXPECT_TRUE(v.contains(key)) << key;
+  }
+  EXPECT_TRUE(
+    j["conditions"]["clinical"]["perturbed_start"]["methods"]["imlp"]["failure_auc"].is_null());
+  EXPECT_EQ(j["conditions"]["lens"]["value"], -0.35);
+  EXPECT_FALSE(j["conditions"]["clinical"].contains("source"));
+  const std::vector<std::string> lines = report.summaryLines();
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines[0].rfind("P5 clinical       vimlop      camera 0.500 mm (p95 1.200)", 0), 0u)
+    << lines[0];
+}
+
+// Under a display: a small budget end to end on the bundled CT.
+TEST(ErrorBudgetProtocolOnTheCranium, RegistersEachConditionFromTheUsersFilesAlone)
+{
+  ErrorBudgetOptions o;
+  o.seeds = 1;
+  o.frames = 6;
+  o.sources = { "tracker" };
+  o.clinical = false;
+  o.methods = { RegistrationMethod::VIMLOP, RegistrationMethod::TrimmedICP };
+  o.canonicalStarts = false;
+  o.workFolder = fixtures::freshTestFolder("p5-work").string();
+  int sequences = 0;
+  const ErrorBudgetReport r = runErrorBudgetProtocol(readCTVolume(fixtures::craniumPath()), o,
+    [&](const std::string& what, int done, int total)
+    {
+      sequences += what == "P5: sequence" && done > 0 && total == 2;
+      return true;
+    });
+  EXPECT_EQ(sequences, 2);
+  ASSERT_EQ(r.conditions.size(), 2u);
+  EXPECT_EQ(r.conditions[0].name, "ideal");
+  EXPECT_EQ(r.conditions[1].name, "tracker");
+  EXPECT_EQ(r.conditions[1].value, 0.03);
+  for (const BudgetCondition& c : r.conditions)
+  {
+    EXPECT_TRUE(c.failedSequences.empty()) << c.name << ": " << c.failedSequences.front();
+    ASSERT_EQ(c.perturbed.count("vimlop"), 1u) << c.name;
+    const BudgetMethodFigures& v = c.perturbed.at("vimlop");
+    EXPECT_EQ(v.registrations, 1);
+    // Ideal or with a late tracker, six frames register to within a millimetre.
+    EXPECT_LT(v.cameraPositionMm.median, 1.0) << c.name;
+    EXPECT_GT(c.floorPositionMm.median, 0.0);
+    EXPECT_EQ(c.canonical.size(), 0u);
+  }
+  // The pipeline read the user's files; the truth was never beside them.
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(o.workFolder) / "sequence" / "frames"));
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(o.workFolder) / "sequence" / "truth"));
+}
