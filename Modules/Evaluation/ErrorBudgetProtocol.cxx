@@ -6,11 +6,8 @@
 #include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Imaging/CTVolume.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Rendering/PNGImageIO.h>
 #include <vimlop/Rendering/ReportCharts.h>
-#include <vimlop/Video/IntrinsicsIO.h>
-#include <vimlop/Video/TrackerTrajectory.h>
 
 #include <nlohmann/json.hpp>
 
@@ -268,7 +265,6 @@ ErrorBudgetReport runErrorBudgetProtocol(
     }
     const SimulatedWorld& world = own ? *own : *idealWorld;
     condition.truthToModelMeanMm = world.truthToModel.meanMm;
-    const RegistrationModel truthModel = makeEmbreeRegistrationModel(world.truth);
     const std::vector<Eigen::Vector3d> targets = targetPoints(world.truth);
 
     std::map<std::string, std::vector<Run>> canonicalRuns, perturbedRuns;
@@ -278,36 +274,15 @@ ErrorBudgetReport runErrorBudgetProtocol(
       const std::uint64_t seed = o.firstSeed + static_cast<std::uint64_t>(k);
       try
       {
-        // The sequence, written as a user has it; the pipeline reads those
-        // files and never the truth.
-        EndoscopeSimulationOptions video = plan.settings.video;
-        video.seed = seed;
-        SimulatedVideoCase c;
-        c.video = simulateEndoscopeVideo(truthModel, video, progress);
-        const std::string folder = (fs::path(o.workFolder) / "sequence").string();
-        std::error_code ec;
-        fs::remove_all(folder, ec);
-        writeSimulatedVideo(c.video, folder);
-        fs::remove_all(fs::path(folder) / "truth", ec);
-
-        VideoRegistrationPipeline pipeline(o.pipeline);
-        pipeline.setWarningHandler([](const std::string&) {});
-        pipeline.loadModel(world.model);
-        pipeline.loadFrames((fs::path(folder) / "frames").string(),
-          readIntrinsics((fs::path(folder) / "intrinsics.yaml").string()));
-        pipeline.detectContours();
-        pipeline.reconstruct();
-        const TrackerTrajectory tracker =
-          TrackerTrajectory::readCsv((fs::path(folder) / "tracker.csv").string());
-        pipeline.estimateInitialScale(&tracker, video.framesPerSecond, 0.0, 0.0);
-        pipeline.makeData();
-
-        // The truth, for the evaluation only.
-        c.sfm = pipeline.sfm();
-        c.data = pipeline.data();
-        c.frameOf = pipeline.frameOf();
-        c.initialScale = pipeline.initialScale();
-        setCaseTruth(c);
+        // The sequence, written as a user has it, and the main job on those
+        // files through its data (the truth never reaches it).
+        VideoProtocolOptions sequence;
+        sequence.simulation = plan.settings.video;
+        sequence.simulation.seed = seed;
+        sequence.pipeline = o.pipeline;
+        sequence.workFolder = o.workFolder;
+        const SimulatedVideoCase c = prepareSimulatedVideoCase(world, sequence, progress);
+        VideoRegistrationPipeline& pipeline = *c.pipeline;
         floorPosition.push_back(c.floor.positionMeanMm);
         floorAngle.push_back(c.floor.angleMeanDeg);
         const SimilarityTransform sfmFromCT = c.truth.inverse();

@@ -7,6 +7,7 @@
 #include <vimlop/Core/TaskPool.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/SimulatedVideoCase.h>
+#include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
 #include <cmath>
@@ -87,8 +88,9 @@ PerturbationProtocolReport runPerturbationProtocol(const TriangleMesh& mesh,
   const PerturbationProtocolOptions& o, const EvaluationProgress& progress)
 {
   o.validate();
-  const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
-  const SimulatedVideoCase c = prepareSimulatedVideoCase(model, o.video, progress);
+  const SimulatedVideoCase c =
+    prepareSimulatedVideoCase(makeSimulatedWorld(mesh, SimulatedWorldOptions()), o.video, progress);
+  const RegistrationModel& model = c.pipeline->model();
   RegistrationOptions options = o.video.pipeline.registrationOptions(c.initialScale);
   options.method = RegistrationMethod::VIMLOP;
   options.threads = 1;

@@ -8,13 +8,13 @@
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Evaluation/ProgressNoteStream.h>
 #include <vimlop/Pipeline/SimilarityFromCameras.h>
-#include <vimlop/Pipeline/VideoRegistrationData.h>
-#include <vimlop/Video/ColmapImport.h>
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Video/ColmapRunner.h>
-#include <vimlop/Video/StructureFromMotion.h>
-#include <vimlop/Video/TrackerScale.h>
+#include <vimlop/Video/IntrinsicsIO.h>
+#include <vimlop/Video/TrackerTrajectory.h>
 
-#include <opencv2/imgcodecs.hpp>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -31,81 +31,73 @@ constexpr double Degree = M_PI / 180.0;
 } // namespace
 
 SimulatedVideoCase prepareSimulatedVideoCase(
-  const RegistrationModel& model, const VideoProtocolOptions& o, const EvaluationProgress& progress)
+  const SimulatedWorld& world, const VideoProtocolOptions& o, const EvaluationProgress& progress)
 {
+  namespace fs = std::filesystem;
   auto say = [&](const std::string& text) { reportEvaluationNote(progress, "P2: " + text); };
   SimulatedVideoCase c;
-  c.video = simulateEndoscopeVideo(model, o.simulation, progress);
+  const RegistrationModel truth = makeEmbreeRegistrationModel(world.truth);
+  c.video = simulateEndoscopeVideo(truth, o.simulation, progress);
   const SimulatedVideo& video = c.video;
-  const PinholeCamera& k = video.intrinsics;
 
-  // Contours: detected on the pictures, scored against the true ones.
-  ScoredContours scored = detectAndScoreContours(model, video, o.pipeline.contours);
-  const std::vector<std::vector<ContourPoint>>& contours = scored.contoursPerFrame;
-  c.contourScores = scored.scores;
+  // The sequence as a user has it, the truth apart; the main job reads it.
+  const fs::path work = o.workFolder.empty() ? fs::temp_directory_path() /
+      ("vimlop-sequence-" + std::to_string(::getpid()) + "-" + std::to_string(o.simulation.seed))
+                                             : fs::path(o.workFolder);
+  const fs::path folder = work / "sequence";
+  std::error_code ec;
+  fs::remove_all(folder, ec);
+  writeSimulatedVideo(video, folder.string());
+  fs::remove_all(folder / "truth", ec);
+
+  auto pipeline = std::make_shared<VideoRegistrationPipeline>(o.pipeline);
+  // The pipeline outlives this function (the caller registers with it): its
+  // handlers hold copies, and its log, local here, is detached before returning.
+  pipeline->setWarningHandler(
+    [progress](const std::string& w) { reportEvaluationNote(progress, "P2: " + w); });
+  ProgressNoteStream log(progress);
+  pipeline->setLog(log.stream());
+  pipeline->loadModel(world.model);
+  pipeline->loadFrames(
+    (folder / "frames").string(), readIntrinsics((folder / "intrinsics.yaml").string()));
+  pipeline->detectContours();
+  if (o.sfm == "builtin")
+  {
+    pipeline->reconstruct();
+  }
+  else
+  {
+    ColmapRunnerOptions colmapOptions;
+    colmapOptions.executable = o.colmapExecutable;
+    pipeline->reconstruct(
+      ColmapRunner(colmapOptions)
+        .run((folder / "frames").string(), pipeline->intrinsics(), (work / "colmap").string()));
+  }
+  const TrackerTrajectory tracker = TrackerTrajectory::readCsv((folder / "tracker.csv").string());
+  pipeline->estimateInitialScale(&tracker, o.simulation.framesPerSecond, 0.0, 0.0);
+  pipeline->makeData();
+  log.throwIfCancelled();
+  pipeline->setLog(nullptr);
+  if (o.workFolder.empty())
+  {
+    fs::remove_all(work, ec);
+  }
+  c.sfm = pipeline->sfm();
+  c.initialScale = pipeline->initialScale();
+  c.data = pipeline->data();
+  c.frameOf = pipeline->frameOf();
+  c.pipeline = pipeline;
+  say("SfM (" + o.sfm + "): " + std::to_string(c.sfm.numberOfRegisteredFrames()) + "/" +
+    std::to_string(c.sfm.frames.size()) + " frames, " + std::to_string(c.sfm.points.size()) +
+    " points, RMS reprojection error " + std::to_string(c.sfm.rmsReprojectionErrorPx()) + " px");
+
+  // The contours, scored against the true ones (the evaluation's own
+  // detection, dense; the registration uses the pipeline's).
+  c.contourScores = detectAndScoreContours(truth, video, o.pipeline.contours).scores;
   say("contours: precision " + std::to_string(c.contourScores.precision) + ", recall " +
     std::to_string(c.contourScores.recall) + ", median normal error " +
     std::to_string(c.contourScores.normalErrorDegMedian) + " deg");
 
-  // Structure from motion.
-  SfmReconstruction& sfm = c.sfm;
-  if (o.sfm == "builtin")
-  {
-    ProgressNoteStream log(progress);
-    sfm = StructureFromMotion().reconstruct(video.frames, k, video.names, log.stream());
-    log.throwIfCancelled();
-  }
-  else
-  {
-    namespace fs = std::filesystem;
-    const std::string work = o.workFolder.empty() ? "p2-colmap" : o.workFolder;
-    const std::string images = (fs::path(work) / "images").string();
-    std::error_code ec;
-    fs::remove_all(images, ec);
-    fs::create_directories(images, ec);
-    for (size_t f = 0; f < video.frames.size(); ++f)
-    {
-      cv::imwrite((fs::path(images) / video.names[f]).string(), video.frames[f]);
-    }
-    ColmapRunnerOptions colmapOptions;
-    colmapOptions.executable = o.colmapExecutable;
-    const std::string modelFolder =
-      ColmapRunner(colmapOptions).run(images, k, (fs::path(work) / "colmap").string());
-    std::vector<std::string> warnings;
-    sfm = readColmapModel(modelFolder, ColmapFormat::Binary, video.names, 0.5, &warnings);
-    for (const std::string& w : warnings)
-    {
-      say(w);
-    }
-  }
-  if (sfm.numberOfRegisteredFrames() < 2 || sfm.points.size() < 10)
-  {
-    throw Error("P2: SfM registered " + std::to_string(sfm.numberOfRegisteredFrames()) +
-      " frames and " + std::to_string(sfm.points.size()) + " points; too few to register");
-  }
-  say("SfM (" + o.sfm + "): " + std::to_string(sfm.numberOfRegisteredFrames()) + "/" +
-    std::to_string(sfm.frames.size()) + " frames, " + std::to_string(sfm.points.size()) +
-    " points, RMS reprojection error " + std::to_string(sfm.rmsReprojectionErrorPx()) + " px");
-
-  // The initial scale from the tracker (V14).
-  std::vector<Eigen::Vector3d> centres;
-  for (const SfmReconstruction::Frame& f : sfm.frames)
-  {
-    centres.push_back(f.registered
-        ? f.cameraToSfm.centre
-        : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
-  }
-  const TrackerScaleResult trackerScale =
-    estimateTrackerScale(video.tracker, video.frameTimesS, centres);
-  for (const std::string& w : trackerScale.warnings)
-  {
-    say(w);
-  }
-  c.initialScale = trackerScale.scale;
-
-  // Registration data: the registered frames with their contours.
-  c.data = makeVideoRegistrationData(
-    sfm, contours, c.initialScale, o.pipeline.pointNoiseFloorMm, &c.frameOf);
   setCaseTruth(c);
   say("scale: tracker " + std::to_string(c.initialScale) + ", truth " +
     std::to_string(c.truth.scale));

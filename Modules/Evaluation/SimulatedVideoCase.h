@@ -5,14 +5,18 @@
 #include <vimlop/Evaluation/ContourScoring.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Evaluation/VideoProtocol.h>
 #include <vimlop/Video/SfmReconstruction.h>
 
+#include <memory>
 #include <random>
 #include <vector>
 
 namespace vimlop
 {
+
+class VideoRegistrationPipeline;
 
 /// @brief A simulated sequence turned into registration data, with its truth (P2, P3).
 struct SimulatedVideoCase
@@ -26,17 +30,28 @@ struct SimulatedVideoCase
   std::vector<int> frameOf;  ///< data frame -> simulated frame
   Eigen::Vector3d centroidCT = Eigen::Vector3d::Zero(); ///< of the points, through the truth
   VideoCameraErrors floor; ///< camera errors of SfM through the true similarity
+  /// The main job, run through stage 6 (the data) on the sequence's user
+  /// files; its model is the world's. Register with it (setStarts, run) or
+  /// with `data` and pipeline->model() directly.
+  std::shared_ptr<VideoRegistrationPipeline> pipeline;
 };
 
 /**
- * @brief Simulates the sequence of `o` in `model`, detects and scores its
- * contours, runs SfM and the tracker scale, and builds the registration
- * data. Notes go to `progress` as "P2: ...". `o` is valid (VideoProtocolOptions::validate).
- * @throws vimlop::Error when a stage fails (no path,
- * too little SfM), or on cancellation.
+ * @brief Simulates the sequence of `o` in `world` (rendering its truth),
+ * writes it as a user has it (writeSimulatedVideo, the truth removed) into
+ * `o.workFolder`/sequence (a temporary folder, removed after, when the work
+ * folder is empty), and runs the main job's stages 1-6 on those files
+ * (VideoRegistrationPipeline with `o.pipeline`: the world's model, the
+ * frames with the calibrated intrinsics, contours within the field stop,
+ * SfM, the tracker's scale, the data). Then the evaluation's part: the
+ * contours scored against the true ones, the true similarity and the SfM
+ * floor. Notes go to `progress` as "P2: ...". `o` is valid
+ * (VideoProtocolOptions::validate).
+ * @throws vimlop::Error when a stage fails (no path, too little SfM), or on
+ * cancellation.
  */
-SimulatedVideoCase prepareSimulatedVideoCase(const RegistrationModel& model,
-  const VideoProtocolOptions& o, const EvaluationProgress& progress);
+SimulatedVideoCase prepareSimulatedVideoCase(
+  const SimulatedWorld& world, const VideoProtocolOptions& o, const EvaluationProgress& progress);
 
 /**
  * @brief Sets the truth of a case whose video, SfM, data and frameOf are

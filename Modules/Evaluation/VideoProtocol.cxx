@@ -103,15 +103,22 @@ VideoProtocolReport runVideoProtocol(
   const TriangleMesh& mesh, const VideoProtocolOptions& o, const EvaluationProgress& progress)
 {
   o.validate();
+  return runVideoProtocol(makeSimulatedWorld(mesh, SimulatedWorldOptions()), o, progress);
+}
+
+VideoProtocolReport runVideoProtocol(
+  const SimulatedWorld& world, const VideoProtocolOptions& o, const EvaluationProgress& progress)
+{
+  o.validate();
   auto say = [&](const std::string& text) { reportEvaluationNote(progress, "P2: " + text); };
-  const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
   VideoProtocolOptions simulated = o;
   if (o.init == "canonical" && simulated.simulation.trajectory.uprightRollDeg < 0.0)
   {
     // Canonical poses assume the scope is held upright (see CanonicalPoses.h).
     simulated.simulation.trajectory.uprightRollDeg = o.uprightRollDeg;
   }
-  const SimulatedVideoCase c = prepareSimulatedVideoCase(model, simulated, progress);
+  const SimulatedVideoCase c = prepareSimulatedVideoCase(world, simulated, progress);
+  const RegistrationModel& model = c.pipeline->model();
 
   VideoProtocolReport report;
   report.frames = o.simulation.frames;
@@ -132,7 +139,11 @@ VideoProtocolReport runVideoProtocol(
   }
   else
   {
-    const std::vector<CameraPose> poses = makeCanonicalPoses(model, settings.canonical);
+    // The template's poses carried into the patient when the world has
+    // them, as a user would; otherwise generated along the model's airway.
+    const std::vector<CameraPose> poses = world.canonicalPosesCT.empty()
+      ? makeCanonicalPoses(model, settings.canonical)
+      : world.canonicalPosesCT;
     int anchor = 0;
     starts = canonicalStarts(c.data, c.initialScale, poses, &anchor);
     report.candidates = poses.size() * settings.multiStart.scaleFactors.size();

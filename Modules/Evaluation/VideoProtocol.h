@@ -17,6 +17,8 @@
 namespace vimlop
 {
 
+struct SimulatedWorld;
+
 /// @brief Settings of P2, the paper's simulated-video experiment (DESIGN section 6).
 struct VideoProtocolOptions
 {
@@ -120,6 +122,14 @@ struct VideoProtocolReport
  */
 VideoProtocolReport runVideoProtocol(const TriangleMesh& mesh, const VideoProtocolOptions& options,
   const EvaluationProgress& progress);
+
+/**
+ * @brief P2 in `world`: the sequence rendered from its truth, registered to
+ * its model (from its canonical poses when it has them). The mesh version is
+ * this in the ideal world of that mesh.
+ */
+VideoProtocolReport runVideoProtocol(const SimulatedWorld& world,
+  const VideoProtocolOptions& options, const EvaluationProgress& progress);
 
 } // namespace vimlop
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -199,7 +200,9 @@ TrackerTrajectory TrackerTrajectory::readCsv(
 void TrackerTrajectory::writeCsv(const std::string& path) const
 {
   std::ofstream out(path);
-  out << "time_s,x_mm,y_mm,z_mm\n" << std::setprecision(10);
+  // Every digit: a reader gets the very samples back (a rounded time stamp can move
+  // a sample across the edge of the window that a position is fitted over).
+  out << "time_s,x_mm,y_mm,z_mm\n" << std::setprecision(std::numeric_limits<double>::max_digits10);
   for (const Sample& s : this->Samples)
   {
     out << s.timeS << "," << s.positionMm.x() << "," << s.positionMm.y() << "," << s.positionMm.z()
