@@ -276,23 +276,50 @@ cv::Mat specularHighlights(
     return highlights;
   }
   const double limit = angleDeg * M_PI / 180.0;
+  // The airway is a triangle mesh, the mucosa is smooth: normals of the raw
+  // depth would be the facets', each lit whole or not at all. The inverse
+  // depth is smoothed over the pixels with a surface only (normalised
+  // convolution; a plane's inverse depth is affine in the pixel, so that
+  // planes stay planes), and the normals are taken over a baseline of a few
+  // pixels.
+  cv::Mat inverse(h, w, CV_32F, cv::Scalar(0.0f));
+  cv::Mat seen(h, w, CV_32F, cv::Scalar(0.0f));
+  for (int v = 0; v < h; ++v)
+  {
+    for (int u = 0; u < w; ++u)
+    {
+      if (hasSurface(depth.at(u, v)))
+      {
+        inverse.at<float>(v, u) = 1.0f / depth.at(u, v);
+        seen.at<float>(v, u) = 1.0f;
+      }
+    }
+  }
+  const double smoothingPx = 3.0;
+  const int baselinePx = 2;
+  // Beyond the image is no surface either: a reflected border would bend planes there.
+  cv::GaussianBlur(inverse, inverse, cv::Size(0, 0), smoothingPx, 0.0, cv::BORDER_CONSTANT);
+  cv::GaussianBlur(seen, seen, cv::Size(0, 0), smoothingPx, 0.0, cv::BORDER_CONSTANT);
   auto point = [&](int u, int v, Eigen::Vector3d& x)
   {
-    const float z = depth.at(u, v);
-    if (!hasSurface(z))
+    // Near the edge of what has a surface (and of the image), the smoothing
+    // would mix in the void: about 7 px.
+    const float support = seen.at<float>(v, u);
+    if (!hasSurface(depth.at(u, v)) || support < 0.99f)
     {
       return false;
     }
-    x = camera.backProject(Eigen::Vector2d(u, v), z);
+    x = camera.backProject(Eigen::Vector2d(u, v), support / inverse.at<float>(v, u));
     return true;
   };
-  for (int v = 1; v + 1 < h; ++v)
+  const int b = baselinePx;
+  for (int v = b; v + b < h; ++v)
   {
-    for (int u = 1; u + 1 < w; ++u)
+    for (int u = b; u + b < w; ++u)
     {
       Eigen::Vector3d x, left, right, up, down;
-      if (!point(u, v, x) || !point(u - 1, v, left) || !point(u + 1, v, right) ||
-        !point(u, v - 1, up) || !point(u, v + 1, down))
+      if (!point(u, v, x) || !point(u - b, v, left) || !point(u + b, v, right) ||
+        !point(u, v - b, up) || !point(u, v + b, down))
       {
         continue;
       }
@@ -471,7 +498,7 @@ cv::Mat occluderCoverage(int widthPx, int heightPx, double areaFraction, std::ui
 void applyOccluders(cv::Mat& light, const cv::Mat& coverage, double opacity)
 {
   // Blood on the lens under the scope's light: dark red (BGR, grey levels).
-  const cv::Vec3f colour(25.0f, 20.0f, 95.0f);
+  const cv::Vec3f colour(12.0f, 10.0f, 55.0f);
   for (int v = 0; v < light.rows; ++v)
   {
     for (int u = 0; u < light.cols; ++u)

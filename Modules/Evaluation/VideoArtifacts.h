@@ -130,10 +130,11 @@ cv::Mat renderMotionBlur(const cv::Mat& picture, const DepthMap& depth, const Pi
 /**
  * @brief The specular highlight seen at each pixel, as a fraction of full
  * scale (CV_32F): with the light at the camera's centre, the surface mirrors
- * it into the lens where its normal (from the gradients of `depth`) points
- * back at the camera; with α that angle and α0 = `angleDeg`, the highlight is
- * strength × (1 − (α / α0)²) for α < α0 and 0 beyond (and where a
- * neighbour has no surface).
+ * it into the lens where its normal points back at the camera; with α that
+ * angle and α0 = `angleDeg`, the highlight is strength × (1 − (α / α0)²) for
+ * α < α0 and 0 beyond. The normals come from `depth` smoothed over 3 px
+ * (the mesh's facets are not the mucosa's shape), back-projected 2 px either
+ * side; none within 7 px of where there is no surface or of the image's edge.
  */
 cv::Mat specularHighlights(
   const DepthMap& depth, const PinholeCamera& camera, double strength, double angleDeg);
