@@ -38,7 +38,7 @@ struct EndoscopeSimulationOptions
 {
   /// Number of frames (default 30).
   int frames = 30;
-  /// Seed of the path, the texture, the picture noise and the tracker noise (default 1).
+  /// Seed of the path, the texture, the picture and tracker noise and the occluders (default 1).
   std::uint64_t seed = 1;
   /// The true endoscope camera (default 320 x 240 pixels, fx = fy = 200: 77°
   /// x 62°). Its distortion coefficients (OpenCV's k1, k2, p1, p2[, k3]) are

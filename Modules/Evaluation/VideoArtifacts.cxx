@@ -424,28 +424,59 @@ double uniform(std::mt19937_64& rng, double low, double high)
   return low + (high - low) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
 }
 
-/// The union of the blobs' coverage at this scale (pixels per unit radius).
-cv::Mat blobCoverage(const std::vector<Blob>& blobs, int w, int h, double scale)
+/**
+ * Each blob's edge at each pixel, apart from the scale (pixels per unit
+ * radius), so that the bisection over the scale costs no trigonometry: the
+ * edge parameter at scale s is `offset - distance / s`.
+ */
+struct BlobGeometry
 {
-  cv::Mat coverage(h, w, CV_32F, cv::Scalar(0.0f));
-  for (int v = 0; v < h; ++v)
+  std::vector<float> offset;
+  std::vector<float> distance;
+};
+
+std::vector<BlobGeometry> blobGeometry(const std::vector<Blob>& blobs, int w, int h)
+{
+  std::vector<BlobGeometry> geometry(blobs.size());
+  for (size_t i = 0; i < blobs.size(); ++i)
   {
-    for (int u = 0; u < w; ++u)
+    const Blob& b = blobs[i];
+    for (int v = 0; v < h; ++v)
     {
-      double clear = 1.0;
-      for (const Blob& b : blobs)
+      for (int u = 0; u < w; ++u)
       {
         const double du = u - b.cu;
         const double dv = v - b.cv;
         const double x = b.cosAngle * du + b.sinAngle * dv;
         const double y = (-b.sinAngle * du + b.cosAngle * dv) / b.aspect;
         const double phi = std::atan2(y, x);
-        const double outline = scale * b.radius *
+        const double outline = b.radius *
           (1.0 + b.amplitude[0] * std::sin(b.waves[0] * phi + b.phase[0]) +
             b.amplitude[1] * std::sin(b.waves[1] * phi + b.phase[1]));
-        // A soft edge of 30 % of the radius, 0.5 on the outline: a drop's rim is not sharp.
-        const double edge = 0.3 * scale * b.radius;
-        const double t = std::clamp((outline - std::hypot(x, y)) / edge + 0.5, 0.0, 1.0);
+        // A soft edge of 30 % of the radius, 0.5 on the outline: a drop's
+        // rim is not sharp. t = (s outline - rho) / (0.3 s radius) + 0.5.
+        const double edge = 0.3 * b.radius;
+        geometry[i].offset.push_back(static_cast<float>(outline / edge + 0.5));
+        geometry[i].distance.push_back(static_cast<float>(std::hypot(x, y) / edge));
+      }
+    }
+  }
+  return geometry;
+}
+
+/// The union of the blobs' coverage at this scale (pixels per unit radius).
+cv::Mat blobCoverage(const std::vector<BlobGeometry>& geometry, int w, int h, double scale)
+{
+  cv::Mat coverage(h, w, CV_32F, cv::Scalar(0.0f));
+  for (int v = 0; v < h; ++v)
+  {
+    for (int u = 0; u < w; ++u)
+    {
+      const size_t k = static_cast<size_t>(v) * w + u;
+      double clear = 1.0;
+      for (const BlobGeometry& g : geometry)
+      {
+        const double t = std::clamp(g.offset[k] - g.distance[k] / scale, 0.0, 1.0);
         clear *= 1.0 - t * t * (3.0 - 2.0 * t);
       }
       coverage.at<float>(v, u) = static_cast<float>(1.0 - clear);
@@ -484,15 +515,16 @@ cv::Mat occluderCoverage(int widthPx, int heightPx, double areaFraction, std::ui
   // The covered area grows with the scale at every pixel: bisection finds
   // the scale of the requested area whatever the blobs' overlap and the
   // image's border cut off.
+  const std::vector<BlobGeometry> geometry = blobGeometry(blobs, widthPx, heightPx);
   double low = 0.0;
   double high = 2.0 * std::hypot(widthPx, heightPx);
   for (int i = 0; i < 24; ++i)
   {
     const double mid = 0.5 * (low + high);
-    (coveredFraction(blobCoverage(blobs, widthPx, heightPx, mid)) < areaFraction ? low : high) =
+    (coveredFraction(blobCoverage(geometry, widthPx, heightPx, mid)) < areaFraction ? low : high) =
       mid;
   }
-  return blobCoverage(blobs, widthPx, heightPx, high);
+  return blobCoverage(geometry, widthPx, heightPx, high);
 }
 
 void applyOccluders(cv::Mat& light, const cv::Mat& coverage, double opacity)
