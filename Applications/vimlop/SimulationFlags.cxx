@@ -117,7 +117,7 @@ void addSimulationOptions(CLI::App& c, EndoscopeSimulationOptions& s)
     ->check(CLI::IsMember({ "none", "mjpg", "h264", "mp4v" }))
     ->default_str("none");
   c.add_option("--compression-quality", a.compressionQuality,
-     "JPEG quality of --compression mjpg, 1 to 100 (0: the writer's own)")
+     "JPEG quality of --compression mjpg, 1 to 100 (0: the writer's own, 75)")
     ->capture_default_str();
   c.add_option("--occluded-frames", a.occludedFrameFraction,
      "fraction of frames with occluders (fluid, blood on the lens; 0: none)")

@@ -67,7 +67,8 @@ struct VideoArtifactOptions
   /// Lossy compression of the whole sequence (default none). Real endoscopy
   /// recorders store H.264 or Motion JPEG.
   VideoCompression compression = VideoCompression::None;
-  /// JPEG quality of mjpg, 1 to 100 (default 0: the writer's own, 95).
+  /// JPEG quality of mjpg, 1 to 100 (default 0: the writer's own,
+  /// which measures as 75).
   /// Realistic: 50 to 90 (an estimate for OR recorders). OpenCV 4.6's FFmpeg
   /// writer has no quality setting, so h264 and mp4v refuse one.
   int compressionQuality = 0;
