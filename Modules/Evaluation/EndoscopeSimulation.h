@@ -27,7 +27,7 @@ namespace vimlop
  * by default so that the default sequence is the ideal world of P1–P3, bit
  * for bit: the field stop and vignetting (`fieldStop`), lens distortion
  * (`intrinsics.distortion`), calibration error of the intrinsics given to the
- * user (`calibrationFocalErrorRelative`, `calibrationPrincipalPointErrorPx`)
+ * user (`calibrationFocalErrorRelative`, `calibrationPrincipalPointErrorPx`),
  * tracker latency and clock offset (`trackerLatencyS`,
  * `trackerClockOffsetS`), and the video artifacts (`artifacts`: motion blur,
  * specular highlights, exposure, shot noise, compression, occluders).
