@@ -83,6 +83,52 @@ void addSimulationOptions(CLI::App& c, EndoscopeSimulationOptions& s)
   c.add_option(
      "--tracker-offset-s", s.trackerClockOffsetS, "tracker clock minus video clock, seconds")
     ->capture_default_str();
+  // The video artifacts: no range checks here, so that validate() names the
+  // bad value in one message for the library and the command line alike.
+  VideoArtifactOptions& a = s.artifacts;
+  c.add_option("--exposure-time-s", a.exposureTimeS,
+     "exposure time of each frame, seconds: motion blur from the camera's motion (0: none; about "
+     "1/60 to 1/30 at 30 fps)")
+    ->capture_default_str();
+  c.add_option("--motion-blur-samples", a.motionBlurSamples,
+     "instants of the exposure the motion blur averages")
+    ->capture_default_str();
+  c.add_option("--specular", a.specularStrength,
+     "strength of the specular highlights, fraction of full scale at their centre (0: none; 1 to "
+     "2 saturates)")
+    ->capture_default_str();
+  c.add_option("--specular-angle-deg", a.specularAngleDeg,
+     "angle between the surface normal and the view ray within which a highlight is seen, degrees")
+    ->capture_default_str();
+  c.add_option("--exposure-gain", a.exposureGain,
+     "exposure gain on the light, clipped to [0, 255] before the sensor noise (1: as rendered)")
+    ->capture_default_str();
+  c.add_option("--shot-noise", a.shotNoise,
+     "shot noise: variance per grey level of the pixel's value (0: none; about 0.05 to 0.5)")
+    ->capture_default_str();
+  c.add_option_function<std::string>(
+     "--compression",
+     [&a](const std::string& name)
+     {
+       a.compression = name == "mjpg" ? VideoCompression::Mjpg
+         : name == "h264"             ? VideoCompression::H264
+         : name == "mp4v"             ? VideoCompression::Mp4v
+                                      : VideoCompression::None;
+     },
+     "pass the frames through a lossy codec: none, mjpg (.avi), h264 or mp4v (.mp4)")
+    ->check(CLI::IsMember({ "none", "mjpg", "h264", "mp4v" }))
+    ->default_str("none");
+  c.add_option("--compression-quality", a.compressionQuality,
+     "JPEG quality of --compression mjpg, 1 to 100 (0: the writer's own, 75)")
+    ->capture_default_str();
+  c.add_option("--occluded-frames", a.occludedFrameFraction,
+     "fraction of frames with occluders (fluid, blood on the lens; 0: none)")
+    ->capture_default_str();
+  c.add_option(
+     "--occluder-area", a.occluderAreaFraction, "fraction of an occluded frame the occluders cover")
+    ->capture_default_str();
+  c.add_option("--occluder-opacity", a.occluderOpacity, "opacity of an occluder at its centre")
+    ->capture_default_str();
 }
 
 void addWorldOptions(CLI::App& c, SimulatedWorldOptions& w)

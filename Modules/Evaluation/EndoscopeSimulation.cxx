@@ -51,7 +51,7 @@ bool EndoscopeSimulationOptions::isIdealWorld() const
   return !hasLensDistortion(this->intrinsics) && this->fieldStop.isOff() &&
     this->calibrationFocalErrorRelative == 0.0 &&
     this->calibrationPrincipalPointErrorPx.isZero(0.0) && this->trackerLatencyS == 0.0 &&
-    this->trackerClockOffsetS == 0.0;
+    this->trackerClockOffsetS == 0.0 && this->artifacts.isOff();
 }
 
 void EndoscopeSimulationOptions::validate() const
@@ -62,6 +62,7 @@ void EndoscopeSimulationOptions::validate() const
   }
   this->intrinsics.validate();
   this->fieldStop.validate();
+  this->artifacts.validate();
   const Eigen::Index coefficients = this->intrinsics.distortion.size();
   if (coefficients != 0 && coefficients != 4 && coefficients != 5 && coefficients != 8)
   {
@@ -112,29 +113,6 @@ PinholeCamera calibratedIntrinsics(const EndoscopeSimulationOptions& o)
   return k;
 }
 
-/// Sensor noise on a frame of the realistic world, after the lens and the
-/// field stop; rounded to 8 bits as the renderer does.
-cv::Mat addSensorNoise(const cv::Mat& bgr32f, double sigma, std::uint64_t seed)
-{
-  std::mt19937_64 rng(seed * 0x2545f4914f6cdd1dull + 977u);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  cv::Mat out(bgr32f.rows, bgr32f.cols, CV_8UC3);
-  for (int v = 0; v < bgr32f.rows; ++v)
-  {
-    for (int u = 0; u < bgr32f.cols; ++u)
-    {
-      const cv::Vec3f in = bgr32f.at<cv::Vec3f>(v, u);
-      cv::Vec3b& pixel = out.at<cv::Vec3b>(v, u);
-      for (int c = 0; c < 3; ++c)
-      {
-        const double value = in[c] + (sigma > 0.0 ? sigma * noise(rng) : 0.0);
-        pixel[c] = static_cast<std::uint8_t>(std::clamp(std::lround(value), 0L, 255L));
-      }
-    }
-  }
-  return out;
-}
-
 } // namespace
 
 SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
@@ -149,11 +127,14 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
   video.calibratedIntrinsics = calibratedIntrinsics(o);
   video.camerasCT = makeEndoscopeTrajectory(model, path, o.seed);
 
-  // The lens and the field stop act on the picture the optics form, before
-  // the sensor adds its noise; without them the renderer's own noise is kept,
-  // so that the ideal world stays as it was.
+  // The lens, the field stop and the artifacts of the light act on the
+  // picture the optics form, before the sensor adds its noise; without them
+  // the renderer's own noise is kept, so that the ideal world stays as it was.
+  const VideoArtifactOptions& artifacts = o.artifacts;
   const bool distorted = hasLensDistortion(o.intrinsics);
-  const bool optics = distorted || !o.fieldStop.isOff();
+  const bool optics = distorted || !o.fieldStop.isOff() || artifacts.actsOnLight();
+  const std::vector<bool> occluded =
+    occludedFrames(o.frames, artifacts.occludedFrameFraction, o.seed * 31337ull + 5ull);
   PinholeCamera renderCamera = o.intrinsics;
   renderCamera.distortion.resize(0);
   cv::Mat lensMap;
@@ -192,20 +173,63 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
     std::snprintf(name, sizeof(name), "frame%03d.png", f);
     video.names.emplace_back(name);
     DepthMap depth = image.depth;
+    // The light in floating point once an artifact acts before the lens;
+    // empty until then, so that the lens alone samples the 8-bit picture as before.
+    cv::Mat light;
+    if (artifacts.exposureTimeS > 0.0 || artifacts.specularStrength > 0.0)
+    {
+      bgr.convertTo(light, CV_32FC3);
+      if (artifacts.exposureTimeS > 0.0)
+      {
+        light = renderMotionBlur(light, image.depth, renderCamera, video.camerasCT[f],
+          exposurePoses(video.camerasCT, f, o.framesPerSecond, artifacts.exposureTimeS,
+            artifacts.motionBlurSamples));
+      }
+      if (artifacts.specularStrength > 0.0)
+      {
+        addSpecularHighlights(light,
+          specularHighlights(
+            image.depth, renderCamera, artifacts.specularStrength, artifacts.specularAngleDeg));
+      }
+    }
     if (distorted)
     {
-      bgr = renderLensDistortion(bgr, lensMap);
+      if (light.empty())
+      {
+        bgr = renderLensDistortion(bgr, lensMap);
+      }
+      else
+      {
+        light = renderLensDistortion(light, lensMap);
+      }
       depth = renderLensDistortion(depth, lensMap);
     }
     if (optics)
     {
-      cv::Mat light;
-      bgr.convertTo(light, CV_32FC3);
+      if (light.empty())
+      {
+        bgr.convertTo(light, CV_32FC3);
+      }
+      if (occluded[f])
+      {
+        applyOccluders(light,
+          occluderCoverage(light.cols, light.rows, artifacts.occluderAreaFraction,
+            o.seed * 1000003ull + static_cast<std::uint64_t>(f)),
+          artifacts.occluderOpacity);
+      }
+      // The field stop lies behind the lens window the fluid sits on: it
+      // blackens the occluders too.
       if (!gain.empty())
       {
         light = light.mul(gain);
       }
-      bgr = addSensorNoise(light, o.noiseSigma, noiseSeed);
+      if (artifacts.actsOnLight())
+      {
+        // The sensor's well saturates (and nothing is darker than black)
+        // before it reads out with its noise.
+        applyExposure(light, artifacts.exposureGain);
+      }
+      bgr = addSensorNoise(light, o.noiseSigma, artifacts.shotNoise, noiseSeed);
     }
     video.frames.push_back(bgr);
     video.depth.push_back(depth);
@@ -213,6 +237,9 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
     reportEvaluationCount(progress, "simulate: frame", f + 1, o.frames);
   }
 
+  // The recorder compresses what the sensor read out, the whole sequence at once.
+  video.frames = compressVideo(
+    video.frames, artifacts.compression, artifacts.compressionQuality, o.framesPerSecond);
   video.tracker = simulateTrackerRecording(video.camerasCT, o);
   return video;
 }

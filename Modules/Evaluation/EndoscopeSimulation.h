@@ -7,6 +7,7 @@
 #include <vimlop/Core/RegistrationModel.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
 #include <vimlop/Evaluation/FieldStop.h>
+#include <vimlop/Evaluation/VideoArtifacts.h>
 #include <vimlop/Rendering/EndoscopeTrajectory.h>
 #include <vimlop/Video/TrackerTrajectory.h>
 
@@ -26,16 +27,18 @@ namespace vimlop
  * by default so that the default sequence is the ideal world of P1–P3, bit
  * for bit: the field stop and vignetting (`fieldStop`), lens distortion
  * (`intrinsics.distortion`), calibration error of the intrinsics given to the
- * user (`calibrationFocalErrorRelative`, `calibrationPrincipalPointErrorPx`)
- * and tracker latency and clock offset (`trackerLatencyS`,
- * `trackerClockOffsetS`). Realistic values and their sources:
+ * user (`calibrationFocalErrorRelative`, `calibrationPrincipalPointErrorPx`),
+ * tracker latency and clock offset (`trackerLatencyS`,
+ * `trackerClockOffsetS`), and the video artifacts (`artifacts`: motion blur,
+ * specular highlights, exposure, shot noise, compression, occluders).
+ * Realistic values and their sources:
  * Documentation/Simulation.md.
  */
 struct EndoscopeSimulationOptions
 {
   /// Number of frames (default 30).
   int frames = 30;
-  /// Seed of the path, the texture, the picture noise and the tracker noise (default 1).
+  /// Seed of the path, the texture, the picture and tracker noise and the occluders (default 1).
   std::uint64_t seed = 1;
   /// The true endoscope camera (default 320 x 240 pixels, fx = fy = 200: 77°
   /// x 62°). Its distortion coefficients (OpenCV's k1, k2, p1, p2[, k3]) are
@@ -75,6 +78,8 @@ struct EndoscopeSimulationOptions
   /// Defaults 0.5 px and 1.5 grey levels.
   double blurSigmaPx = 0.5;
   double noiseSigma = 1.5;
+  /// The artifacts of real endoscope video (default none).
+  VideoArtifactOptions artifacts;
 
   /// @brief True when every error source of the realistic world is off (the defaults).
   bool isIdealWorld() const;
@@ -83,7 +88,7 @@ struct EndoscopeSimulationOptions
    * @brief Checks the settings.
    * @throws vimlop::Error naming the first problem: fewer than 2 frames,
    * invalid intrinsics or field stop, non-finite or out-of-range distortion,
-   * calibration error, tracker rate, latency or clock offset.
+   * calibration error, tracker rate, latency or clock offset, video artifacts.
    */
   void validate() const;
 };
@@ -124,6 +129,13 @@ struct SimulatedVideo
  * distorted (renderLensDistortion), multiplied by the field stop's gain, and
  * only then given the sensor noise (so that the black border is noisy, as a
  * real sensor's is). Without them, the renderer's own noise is kept, as before.
+ *
+ * The video artifacts (VideoArtifacts.h) act in the order of the light's
+ * path: motion blur and specular highlights on the pinhole render (with its
+ * depth map and the poses of the exposure), then the lens, the occluders on
+ * the lens window, the field stop, the exposure's gain and clipping, the sensor's
+ * noise (Gaussian and shot), and last the compression of the whole sequence.
+ * The depth maps stay the geometry's: neither blurred nor occluded.
  * @throws vimlop::Error for invalid options (validate()), if no path fits in
  * the airway, or on cancellation.
  */

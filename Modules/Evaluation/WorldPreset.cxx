@@ -2,6 +2,9 @@
 
 #include <vimlop/Core/Error.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace vimlop
 {
 
@@ -55,6 +58,24 @@ const std::vector<ErrorSource>& errorSources()
       } },
     { "roll", "largest roll of the scope from upright, deg", 10.0, 45.0,
       [](WorldSettings& w, double v) { w.video.trajectory.uprightRollDeg = v; } },
+    { "motion-blur", "exposure time, s", 0.0, 1.0 / 60.0,
+      [](WorldSettings& w, double v) { w.video.artifacts.exposureTimeS = v; } },
+    { "specular", "strength of the specular highlights, fraction of full scale", 0.0, 1.0,
+      [](WorldSettings& w, double v) { w.video.artifacts.specularStrength = v; } },
+    { "exposure", "exposure gain (over-exposure above 1)", 1.0, 1.3,
+      [](WorldSettings& w, double v) { w.video.artifacts.exposureGain = v; } },
+    { "shot-noise", "shot noise, grey levels of variance per grey level", 0.0, 0.2,
+      [](WorldSettings& w, double v) { w.video.artifacts.shotNoise = v; } },
+    { "compression", "Motion JPEG quality lost, 100 - quality (0: no compression)", 0.0, 25.0,
+      [](WorldSettings& w, double v)
+      {
+        VideoArtifactOptions& a = w.video.artifacts;
+        a.compression = v == 0.0 ? VideoCompression::None : VideoCompression::Mjpg;
+        a.compressionQuality =
+          v == 0.0 ? 0 : std::clamp(static_cast<int>(std::lround(100.0 - v)), 1, 100);
+      } },
+    { "occluders", "fraction of frames with fluid on the lens (10 % of the frame each)", 0.0, 0.1,
+      [](WorldSettings& w, double v) { w.video.artifacts.occludedFrameFraction = v; } },
   };
   return sources;
 }

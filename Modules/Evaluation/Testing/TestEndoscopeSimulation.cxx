@@ -225,3 +225,62 @@ TEST(EndoscopeSimulation, WritesTheCalibratedIntrinsicsForTheUserAndTheTrueOnesA
   EXPECT_DOUBLE_EQ(truth.cy, 119.5);
   EXPECT_EQ(truth.distortion, o.intrinsics.distortion);
 }
+
+TEST(EndoscopeSimulation, WithEveryVideoArtifactOffTheFramesAreByteIdentical)
+{
+  // The artifacts' secondary settings (samples, angle, area, opacity,
+  // quality) change nothing while their main knobs are off, on the
+  // renderer's path and on the optics' path (a field stop) alike.
+  const RegistrationModel model(fixtures::makeTube());
+  for (const double circle : { 0.0, 0.6 })
+  {
+    EndoscopeSimulationOptions plain;
+    plain.frames = 2;
+    plain.fieldStop.radiusFraction = circle;
+    EndoscopeSimulationOptions off = plain;
+    off.artifacts.motionBlurSamples = 3;
+    off.artifacts.specularAngleDeg = 20.0;
+    off.artifacts.occluderAreaFraction = 0.5;
+    off.artifacts.occluderOpacity = 0.3;
+    ASSERT_TRUE(off.artifacts.isOff());
+    EXPECT_EQ(off.isIdealWorld(), circle == 0.0);
+    const SimulatedVideo a = simulateEndoscopeVideo(model, plain, EvaluationProgress());
+    const SimulatedVideo b = simulateEndoscopeVideo(model, off, EvaluationProgress());
+    ASSERT_EQ(a.frames.size(), b.frames.size());
+    for (size_t f = 0; f < a.frames.size(); ++f)
+    {
+      EXPECT_EQ(cv::norm(a.frames[f], b.frames[f], cv::NORM_INF), 0.0)
+        << "circle " << circle << ", frame " << f;
+    }
+  }
+}
+
+TEST(EndoscopeSimulation, TheVideoArtifactsChangeTheFramesButNotTheirCountOrDepth)
+{
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeSimulationOptions o;
+  o.frames = 4;
+  const SimulatedVideo ideal = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  VideoArtifactOptions& a = o.artifacts;
+  a.exposureTimeS = 1.0 / 30.0;
+  a.specularStrength = 1.5;
+  a.exposureGain = 1.3;
+  a.shotNoise = 0.3;
+  a.occludedFrameFraction = 0.5;
+  a.occluderAreaFraction = 0.2;
+  a.compression = VideoCompression::Mjpg;
+  a.compressionQuality = 80;
+  EXPECT_FALSE(o.isIdealWorld());
+  const SimulatedVideo real = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  ASSERT_EQ(real.frames.size(), 4u);
+  for (size_t f = 0; f < 4; ++f)
+  {
+    ASSERT_EQ(real.frames[f].size(), ideal.frames[f].size());
+    EXPECT_GT(cv::norm(real.frames[f], ideal.frames[f], cv::NORM_L1) / (320.0 * 240 * 3), 2.0)
+      << "frame " << f;
+    EXPECT_EQ(real.depth[f].depthMm, ideal.depth[f].depthMm) << "frame " << f;
+  }
+  // The same seed, the same sequence.
+  const SimulatedVideo again = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  EXPECT_EQ(cv::norm(again.frames[2], real.frames[2], cv::NORM_INF), 0.0);
+}

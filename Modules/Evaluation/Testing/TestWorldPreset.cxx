@@ -48,6 +48,10 @@ TEST(WorldPreset, ClinicalTurnsOnEverySourceAndIdealTurnsThemAllOffAgain)
   EXPECT_EQ(w.video.trackerLatencyS, 0.03);
   EXPECT_DOUBLE_EQ(w.video.trackerClockOffsetS, 0.05);
   EXPECT_EQ(w.video.trajectory.uprightRollDeg, 45.0);
+  EXPECT_EQ(w.video.artifacts.exposureTimeS, 1.0 / 60.0);
+  EXPECT_EQ(w.video.artifacts.compression, VideoCompression::Mjpg);
+  EXPECT_EQ(w.video.artifacts.compressionQuality, 75);
+  EXPECT_EQ(w.video.artifacts.occludedFrameFraction, 0.1);
   EXPECT_NO_THROW(w.model.validate());
   EXPECT_NO_THROW(w.video.validate());
 
@@ -87,7 +91,8 @@ TEST(WorldPreset, EachSourceAloneLeavesTheIdealWorldAndComesBackToIt)
   }
   EXPECT_EQ(errorOf([] { errorSource("weather"); }),
     "unknown error source 'weather' (expected one of anatomy, segmentation, swelling, "
-    "image-circle, lens, calibration, tracker, roll)");
+    "image-circle, lens, calibration, tracker, roll, motion-blur, specular, exposure, shot-noise, "
+    "compression, occluders)");
   WorldSettings w;
   EXPECT_EQ(errorOf([&] { applyWorldPreset(w, "mars"); }),
     "unknown world 'mars' (expected ideal or clinical)");
