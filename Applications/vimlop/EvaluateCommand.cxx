@@ -2,9 +2,13 @@
 
 #include "CommandLine.h"
 #include "TerminalEvaluationProgress.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/PerturbationProtocol.h>
+#include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Evaluation/SyntheticProtocol.h>
 #include <vimlop/Evaluation/VideoProtocol.h>
+#include <vimlop/Evaluation/WorldPreset.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Rendering/OffscreenRendering.h>
 #include <vimlop/Report/RegistrationReport.h>
@@ -57,6 +61,8 @@ struct VideoCommand
 {
   std::string mesh, ct, out;
   VideoProtocolOptions protocol;
+  /// The world; its video settings become the protocol's simulation.
+  WorldSettings world;
   std::string perturbMm = joinNumbers({ protocol.perturbMinMm, protocol.perturbMaxMm });
   std::string perturbDeg = joinNumbers({ protocol.perturbMinDeg, protocol.perturbMaxDeg });
 };
@@ -71,10 +77,22 @@ void runVideo(VideoCommand c)
   std::tie(options.perturbMinMm, options.perturbMaxMm) = parseRange(c.perturbMm, "--perturb-mm");
   std::tie(options.perturbMinDeg, options.perturbMaxDeg) =
     parseRange(c.perturbDeg, "--perturb-deg");
+  options.simulation = c.world.video;
   options.validate();
+  c.world.model.validate();
+  if (c.mesh.empty() == c.ct.empty())
+  {
+    throw Error("give exactly one of --mesh and --ct");
+  }
+  if (c.ct.empty())
+  {
+    c.world.model.requireMeshWorld();
+  }
   requireOffscreenRendering("vimlop evaluate video");
-  const TriangleMesh mesh = airwayMeshFrom(c.mesh, c.ct);
-  const VideoProtocolReport report = runVideoProtocol(mesh, options, terminalEvaluationProgress());
+  const SimulatedWorld world = c.ct.empty()
+    ? makeSimulatedWorld(loadAirwayMesh(c.mesh), c.world.model)
+    : makeSimulatedWorld(readCTVolume(c.ct), c.world.model, terminalEvaluationProgress());
+  const VideoProtocolReport report = runVideoProtocol(world, options, terminalEvaluationProgress());
   writeJsonFile(report.toJson(), c.out);
   printLines(report.summaryLines());
 }
@@ -151,10 +169,10 @@ CLI::App* addEvaluateCommand(CLI::App& app)
     "SfM, tracker scale, a perturbed start; camera errors of V-IMLOP and IMLP");
   addModelOptions(*p2, video->mesh, video->ct);
   p2->add_option("--out", video->out, "result JSON file")->required();
-  p2->add_option("--frames", p2Options.simulation.frames, "frames of the sequence")
+  p2->add_option("--frames", video->world.video.frames, "frames of the sequence")
     ->capture_default_str()
     ->check(CLI::Range(3, 1000));
-  p2->add_option("--seed", p2Options.simulation.seed, "random seed (path, texture, noise, start)")
+  p2->add_option("--seed", video->world.video.seed, "random seed (path, texture, noise, start)")
     ->capture_default_str();
   p2->add_option("--sfm", p2Options.sfm, "structure from motion: builtin or colmap")
     ->capture_default_str();
@@ -174,7 +192,9 @@ CLI::App* addEvaluateCommand(CLI::App& app)
       "with --init canonical: the simulated scope's image up stays this close to superior, deg")
     ->capture_default_str()
     ->check(CLI::Range(0.0, 180.0));
-  addSimulationOptions(*p2, p2Options.simulation);
+  addWorldPresetOption(*p2, video->world);
+  addSimulationOptions(*p2, video->world.video);
+  addWorldOptions(*p2, video->world.model);
   addPipelineOptions(*p2, p2Options.pipeline);
   p2->callback([video] { runVideo(*video); });
 
