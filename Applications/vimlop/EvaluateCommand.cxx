@@ -151,6 +151,14 @@ CLI::App* addEvaluateCommand(CLI::App& app)
   p1->add_option(
       "--misalign-deg", synthetic->misalignDeg, "range of the initial rotation error, degrees")
     ->capture_default_str();
+  p1->add_option("--contour-noise-px", p1Options.synthetic.contourNoisePx,
+      "noise added to the video contour points, std per axis, px (the paper's Σ2d = 9 px²: 3)")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
+  p1->add_option("--contour-noise-kappa", p1Options.synthetic.contourNormalKappa,
+      "concentration of the noise on contour normals (the paper's 200; 0: none)")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
   p1->add_option("--methods", synthetic->methods,
       std::string("comma-separated methods: ") + syntheticProtocolMethodNames())
     ->capture_default_str();

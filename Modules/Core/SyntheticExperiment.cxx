@@ -147,6 +147,10 @@ SyntheticTrial makeSyntheticTrial(
   {
     throw Error("synthetic experiment: needs at least 1 camera and 3 points");
   }
+  if (!(o.contourNoisePx >= 0.0) || !(o.contourNormalKappa >= 0.0))
+  {
+    throw Error("synthetic experiment: the contour noise and its kappa must not be negative");
+  }
   o.intrinsics.validate();
   Sampler rng(seed);
   const TriangleMesh& mesh = model.mesh();
@@ -305,6 +309,11 @@ SyntheticTrial makeSyntheticTrial(
         ContourPoint p;
         p.pixel = sample.pixel + o.contourNoisePx * Eigen::Vector2d(rng.normal(), rng.normal());
         p.normal = sample.pixelNormal;
+        if (o.contourNormalKappa > 0.0)
+        {
+          // Drawn only with the noise on, so that data without it stay as they were.
+          p.normal = Eigen::Rotation2Dd(rng.normal() / std::sqrt(o.contourNormalKappa)) * p.normal;
+        }
         frame.contour.push_back(p);
       }
       enoughContours = enoughContours && frame.contour.size() >= 10;
@@ -318,6 +327,14 @@ SyntheticTrial makeSyntheticTrial(
   }
   throw Error(
     "synthetic experiment: found no camera path whose views show enough surface and contours");
+}
+
+SyntheticOptions SyntheticOptions::paper()
+{
+  SyntheticOptions o;
+  o.contourNoisePx = 3.0;
+  o.contourNormalKappa = 200.0;
+  return o;
 }
 
 } // namespace vimlop

@@ -11,7 +11,8 @@
 namespace vimlop
 {
 
-/// @brief How well the detected contours of a simulated sequence match the true ones.
+/// @brief How well the detected contours of a simulated sequence match the
+/// true ones (NaN when not scored: distorted frames).
 struct ContourScores
 {
   double precision = 0.0;

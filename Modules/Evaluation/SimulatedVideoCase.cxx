@@ -6,6 +6,7 @@
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/Statistics.h>
+#include <vimlop/Evaluation/LensDistortionRendering.h>
 #include <vimlop/Evaluation/ProgressNoteStream.h>
 #include <vimlop/Pipeline/SimilarityFromCameras.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
@@ -91,12 +92,23 @@ SimulatedVideoCase prepareSimulatedVideoCase(
     std::to_string(c.sfm.frames.size()) + " frames, " + std::to_string(c.sfm.points.size()) +
     " points, RMS reprojection error " + std::to_string(c.sfm.rmsReprojectionErrorPx()) + " px");
 
-  // The contours, scored against the true ones (the evaluation's own
-  // detection, dense; the registration uses the pipeline's).
-  c.contourScores = detectAndScoreContours(truth, video, o.pipeline.contours).scores;
-  say("contours: precision " + std::to_string(c.contourScores.precision) + ", recall " +
-    std::to_string(c.contourScores.recall) + ", median normal error " +
-    std::to_string(c.contourScores.normalErrorDegMedian) + " deg");
+  // The contours, scored against the true ones: the detector on the raw
+  // frames, dense and without the field stop's mask (the registration uses
+  // the pipeline's, masked). Distorted frames are not scored: the true
+  // contours are a pinhole camera's.
+  if (hasLensDistortion(video.intrinsics))
+  {
+    c.contourScores.precision = c.contourScores.recall = c.contourScores.normalErrorDegMedian =
+      std::numeric_limits<double>::quiet_NaN();
+    say("contours: not scored (the frames are distorted; the true contours are a pinhole's)");
+  }
+  else
+  {
+    c.contourScores = detectAndScoreContours(truth, video, o.pipeline.contours).scores;
+    say("contours: precision " + std::to_string(c.contourScores.precision) + ", recall " +
+      std::to_string(c.contourScores.recall) + ", median normal error " +
+      std::to_string(c.contourScores.normalErrorDegMedian) + " deg");
+  }
 
   setCaseTruth(c);
   say("scale: tracker " + std::to_string(c.initialScale) + ", truth " +

@@ -21,8 +21,10 @@ struct SyntheticProtocolOptions
   int trials = 100;
   /// Random seed; trial i draws its data from seed * 1000003 + i (default 1).
   std::uint64_t seed = 1;
-  /// The data of a trial: cameras, points, noise, misalignment (see SyntheticOptions).
-  SyntheticOptions synthetic;
+  /// The data of a trial: cameras, points, noise, misalignment (see
+  /// SyntheticOptions), with the paper's contour noise (Σ2d = 9 px², κ = 200;
+  /// SyntheticOptions::paper()).
+  SyntheticOptions synthetic = SyntheticOptions::paper();
   /// Any of "vimlop", "imlp", "trimmed-icp", "open3d-icp", "open3d-gicp", each once.
   std::vector<std::string> methods = { "vimlop", "imlp", "trimmed-icp", "open3d-icp",
     "open3d-gicp" };

@@ -9,6 +9,7 @@
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
 #include <chrono>
+#include <cmath>
 #include <random>
 #include <sstream>
 
@@ -43,10 +44,13 @@ nlohmann::json methodJson(const VideoProtocolMethodReport& m)
 std::vector<std::string> VideoProtocolReport::summaryLines() const
 {
   const ContourScores& c = this->contours;
-  std::vector<std::string> lines{ formatText(
-    "P2 contours: precision %.3f, recall %.3f, median normal error %.1f deg; SfM (%s) %d points",
-    c.precision, c.recall, c.normalErrorDegMedian, this->sfm.c_str(),
-    static_cast<int>(this->sfmPoints)) };
+  std::vector<std::string> lines{ std::isnan(c.precision)
+      ? formatText("P2 contours: not scored (lens distortion); SfM (%s) %d points",
+          this->sfm.c_str(), static_cast<int>(this->sfmPoints))
+      : formatText("P2 contours: precision %.3f, recall %.3f, median normal error %.1f deg; SfM "
+                   "(%s) %d points",
+          c.precision, c.recall, c.normalErrorDegMedian, this->sfm.c_str(),
+          static_cast<int>(this->sfmPoints)) };
   for (const VideoProtocolMethodReport& m : this->methods)
   {
     const VideoCameraErrors& e = m.errors;

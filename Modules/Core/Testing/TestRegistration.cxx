@@ -251,3 +251,52 @@ TEST(Registration, CavityInsideTest)
   EXPECT_FALSE(model.isInside({ 0, 0, 40 })); // beyond the cavity wall
   EXPECT_TRUE(model.isInside({ 8, 0, 7.5 })); // just above the blob
 }
+
+TEST(SyntheticExperiment, ThePapersContourNoiseMovesThePointsByThreePixelsAndTurnsTheNormals)
+{
+  const RegistrationModel& model = cavityModel();
+  SyntheticOptions clean = syntheticOptions();
+  SyntheticOptions noisy = clean;
+  noisy.contourNoisePx = SyntheticOptions::paper().contourNoisePx;
+  noisy.contourNormalKappa = SyntheticOptions::paper().contourNormalKappa;
+  EXPECT_EQ(noisy.contourNoisePx, 3.0);
+  EXPECT_EQ(noisy.contourNormalKappa, 200.0);
+  // The same seed draws the same cameras and contour samples; only the noise differs.
+  const SyntheticTrial a = makeSyntheticTrial(model, clean, 11);
+  const SyntheticTrial b = makeSyntheticTrial(model, noisy, 11);
+  ASSERT_EQ(a.data.frames.size(), b.data.frames.size());
+  double squared = 0.0;
+  double angles = 0.0;
+  int n = 0;
+  for (size_t f = 0; f < a.data.frames.size(); ++f)
+  {
+    ASSERT_EQ(a.data.frames[f].contour.size(), b.data.frames[f].contour.size());
+    for (size_t i = 0; i < a.data.frames[f].contour.size(); ++i)
+    {
+      const ContourPoint& p = a.data.frames[f].contour[i];
+      const ContourPoint& q = b.data.frames[f].contour[i];
+      squared += (q.pixel - p.pixel).squaredNorm();
+      angles += std::pow(std::atan2(p.normal.x() * q.normal.y() - p.normal.y() * q.normal.x(),
+                           p.normal.dot(q.normal)),
+        2);
+      EXPECT_NEAR(q.normal.norm(), 1.0, 1e-12);
+      ++n;
+    }
+  }
+  ASSERT_GT(n, 200);
+  // Two axes of 3 px: a mean squared offset of 18 px²; angles of std 1/sqrt(200) rad.
+  EXPECT_NEAR(squared / n, 18.0, 3.0);
+  EXPECT_NEAR(std::sqrt(angles / n), 1.0 / std::sqrt(200.0), 0.01);
+  SyntheticOptions bad = clean;
+  bad.contourNormalKappa = -1.0;
+  try
+  {
+    makeSyntheticTrial(model, bad, 1);
+    ADD_FAILURE() << "no error";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_STREQ(
+      e.what(), "synthetic experiment: the contour noise and its kappa must not be negative");
+  }
+}
