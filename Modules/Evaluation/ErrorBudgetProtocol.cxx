@@ -97,17 +97,11 @@ std::vector<Eigen::Vector3d> targetPoints(const TriangleMesh& truth)
   {
     targets.push_back(v[i]);
   }
-  double yLow = 1e300;
-  double yHigh = -1e300;
-  for (const Eigen::Vector3d& p : v)
-  {
-    yLow = std::min(yLow, p.y());
-    yHigh = std::max(yHigh, p.y());
-  }
+  const Eigen::Matrix<double, 3, 2> bounds = truth.bounds();
   std::vector<Eigen::Vector3d> front;
   for (const Eigen::Vector3d& p : v)
   {
-    if (p.y() < 0.5 * (yLow + yHigh))
+    if (p.y() < bounds.row(1).mean())
     {
       front.push_back(p);
     }

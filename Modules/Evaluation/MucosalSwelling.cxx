@@ -71,13 +71,9 @@ SwollenSurface swellMucosa(const TriangleMesh& airway, const MucosalSwellingOpti
     out.mesh = airway;
     return out;
   }
-  Eigen::Vector3d low = vertices[0];
-  Eigen::Vector3d high = vertices[0];
-  for (const Eigen::Vector3d& v : vertices)
-  {
-    low = low.cwiseMin(v);
-    high = high.cwiseMax(v);
-  }
+  const Eigen::Matrix<double, 3, 2> bounds = airway.bounds();
+  const Eigen::Vector3d low = bounds.col(0);
+  const Eigen::Vector3d high = bounds.col(1);
   const Eigen::Vector3d extent = high - low;
   const double yEnd = low.y() + o.anteriorFraction * extent.y();
   const double zLow = low.z() + o.lowFraction * extent.z();

@@ -47,16 +47,8 @@ vtkSmartPointer<vtkPolyData> airwaySurface(const CTVolume& ct, AirwaySegmentatio
 
 std::array<double, 6> boundsOf(const TriangleMesh& mesh)
 {
-  std::array<double, 6> b{ 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
-  for (const Eigen::Vector3d& v : mesh.vertices())
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      b[2 * a] = std::min(b[2 * a], v[a]);
-      b[2 * a + 1] = std::max(b[2 * a + 1], v[a]);
-    }
-  }
-  return b;
+  const Eigen::Matrix<double, 3, 2> b = mesh.bounds();
+  return { b(0, 0), b(0, 1), b(1, 0), b(1, 1), b(2, 0), b(2, 1) };
 }
 
 void swell(SimulatedWorld& world, const MucosalSwellingOptions& swelling)
