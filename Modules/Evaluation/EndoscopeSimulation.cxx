@@ -276,7 +276,7 @@ void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder)
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(fs::path(folder) / "frames", ec);
-  fs::create_directories(fs::path(folder) / "depth", ec);
+  fs::create_directories(fs::path(folder) / "truth" / "depth", ec);
   if (ec)
   {
     throw Error("'" + folder + "': cannot create the folder (" + ec.message() + ")");
@@ -300,7 +300,8 @@ void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder)
       }
     }
     const std::string depthPath =
-      (fs::path(folder) / "depth" / fs::path(video.names[f]).replace_extension(".tiff")).string();
+      (fs::path(folder) / "truth" / "depth" / fs::path(video.names[f]).replace_extension(".tiff"))
+        .string();
     if (!cv::imwrite(depthPath, depth))
     {
       throw Error("'" + depthPath + "': cannot write the depth map");
@@ -329,7 +330,7 @@ void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder)
   // every pose reader of VIMLOP reads it.
   const nlohmann::json poses = { { "frame", "CT (LPS, mm); camera x right, y down, z forward" },
     { "poses", frames } };
-  const std::string posesPath = (fs::path(folder) / "poses.json").string();
+  const std::string posesPath = (fs::path(folder) / "truth" / "poses.json").string();
   std::ofstream out(posesPath);
   out << poses.dump(1) << "\n";
   if (!out)

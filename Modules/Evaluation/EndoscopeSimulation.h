@@ -155,12 +155,13 @@ TrackerTrajectory simulateTrackerRecording(
   const std::vector<CameraPose>& camerasCT, const EndoscopeSimulationOptions& options);
 
 /**
- * @brief Writes a simulated sequence to `folder`: `frames/frame000.png`, ...;
- * `depth/frame000.tiff`, ... (32-bit float camera depth in mm, 0 where no
- * surface is seen); `intrinsics.yaml` (the calibrated intrinsics, with the
- * distortion coefficients); `poses.json` (per frame: name, time, true
- * camera-to-CT 4x4 matrix, row-major); `tracker.csv`; and the truth a user
- * would not have, apart: `truth/intrinsics.yaml` (the true intrinsics).
+ * @brief Writes a simulated sequence to `folder`: what a user has,
+ * `frames/frame000.png`, ..., `intrinsics.yaml` (the calibrated intrinsics,
+ * with the distortion coefficients) and `tracker.csv`; and the truth a user
+ * would not have, apart under `truth/`: `poses.json` (per frame: name, time,
+ * true camera-to-CT 4x4 matrix, row-major), `depth/frame000.tiff`, ...
+ * (32-bit float camera depth in mm, 0 where no surface is seen) and
+ * `intrinsics.yaml` (the true intrinsics).
  * @throws vimlop::Error if the folder cannot be written.
  */
 void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder);

@@ -33,7 +33,7 @@ simulation, ct, program = sys.argv[1:4]
 result = vimlop.register_video(ct=ct, frames=os.path.join(simulation, "frames"),
                                intrinsics=os.path.join(simulation, "intrinsics.yaml"),
                                tracker=os.path.join(simulation, "tracker.csv"))
-with open(os.path.join(simulation, "poses.json")) as f:
+with open(os.path.join(simulation, "truth", "poses.json")) as f:
     truth = {p["frame_id"]: numpy.array(p["camera_to_ct"]).reshape(4, 4)
              for p in json.load(f)["poses"]}
 errors = [numpy.linalg.norm(pose[:3, 3] - truth[int(frame)][:3, 3])

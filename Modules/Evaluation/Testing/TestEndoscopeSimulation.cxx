@@ -195,7 +195,7 @@ TEST(EndoscopeSimulation, LensDistortionKeepsTheCentreAndMovesTheRestOfTheFrame)
   EXPECT_EQ(distorted.calibratedIntrinsics.distortion, o.intrinsics.distortion);
 }
 
-TEST(EndoscopeSimulation, WritesTheCalibratedIntrinsicsForTheUserAndTheTrueOnesApart)
+TEST(EndoscopeSimulation, WritesWhatAUserHasAndTheTrueIntrinsicsPosesAndDepthApart)
 {
   const RegistrationModel model(fixtures::makeTube());
   EndoscopeSimulationOptions o;
@@ -224,6 +224,14 @@ TEST(EndoscopeSimulation, WritesTheCalibratedIntrinsicsForTheUserAndTheTrueOnesA
   EXPECT_DOUBLE_EQ(truth.cx, 159.5);
   EXPECT_DOUBLE_EQ(truth.cy, 119.5);
   EXPECT_EQ(truth.distortion, o.intrinsics.distortion);
+  // What a user has beside the frames; the truth apart, under truth/.
+  namespace fs = std::filesystem;
+  EXPECT_TRUE(fs::exists(folder / "frames" / "frame000.png"));
+  EXPECT_TRUE(fs::exists(folder / "tracker.csv"));
+  EXPECT_TRUE(fs::exists(folder / "truth" / "poses.json"));
+  EXPECT_TRUE(fs::exists(folder / "truth" / "depth" / "frame000.tiff"));
+  EXPECT_FALSE(fs::exists(folder / "poses.json"));
+  EXPECT_FALSE(fs::exists(folder / "depth"));
 }
 
 TEST(EndoscopeSimulation, WithEveryVideoArtifactOffTheFramesAreByteIdentical)

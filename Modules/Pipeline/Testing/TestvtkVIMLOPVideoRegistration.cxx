@@ -50,7 +50,7 @@ TEST(vtkVIMLOPVideoRegistration, RegistersFromCanonicalPosesWithTheMainJobsDefau
 
   // Every registered frame's camera against the simulation's truth.
   std::map<int, CameraPose> truth;
-  for (const FramePose& p : readFramePoses((simulation / "poses.json").string()))
+  for (const FramePose& p : readFramePoses((simulation / "truth" / "poses.json").string()))
   {
     truth[p.frameId] = p.cameraToWorld;
   }
