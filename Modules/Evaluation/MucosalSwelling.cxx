@@ -1,6 +1,8 @@
 #include <vimlop/Evaluation/MucosalSwelling.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/MeshTree.h>
+#include <vimlop/Core/RayClearance.h>
 #include <vimlop/Core/TextFormat.h>
 
 #include <algorithm>
@@ -52,6 +54,11 @@ void MucosalSwellingOptions::validate() const
   if (!(this->lowFraction < this->highFraction))
   {
     throw Error("the swelling region's low fraction must be below its high fraction");
+  }
+  if (!(this->maxFreeFraction > 0.0 && this->maxFreeFraction < 0.5))
+  {
+    throw Error("the swelling's share of the free length must lie in (0, 0.5), not " +
+      formatText("%g", this->maxFreeFraction));
   }
   if (!(this->edgeMm >= 0.0) || this->smoothingIterations < 0)
   {
@@ -125,10 +132,24 @@ SwollenSurface swellMucosa(const TriangleMesh& airway, const MucosalSwellingOpti
   }
   std::vector<Eigen::Vector3d> moved = vertices;
   const double scale = o.swellingMm / largest;
+  // Swollen mucosa closes a passage but never passes through the opposite
+  // wall: each vertex moves at most `maxFreeFraction` of the free length
+  // ahead of it (walked in 0.1 mm steps from just off the wall).
+  const MeshTree tree(airway);
+  constexpr double offMm = 0.05;
   for (std::size_t i = 0; i < n; ++i)
   {
-    moved[i] += scale * d[i];
-    out.displacementMm[i] = scale * d[i].norm();
+    double length = scale * d[i].norm();
+    if (length > 0.0)
+    {
+      const Eigen::Vector3d direction = d[i].normalized();
+      const double free = offMm +
+        freeLengthAlongRay(
+          tree, vertices[i] + offMm * direction, direction, length / o.maxFreeFraction, 0.1);
+      length = std::min(length, o.maxFreeFraction * free);
+      moved[i] += length * direction;
+    }
+    out.displacementMm[i] = length;
   }
   out.mesh = TriangleMesh(std::move(moved), airway.faces());
   const double threshold = 0.1 * o.swellingMm;

@@ -30,6 +30,10 @@ namespace vimlop
  * (`smoothingIterations` rounds of averaging each vertex with its
  * neighbours) and scaled so that the largest is `swellingMm`: a smooth
  * swelling of that height, as a nasal cycle's is over centimetres of mucosa.
+ * Where the passage is narrow, each vertex moves at most `maxFreeFraction`
+ * of the free length ahead of it, so that opposite walls swell towards each
+ * other and close the passage but never cross (a crossed surface would turn
+ * tissue into air).
  *
  * Off by default (0 mm). Realistic values: Documentation/Simulation.md.
  */
@@ -47,6 +51,10 @@ struct MucosalSwellingOptions
   double edgeMm = 5.0;
   /// Rounds of neighbour averaging of the displacements (default 5).
   int smoothingIterations = 5;
+  /// Largest share of the free length ahead of a vertex (along its
+  /// displacement) that it moves, in (0, 0.5) (default 0.45: two opposite
+  /// walls leave a tenth of the passage open).
+  double maxFreeFraction = 0.45;
 
   /// @brief True when the surface is left as it is.
   bool isOff() const { return swellingMm == 0.0; }
@@ -64,7 +72,7 @@ struct MucosalSwellingOptions
 struct SwollenSurface
 {
   TriangleMesh mesh;
-  /// Per vertex, the distance it moved into the air, mm.
+  /// Per vertex, the distance it moved into the air, mm (at most swellingMm).
   std::vector<double> displacementMm;
   /// Area of the faces whose vertices all moved by more than 10 % of the
   /// largest displacement, mm^2.

@@ -177,3 +177,39 @@ TEST(SimulatedWorldOfAMesh, SaysThatAModelErrorOfTheCTNeedsTheCT)
     EXPECT_STREQ(e.what(), "the anatomy's deformation must lie in [0, 20] mm, not 25");
   }
 }
+
+TEST(MucosalSwellingOnANarrowPassage, ClosesItWithoutTheWallsCrossing)
+{
+  // A passage 2 mm wide swollen by 2 mm from each side: the walls move at
+  // most 45 % of the free length ahead of them, so they meet near the axis
+  // but never pass it.
+  const TriangleMesh tube = fixtures::makeTube(1.0, 60.0, 0.0, 48, 120);
+  std::vector<Eigen::Vector3d> v;
+  for (const Eigen::Vector3d& p : tube.vertices())
+  {
+    v.emplace_back(p.x(), p.z(), -p.y());
+  }
+  const TriangleMesh passage(std::move(v), tube.faces());
+  MucosalSwellingOptions o;
+  o.swellingMm = 2.0;
+  o.edgeMm = 1.0;
+  const SwollenSurface s = swellMucosa(passage, o);
+  double largest = 0.0;
+  for (int i = 0; i < passage.numberOfVertices(); ++i)
+  {
+    const Eigen::Vector3d& before = passage.vertices()[i];
+    if (before.y() < 3.0 || distanceToAxis(before) < 0.99)
+    {
+      continue; // the nostril's cap
+    }
+    largest = std::max(largest, s.displacementMm[i]);
+    EXPECT_LE(s.displacementMm[i], 0.45 * 2.0 + 0.1) << before.transpose();
+    // Still on its own side of the axis: the wall did not cross it.
+    const Eigen::Vector3d& after = s.mesh.vertices()[i];
+    EXPECT_GT(after.x() * before.x() + after.z() * before.z(), 0.0) << before.transpose();
+  }
+  EXPECT_GT(largest, 0.5);
+  MucosalSwellingOptions bad;
+  bad.maxFreeFraction = 0.6;
+  EXPECT_EQ(errorOf(bad), "the swelling's share of the free length must lie in (0, 0.5), not 0.6");
+}
