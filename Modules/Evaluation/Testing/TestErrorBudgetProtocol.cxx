@@ -1,4 +1,5 @@
 #include "CraniumAirway.h"
+#include "ErrorMessage.h"
 #include "TestFolders.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/ErrorBudgetProtocol.h>
@@ -18,15 +19,7 @@ namespace
 
 std::string errorOf(const ErrorBudgetOptions& o)
 {
-  try
-  {
-    o.validate();
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "no error";
+  return fixtures::errorMessageOf([&] { o.validate(); });
 }
 
 } // namespace

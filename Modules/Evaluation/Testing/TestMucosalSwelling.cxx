@@ -1,3 +1,4 @@
+#include "ErrorMessage.h"
 #include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/MucosalSwelling.h>
@@ -33,15 +34,7 @@ double distanceToAxis(const Eigen::Vector3d& p)
 
 std::string errorOf(const MucosalSwellingOptions& o)
 {
-  try
-  {
-    o.validate();
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "no error";
+  return fixtures::errorMessageOf([&] { o.validate(); });
 }
 
 } // namespace

@@ -1,3 +1,4 @@
+#include "ErrorMessage.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/WorldPreset.h>
 
@@ -9,19 +10,6 @@ using namespace vimlop;
 
 namespace
 {
-
-std::string errorOf(const std::function<void()>& action)
-{
-  try
-  {
-    action();
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "no error";
-}
 
 bool isIdeal(const WorldSettings& w)
 {
@@ -89,11 +77,11 @@ TEST(WorldPreset, EachSourceAloneLeavesTheIdealWorldAndComesBackToIt)
     EXPECT_TRUE(isIdeal(w)) << source.name;
     EXPECT_EQ(&errorSource(source.name), &source);
   }
-  EXPECT_EQ(errorOf([] { errorSource("weather"); }),
+  EXPECT_EQ(fixtures::errorMessageOf([] { errorSource("weather"); }),
     "unknown error source 'weather' (expected one of anatomy, segmentation, swelling, "
     "image-circle, lens, calibration, tracker, roll, motion-blur, specular, exposure, shot-noise, "
     "compression, occluders)");
   WorldSettings w;
-  EXPECT_EQ(errorOf([&] { applyWorldPreset(w, "mars"); }),
+  EXPECT_EQ(fixtures::errorMessageOf([&] { applyWorldPreset(w, "mars"); }),
     "unknown world 'mars' (expected ideal or clinical)");
 }
