@@ -4,6 +4,7 @@
 #include <vimlop/Core/ContourPoint.h>
 #include <vimlop/Core/KdTree2D.h>
 #include <vimlop/Core/ModelContourPoint.h>
+#include <vimlop/Core/StableLayout.h>
 
 #include <Eigen/Core>
 
@@ -17,7 +18,7 @@ struct ContourMatchOptions
 {
   /// Σ2d: covariance of contour positions, px² (default I, the paper's value
   /// for contours detected in video; its synthetic experiment, P1, uses 9 I).
-  Eigen::Matrix2d positionCovariancePx2 = Eigen::Matrix2d::Identity();
+  Matrix2dUnaligned positionCovariancePx2 = Matrix2dUnaligned::Identity();
   /// κ: von Mises concentration of contour normals (default 200, the paper's).
   double kappa = 200.0;
   /// Largest angle between matched normals, degrees (default 45; the paper

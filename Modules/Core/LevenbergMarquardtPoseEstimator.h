@@ -3,6 +3,7 @@
 
 #include <vimlop/Core/PoseEstimator.h>
 #include <vimlop/Core/RegistrationOptions.h>
+#include <vimlop/Core/StableLayout.h>
 
 #include <Eigen/Core>
 
@@ -38,7 +39,7 @@ private:
   const RegistrationOptions& Options;
   TaskPool* Pool;
   std::vector<Eigen::Matrix3d> Whitenings; ///< L⁻¹ of Σ_i = L Lᵀ
-  Eigen::Matrix2d ContourWhitening;        ///< Σ2d^(-1/2), px⁻¹
+  Matrix2dUnaligned ContourWhitening;      ///< Σ2d^(-1/2), px⁻¹
 };
 
 } // namespace vimlop

@@ -2,6 +2,7 @@
 #define vimlop_PoseUpdate_h
 
 #include <vimlop/Core/SimilarityTransform.h>
+#include <vimlop/Core/StableLayout.h>
 #include <vimlop/Core/VideoFrame.h>
 
 #include <Eigen/Core>
@@ -53,7 +54,7 @@ struct PoseUpdateProblem
   /// Cameras of the contour pairs' frames (SfM frame); not owned.
   const std::vector<VideoFrame>* frames = nullptr;
   /// Σ2d^(-1/2) (px⁻¹).
-  Eigen::Matrix2d contourWhitening = Eigen::Matrix2d::Identity() / 3.0;
+  Matrix2dUnaligned contourWhitening = Matrix2dUnaligned::Identity() / 3.0;
   double kappa = 200.0;
   double minScale = 0.0;
   double maxScale = std::numeric_limits<double>::infinity();

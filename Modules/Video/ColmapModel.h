@@ -5,6 +5,7 @@
 // COLMAP sparse model, as its text and binary readers fill it.
 
 #include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/StableLayout.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -30,7 +31,7 @@ struct ColmapModel
   {
     std::string name;
     std::uint32_t cameraId = 0;
-    Eigen::Quaterniond rotation; ///< world to camera
+    QuaterniondUnaligned rotation; ///< world to camera
     Eigen::Vector3d translation = Eigen::Vector3d::Zero();
     std::vector<Eigen::Vector2d> points2D;
   };

@@ -18,6 +18,17 @@ run(${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}/build" -G Ninja -DCMAKE_
   "-DCMAKE_PREFIX_PATH=${prefix}")
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
 run("${WORK_DIR}/build/register-synthetic")
+# Built with -mavx2 against the default library; it can run only on a CPU with AVX2.
+if(EXISTS "${WORK_DIR}/build/register-synthetic-avx2")
+  file(READ /proc/cpuinfo cpuinfo)
+  if(cpuinfo MATCHES "[ \t]avx2[ \t\n]")
+    run("${WORK_DIR}/build/register-synthetic-avx2")
+  else()
+    message("register-synthetic-avx2 built but not run: this CPU has no AVX2")
+  endif()
+else()
+  message("register-synthetic-avx2 not built: the compiler has no -mavx2")
+endif()
 if(PYTHON)
   # The installed package, not the build tree's: only the prefix is on the path.
   set(package "${prefix}/${PYTHON_DESTINATION}")

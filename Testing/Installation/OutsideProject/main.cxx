@@ -3,6 +3,8 @@
 // it to a VTK pipeline around vtkVIMLOPRegistration, prints the transform
 // GetTransform() offers and checks it against the trial's ground truth. The
 // exit code is 0 only when the registration is accurate.
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/RegistrationOptions.h>
 #include <vimlop/Core/SyntheticExperiment.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
 #include <vimlop/Pipeline/vtkVIMLOPVideoRegistration.h>
@@ -165,6 +167,23 @@ int main()
     moved->GetNumberOfPoints() == static_cast<vtkIdType>(trial.data.points.size());
   std::printf("%s\n", accurate ? "accurate" : "NOT ACCURATE");
 
+  // Options set here and read by the library: the struct must have one
+  // layout on both sides, whatever flags this program is built with.
+  vimlop::RegistrationOptions options;
+  options.minScale = 0.5;
+  options.maxScale = 2.0;
+  options.threads = 1;
+  bool optionsRead = true;
+  try
+  {
+    options.validate();
+  }
+  catch (const vimlop::Error& e)
+  {
+    std::printf("the library read other options than this program set: %s\n", e.what());
+    optionsRead = false;
+  }
+
   // The main job's VTK face (its header pulls in the option tables) starts
   // from the defaults the filter has.
   vtkNew<vtkVIMLOPVideoRegistration> mainJob;
@@ -172,5 +191,5 @@ int main()
     mainJob->GetMaxIterations() == vtkNew<vtkVIMLOPRegistration>()->GetMaxIterations() &&
     mainJob->GetFailureThresholdPx() == registration->GetFailureThresholdPx();
   std::printf("the main job's VTK face has %s defaults\n", sameDefaults ? "the same" : "OTHER");
-  return accurate && sameDefaults ? 0 : 1;
+  return accurate && sameDefaults && optionsRead ? 0 : 1;
 }
