@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace vimlop
 {
@@ -28,6 +29,12 @@ struct Whitening
 {
   Eigen::Matrix3d W;
   double lambdaMax;
+  /// Separating axes of the cost ellipsoid ½ dᵀ M⁻¹ d <= B: the coordinate
+  /// axes and M's eigenvectors (columns), and 2 aᵀ M a for each, since the
+  /// ellipsoid reaches sqrt(2 B aᵀ M a) from its centre along a unit axis a.
+  Eigen::Matrix<double, 3, 6> axes;
+  Eigen::Matrix<double, 3, 6> absoluteAxes;
+  Eigen::Matrix<double, 6, 1> twiceVariance;
 
   explicit Whitening(const Eigen::Matrix3d& covariance)
   {
@@ -37,8 +44,28 @@ struct Whitening
       throw Error("most likely point: the covariance is not positive definite");
     }
     W = llt.matrixL().solve(Eigen::Matrix3d::Identity());
-    lambdaMax = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance, Eigen::EigenvaluesOnly)
-                  .eigenvalues()[2];
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+    eigen.computeDirect(covariance);
+    lambdaMax = eigen.eigenvalues()[2];
+    axes << Eigen::Matrix3d::Identity(), eigen.eigenvectors();
+    absoluteAxes = axes.cwiseAbs();
+    twiceVariance.head<3>() = 2.0 * covariance.diagonal();
+    twiceVariance.tail<3>() = 2.0 * eigen.eigenvalues();
+  }
+
+  /// True when no point of the box [lo, hi] can cost at most `bestCost`: on
+  /// one of the axes, the box's projection misses the cost ellipsoid's. With
+  /// the elongated covariances of V2 (view-aligned SfM noise) this prunes far
+  /// more than the sphere of radius sqrt(2 B λmax), and like it never drops
+  /// a better point, so the answer is unchanged.
+  bool missesEllipsoid(const Eigen::Vector3d& z, const Eigen::Vector3d& lo,
+    const Eigen::Vector3d& hi, double bestCost) const
+  {
+    const Eigen::Vector3d centre = 0.5 * (lo + hi) - z;
+    const Eigen::Vector3d half = 0.5 * (hi - lo);
+    const Eigen::Array<double, 6, 1> gap =
+      ((axes.transpose() * centre).cwiseAbs() - absoluteAxes.transpose() * half).array().max(0.0);
+    return (gap.square() > bestCost * twiceVariance.array()).any();
   }
 };
 
@@ -70,6 +97,27 @@ void finish(const TriangleMesh& mesh, const Eigen::Vector3d& z, MostLikelyPoint&
   p.point = p.barycentric[0] * mesh.corner(p.face, 0) + p.barycentric[1] * mesh.corner(p.face, 1) +
     p.barycentric[2] * mesh.corner(p.face, 2);
   p.distanceMm = (p.point - z).norm();
+}
+
+/// What MeshTree::traverse does at the tree's nodes: `skipBox(lo, hi)` may
+/// reject a node on a bound of the search's own, `operator()(face)`
+/// evaluates a face of a leaf that was not rejected.
+template <typename Evaluate, typename SkipBox>
+struct LeafVisitor
+{
+  Evaluate evaluate;
+  SkipBox skip;
+  void operator()(int face) { this->evaluate(face); }
+  bool skipBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const
+  {
+    return this->skip(lo, hi);
+  }
+};
+
+template <typename Evaluate, typename SkipBox>
+LeafVisitor<Evaluate, SkipBox> makeLeafVisitor(Evaluate evaluate, SkipBox skip)
+{
+  return { std::move(evaluate), std::move(skip) };
 }
 
 } // namespace
@@ -134,6 +182,9 @@ int MeshTree::build(int begin, int end, std::vector<Eigen::Vector3d>& centroids)
   return index;
 }
 
+// `visit` is a leaf visitor: visit(face) evaluates one face, and
+// visit.skipBox(lo, hi) may reject a node on a bound of its own besides the
+// distance bound.
 template <typename LeafVisitor>
 void MeshTree::traverse(const Eigen::Vector3d& z, double& pruneDistance2, LeafVisitor&& visit) const
 {
@@ -144,11 +195,11 @@ void MeshTree::traverse(const Eigen::Vector3d& z, double& pruneDistance2, LeafVi
   while (top > 0)
   {
     const auto [index, d2] = stack[--top];
-    if (d2 > pruneDistance2)
+    const Node& node = this->Nodes[index];
+    if (d2 > pruneDistance2 || visit.skipBox(node.lo, node.hi))
     {
       continue;
     }
-    const Node& node = this->Nodes[index];
     if (node.count > 0)
     {
       for (int i = node.first; i < node.first + node.count; ++i)
@@ -182,20 +233,22 @@ SurfacePoint MeshTree::closestPoint(const Eigen::Vector3d& query) const
   double prune2 = std::numeric_limits<double>::infinity();
   long long visited = 0;
   this->traverse(query, prune2,
-    [&](int face)
-    {
-      ++visited;
-      Eigen::Vector3d weights;
-      const Eigen::Vector3d q = closestPointOnTriangle(query, this->Mesh.corner(face, 0),
-        this->Mesh.corner(face, 1), this->Mesh.corner(face, 2), &weights);
-      const double d2 = (q - query).squaredNorm();
-      if (d2 < prune2)
+    makeLeafVisitor(
+      [&](int face)
       {
-        prune2 = d2;
-        best.surfacePoint.face = face;
-        best.surfacePoint.barycentric = weights;
-      }
-    });
+        ++visited;
+        Eigen::Vector3d weights;
+        const Eigen::Vector3d q = closestPointOnTriangle(query, this->Mesh.corner(face, 0),
+          this->Mesh.corner(face, 1), this->Mesh.corner(face, 2), &weights);
+        const double d2 = (q - query).squaredNorm();
+        if (d2 < prune2)
+        {
+          prune2 = d2;
+          best.surfacePoint.face = face;
+          best.surfacePoint.barycentric = weights;
+        }
+      },
+      [](const Eigen::Vector3d&, const Eigen::Vector3d&) { return false; }));
   visitedFaces += visited;
   finish(this->Mesh, query, best);
   return best.surfacePoint;
@@ -215,12 +268,24 @@ MostLikelyPoint MeshTree::mostLikelyPoint(
   }
   double prune2 = 2.0 * best.cost * w.lambdaMax;
   this->traverse(z, prune2,
-    [&](int face)
-    {
-      ++visited;
-      evaluateFace(this->Mesh, face, z, w, best);
-      prune2 = 2.0 * best.cost * w.lambdaMax;
-    });
+    makeLeafVisitor(
+      [&](int face)
+      {
+        // A leaf's faces are tested one by one against the same bound as
+        // the nodes, which is much cheaper than their closest point.
+        const Eigen::Vector3d a = this->Mesh.corner(face, 0);
+        const Eigen::Vector3d b = this->Mesh.corner(face, 1);
+        const Eigen::Vector3d c = this->Mesh.corner(face, 2);
+        if (w.missesEllipsoid(z, a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), best.cost))
+        {
+          return;
+        }
+        ++visited;
+        evaluateFace(this->Mesh, face, z, w, best);
+        prune2 = 2.0 * best.cost * w.lambdaMax;
+      },
+      [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi)
+      { return w.missesEllipsoid(z, lo, hi, best.cost); }));
   visitedFaces += visited;
   finish(this->Mesh, z, best);
   return best;

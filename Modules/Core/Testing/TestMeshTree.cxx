@@ -63,6 +63,41 @@ TEST(MeshTree, TreeVisitsFewFaces)
   EXPECT_LT((MeshTree::facesVisited() - before) / 100, sphere.numberOfFaces() / 20);
 }
 
+TEST(MeshTree, NoiseLongAlongTheViewVisitsOnlyTheFacesAlongTheView)
+{
+  // SfM points are uncertain along their camera ray (V2's view-aligned noise),
+  // and the ray meets the wall head on: the likely region is a thin needle
+  // across the wall. The cost ellipsoid's bounding box keeps only the faces
+  // near the needle, where the sphere of radius sqrt(2 B λmax) would keep a
+  // disc of the wall 1 mm across. Faces are tested one by one against the
+  // same axes before their closest point is sought.
+  const TriangleMesh sphere = fixtures::makeSphere(20.0, 5); // 20480 faces, 0.25 mm² each
+  const MeshTree tree(sphere);
+  const long long before = MeshTree::facesVisited();
+  int queries = 0;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (double side : { -1.0, 1.0 })
+    {
+      // Along an axis, so that the needle's bounding box is thin too.
+      const Eigen::Vector3d along = Eigen::Vector3d::Unit(axis);
+      const Eigen::Vector3d z = 19.0 * side * along;
+      const Eigen::Matrix3d cov = 4.0 * along * along.transpose() +
+        0.01 * (Eigen::Matrix3d::Identity() - along * along.transpose());
+      const MostLikelyPoint fast = tree.mostLikelyPoint(z, cov);
+      const MostLikelyPoint reference = MeshTree::mostLikelyPointBruteForce(sphere, z, cov);
+      ASSERT_NEAR(fast.cost, reference.cost, 1e-9 * (1.0 + reference.cost));
+      ++queries;
+    }
+  }
+  const double perQuery = static_cast<double>(MeshTree::facesVisited() - before -
+                            queries * static_cast<long long>(sphere.numberOfFaces())) /
+    queries;
+  // The sphere bound alone evaluates 26 faces per query here, the ellipsoid's
+  // axes 8.
+  EXPECT_LT(perQuery, 12.0);
+}
+
 TEST(MeshTree, ClosestPointMatchesBruteForce)
 {
   const TriangleMesh mesh = fixtures::makeRandomSoup(300, 9);
