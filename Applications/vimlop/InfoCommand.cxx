@@ -94,6 +94,10 @@ void printIntrinsics(const std::string& path)
   {
     std::printf("none");
   }
+  else if (k.lensModel == LensModel::Fisheye)
+  {
+    std::printf("fisheye ");
+  }
   for (Eigen::Index i = 0; i < k.distortion.size(); ++i)
   {
     std::printf("%s%g", i ? ", " : "", k.distortion[i]);

@@ -65,7 +65,7 @@ void runSfm(const SfmOptions& o)
     const std::vector<cv::Mat> frames =
       idealFrames(sequence, k, o.frames, o.intrinsics, &std::cerr);
     PinholeCamera ideal = k;
-    ideal.distortion.resize(0);
+    ideal.removeDistortion();
     sfm = reconstructFrames(frames, sequence.names(), ideal, "", &std::cerr);
   }
   if (tracker)

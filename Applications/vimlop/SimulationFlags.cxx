@@ -13,11 +13,13 @@ namespace
 
 /// Sets coefficient `index` of OpenCV's (k1, k2, p1, p2). The intrinsics carry
 /// coefficients only once one is set, so that the ideal world's
-/// intrinsics.yaml stays as it was.
+/// intrinsics.yaml stays as it was. A fisheye of the world preset gives way
+/// to the radial-tangential lens (the flag --fisheye itself excludes these).
 void setDistortion(PinholeCamera& k, int index, double value)
 {
-  if (k.distortion.size() < 4)
+  if (k.distortion.size() < 4 || k.lensModel != LensModel::RadialTangential)
   {
+    k.lensModel = LensModel::RadialTangential;
     k.distortion = Eigen::Vector4d::Zero();
   }
   k.distortion(index) = value;
@@ -61,12 +63,34 @@ void addSimulationOptions(CLI::App& c, EndoscopeSimulationOptions& s)
   const char* helps[] = { "radial distortion k1 rendered into the frames (OpenCV's model)",
     "radial distortion k2 (OpenCV)", "tangential distortion p1 (OpenCV)",
     "tangential distortion p2 (OpenCV)" };
+  std::vector<CLI::Option*> radialTangential;
   for (int i = 0; i < 4; ++i)
   {
-    c.add_option_function<double>(
-       names[i], [&k, i](double v) { setDistortion(k, i, v); }, helps[i])
-      ->default_str("0");
+    radialTangential.push_back(c.add_option_function<double>(
+                                  names[i], [&k, i](double v) { setDistortion(k, i, v); }, helps[i])
+                                 ->default_str("0"));
   }
+  CLI::Option* fisheye =
+    c.add_option_function<std::vector<double>>(
+       "--fisheye",
+       [&k](const std::vector<double>& v)
+       {
+         k.lensModel = LensModel::Fisheye;
+         k.distortion = Eigen::Vector4d(v[0], v[1], v[2], v[3]);
+       },
+       "a fisheye lens rendered into the frames instead (OpenCV's cv::fisheye, "
+       "equidistant): k1,k2,k3,k4 (0,0,0,0 is the equidistant lens itself)")
+      ->delimiter(',')
+      ->expected(4);
+  // One lens: the two models' coefficients do not mix.
+  for (CLI::Option* option : radialTangential)
+  {
+    fisheye->excludes(option);
+  }
+  c.add_option("--distortion-error", s.calibrationDistortionErrorRelative,
+     "relative error of the distortion coefficients written to intrinsics.yaml, every one alike "
+     "(the frames use the true ones; in (-1, 1))")
+    ->capture_default_str();
   c.add_option("--focal-error", s.calibrationFocalErrorRelative,
      "relative error of the focal length written to intrinsics.yaml (the frames use the true one)")
     ->capture_default_str();

@@ -53,6 +53,12 @@ void PinholeCamera::validate() const
     problem << "principal point (" << cx << ", " << cy << ") is far outside the " << widthPx << "x"
             << heightPx << " image";
   }
+  else if (lensModel == LensModel::Fisheye && distortion.size() != 4)
+  {
+    problem << "the fisheye lens model needs exactly 4 distortion coefficients (k1, k2, k3, k4), "
+               "not "
+            << distortion.size();
+  }
   if (!problem.str().empty())
   {
     throw Error(problem.str());

@@ -1,6 +1,8 @@
 #ifndef vimlop_PinholeCamera_h
 #define vimlop_PinholeCamera_h
 
+#include <vimlop/Core/LensModel.h>
+
 #include <Eigen/Core>
 
 namespace vimlop
@@ -23,8 +25,12 @@ struct PinholeCamera
   double cy = 0.0; ///< principal point v, pixels
   int widthPx = 0;
   int heightPx = 0;
-  /// OpenCV distortion coefficients (k1, k2, p1, p2[, k3, ...]); empty when none.
+  /// OpenCV distortion coefficients, read as `lensModel` says: (k1, k2, p1,
+  /// p2[, k3, ...]) or the fisheye's (k1, k2, k3, k4); empty when none.
   Eigen::VectorXd distortion;
+  /// How `distortion` is read (default RadialTangential, OpenCV's default
+  /// model, so that intrinsics that do not name one read as before).
+  LensModel lensModel = LensModel::RadialTangential;
 
   /// @brief Camera point (mm, z > 0) to pixel. The caller ensures z > 0.
   Eigen::Vector2d project(const Eigen::Vector3d& pointCamera) const
@@ -52,6 +58,13 @@ struct PinholeCamera
       pixel.y() >= -0.5 + marginPx && pixel.y() <= heightPx - 0.5 - marginPx;
   }
 
+  /// @brief Makes the camera an ideal pinhole: no coefficients, the default lens model.
+  void removeDistortion()
+  {
+    distortion.resize(0);
+    lensModel = LensModel::RadialTangential;
+  }
+
   /// @brief The 3x3 matrix K = [fx 0 cx; 0 fy cy; 0 0 1].
   Eigen::Matrix3d matrix() const;
 
@@ -68,7 +81,8 @@ struct PinholeCamera
   /**
    * @brief Checks that the intrinsics are usable.
    * @throws vimlop::Error naming the first problem (non-positive focal length
-   * or image size, non-finite value, principal point far outside the image).
+   * or image size, non-finite value, principal point far outside the image,
+   * a fisheye lens without exactly 4 coefficients).
    */
   void validate() const;
 };

@@ -49,7 +49,7 @@ double SimulatedVideo::leastWallDistanceMm(const RegistrationModel& model) const
 bool EndoscopeSimulationOptions::isIdealWorld() const
 {
   return !hasLensDistortion(this->intrinsics) && this->fieldStop.isOff() &&
-    this->calibrationFocalErrorRelative == 0.0 &&
+    this->calibrationFocalErrorRelative == 0.0 && this->calibrationDistortionErrorRelative == 0.0 &&
     this->calibrationPrincipalPointErrorPx.isZero(0.0) && this->trackerLatencyS == 0.0 &&
     this->trackerClockOffsetS == 0.0 && this->artifacts.isOff();
 }
@@ -64,7 +64,9 @@ void EndoscopeSimulationOptions::validate() const
   this->fieldStop.validate();
   this->artifacts.validate();
   const Eigen::Index coefficients = this->intrinsics.distortion.size();
-  if (coefficients != 0 && coefficients != 4 && coefficients != 5 && coefficients != 8)
+  // PinholeCamera::validate() above refuses a fisheye without its 4.
+  if (this->intrinsics.lensModel == LensModel::RadialTangential && coefficients != 0 &&
+    coefficients != 4 && coefficients != 5 && coefficients != 8)
   {
     throw Error("the lens distortion needs 4, 5 or 8 coefficients (OpenCV's k1, k2, p1, p2[, k3[, "
                 "k4, k5, k6]]), not " +
@@ -79,6 +81,11 @@ void EndoscopeSimulationOptions::validate() const
   {
     throw Error("the calibration's relative focal error must lie in (-0.5, 0.5), not " +
       formatText("%g", this->calibrationFocalErrorRelative));
+  }
+  if (!(std::abs(this->calibrationDistortionErrorRelative) < 1.0))
+  {
+    throw Error("the calibration's relative distortion error must lie in (-1, 1), not " +
+      formatText("%g", this->calibrationDistortionErrorRelative));
   }
   if (!this->calibrationPrincipalPointErrorPx.allFinite())
   {
@@ -110,6 +117,9 @@ PinholeCamera calibratedIntrinsics(const EndoscopeSimulationOptions& o)
   k.fy *= 1.0 + o.calibrationFocalErrorRelative;
   k.cx += o.calibrationPrincipalPointErrorPx.x();
   k.cy += o.calibrationPrincipalPointErrorPx.y();
+  // Every coefficient alike, in either lens model: a calibration that
+  // misjudges the lens's bending misjudges all of its terms.
+  k.distortion *= 1.0 + o.calibrationDistortionErrorRelative;
   return k;
 }
 
@@ -136,7 +146,7 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
   const std::vector<bool> occluded =
     occludedFrames(o.frames, artifacts.occludedFrameFraction, o.seed * 31337ull + 5ull);
   PinholeCamera renderCamera = o.intrinsics;
-  renderCamera.distortion.resize(0);
+  renderCamera.removeDistortion();
   cv::Mat lensMap;
   if (distorted)
   {

@@ -30,17 +30,66 @@ cv::Mat coefficients(const PinholeCamera& k)
   return d;
 }
 
-/// True while the radial factor r (1 + k1 r^2 + k2 r^4 + k3 r^6) still grows
-/// with r: past the first radius where it stops, barrel distortion folds the
-/// picture back and a distorted pixel has two sources.
+/// True while the distorted radius still grows with the undistorted one:
+/// past the first radius where it stops, barrel distortion folds the picture
+/// back and a distorted pixel has two sources. For the radial-tangential
+/// model, r (1 + k1 r^2 + k2 r^4 + k3 r^6) in the normalized radius r (r2 =
+/// r^2); for the fisheye, theta_d(theta) in the ray's angle theta = atan(r).
 bool beforeTheFold(const PinholeCamera& k, double r2)
 {
   auto coefficient = [&](Eigen::Index i)
   { return i < k.distortion.size() ? k.distortion[i] : 0.0; };
+  if (k.lensModel == LensModel::Fisheye)
+  {
+    const double theta = std::atan(std::sqrt(r2));
+    const double t2 = theta * theta;
+    return 1.0 +
+      t2 *
+        (3.0 * coefficient(0) +
+          t2 * (5.0 * coefficient(1) + t2 * (7.0 * coefficient(2) + t2 * 9.0 * coefficient(3)))) >
+      0.0;
+  }
   const double k1 = coefficient(0);
   const double k2 = coefficient(1);
   const double k3 = coefficient(4);
   return 1.0 + 3.0 * k1 * r2 + 5.0 * k2 * r2 * r2 + 7.0 * k3 * r2 * r2 * r2 > 0.0;
+}
+
+/// The normalized pinhole coordinates (x/z, y/z) of the rays of `pixels`
+/// through the lens of `k`, and the pixels those rays project back to, both
+/// with OpenCV's functions of the lens's model.
+void undistortAndProjectBack(const PinholeCamera& k, const std::vector<cv::Point2d>& pixels,
+  std::vector<cv::Point2d>& normalized, std::vector<cv::Point2d>& back)
+{
+  const cv::Mat matrix = cameraMatrix(k);
+  const cv::Mat d = coefficients(k);
+  // OpenCV's default 5 (10 for the fisheye) iterations are far from
+  // converged for the k1 of wide-angle endoscopes; the round trip checks
+  // what they give.
+  const cv::TermCriteria converged(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-10);
+  if (k.lensModel == LensModel::Fisheye)
+  {
+    cv::fisheye::undistortPoints(
+      pixels, normalized, matrix, d, cv::noArray(), cv::noArray(), converged);
+  }
+  else
+  {
+    cv::undistortPoints(pixels, normalized, matrix, d, cv::noArray(), cv::noArray(), converged);
+  }
+  std::vector<cv::Point3d> rays;
+  rays.reserve(normalized.size());
+  for (const cv::Point2d& n : normalized)
+  {
+    rays.emplace_back(n.x, n.y, 1.0);
+  }
+  if (k.lensModel == LensModel::Fisheye)
+  {
+    cv::fisheye::projectPoints(rays, back, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), matrix, d);
+  }
+  else
+  {
+    cv::projectPoints(rays, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), matrix, d, back);
+  }
 }
 
 /// Pinhole pixels of every distorted pixel, row by row; NaN where there is none.
@@ -67,21 +116,9 @@ std::vector<cv::Point2d> undistortedPixels(
     }
     return pixels;
   }
-  const cv::Mat k = cameraMatrix(distorted);
-  const cv::Mat d = coefficients(distorted);
-  // OpenCV's default 5 iterations are far from converged for the k1 of
-  // wide-angle endoscopes; the round trip below checks what they give.
   std::vector<cv::Point2d> normalized;
-  cv::undistortPoints(pixels, normalized, k, d, cv::noArray(), cv::noArray(),
-    cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-10));
-  std::vector<cv::Point3d> rays;
-  rays.reserve(normalized.size());
-  for (const cv::Point2d& n : normalized)
-  {
-    rays.emplace_back(n.x, n.y, 1.0);
-  }
   std::vector<cv::Point2d> back;
-  cv::projectPoints(rays, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), k, d, back);
+  undistortAndProjectBack(distorted, pixels, normalized, back);
   for (size_t i = 0; i < pixels.size(); ++i)
   {
     const cv::Point2d& n = normalized[i];
@@ -97,6 +134,12 @@ std::vector<cv::Point2d> undistortedPixels(
 
 bool hasLensDistortion(const PinholeCamera& camera)
 {
+  // The fisheye's projection is not the pinhole's even with zero coefficients
+  // (the radius is f theta, not f tan(theta)).
+  if (camera.lensModel == LensModel::Fisheye)
+  {
+    return camera.distortion.size() > 0;
+  }
   return camera.distortion.size() > 0 && (camera.distortion.array() != 0.0).any();
 }
 
@@ -121,7 +164,7 @@ cv::Mat distortedToPinholeMap(
 PinholeCamera pinholeCameraCovering(const PinholeCamera& distortedCamera)
 {
   PinholeCamera pinhole = distortedCamera;
-  pinhole.distortion.resize(0);
+  pinhole.removeDistortion();
   double minU = 0.0;
   double minV = 0.0;
   double maxU = distortedCamera.widthPx - 1.0;

@@ -11,7 +11,8 @@ namespace vimlop
 
 /**
  * @brief True when `camera` has a non-zero lens distortion coefficient
- * (OpenCV's model: k1, k2, p1, p2[, k3, ...]).
+ * (OpenCV's radial-tangential model: k1, k2, p1, p2[, k3, ...]) or is a
+ * fisheye with coefficients (the fisheye bends lines even with k1..k4 = 0).
  */
 bool hasLensDistortion(const PinholeCamera& camera);
 
@@ -20,12 +21,12 @@ bool hasLensDistortion(const PinholeCamera& camera);
  *
  * For each pixel (u, v) of `distortedCamera`'s image, the pixel of
  * `pinholeCamera` (whose distortion is ignored) that sees the same ray:
- * (u, v) undistorted with `distortedCamera`'s intrinsics and coefficients
- * (cv::undistortPoints, iterated to convergence) and projected by
- * `pinholeCamera`. A CV_32FC2 map for cv::remap; (-1e6, -1e6) where the
- * distortion has no inverse (beyond the radius where strong barrel
- * distortion folds back, or where the iteration does not reproduce the
- * pixel within 0.01 px), so that those pixels stay black.
+ * (u, v) undistorted with `distortedCamera`'s intrinsics and coefficients in
+ * its lens model (cv::undistortPoints, or cv::fisheye::undistortPoints for
+ * the fisheye, iterated to convergence) and projected by `pinholeCamera`. A CV_32FC2 map for
+ * cv::remap; (-1e6, -1e6) where the distortion has no inverse (beyond the radius where strong
+ * barrel distortion folds back, where a fisheye pixel's ray is 90° or more off the axis, or where
+ * the iteration does not reproduce the pixel within 0.01 px), so that those pixels stay black.
  */
 cv::Mat distortedToPinholeMap(
   const PinholeCamera& distortedCamera, const PinholeCamera& pinholeCamera);
@@ -34,9 +35,10 @@ cv::Mat distortedToPinholeMap(
  * @brief The pinhole camera (the focal lengths of `distortedCamera`, no
  * distortion, its principal point moved by whole pixels) whose image covers
  * every pixel of distortedToPinholeMap(distortedCamera, ...) with a pixel of
- * margin: barrel distortion shows more of the scene than the pinhole picture
- * of the same size, and the renderer must draw it. At most 4 times the
- * distorted image's size per axis.
+ * margin: barrel distortion (and a fisheye lens still more) shows more of
+ * the scene than the pinhole picture of the same size, and the renderer must
+ * draw it. At most 4 times the distorted image's size per axis: rays farther
+ * out (a fisheye's near 90°) stay black.
  */
 PinholeCamera pinholeCameraCovering(const PinholeCamera& distortedCamera);
 

@@ -1,6 +1,7 @@
 #include <vimlop/Evaluation/WorldPreset.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/LensDistortionRendering.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,13 +35,16 @@ const std::vector<ErrorSource>& errorSources()
     { "lens", "radial distortion k1 (k2 = -0.29 k1)", 0.0, -0.35,
       [](WorldSettings& w, double v)
       {
-        if (v == 0.0)
+        PinholeCamera& k = w.video.intrinsics;
+        if (v != 0.0)
         {
-          w.video.intrinsics.distortion.resize(0);
+          k.lensModel = LensModel::RadialTangential;
+          k.distortion = Eigen::Vector4d(v, -v / 3.5, 0.0, 0.0);
         }
-        else
+        else if (k.lensModel == LensModel::RadialTangential)
         {
-          w.video.intrinsics.distortion = Eigen::Vector4d(v, -v / 3.5, 0.0, 0.0);
+          // Off leaves a fisheye alone: it is the "fisheye" source's.
+          k.removeDistortion();
         }
       } },
     { "calibration", "relative focal error (principal point off by 300 and -200 times it, px)", 0.0,
@@ -76,6 +80,54 @@ const std::vector<ErrorSource>& errorSources()
       } },
     { "occluders", "fraction of frames with fluid on the lens (10 % of the frame each)", 0.0, 0.1,
       [](WorldSettings& w, double v) { w.video.artifacts.occludedFrameFraction = v; } },
+    // Budget-only sources (inClinicalPreset false): the clinical figures of
+    // the README were measured without them.
+    { "fisheye",
+      "fisheye strength: 0 the pinhole lens, 1 the equidistant one (fisheye k1..k4 = (1 - s) "
+      "times tan's Taylor coefficients 1/3, 2/15, 17/315, 62/2835)",
+      0.0, 1.0,
+      [](WorldSettings& w, double v)
+      {
+        PinholeCamera& k = w.video.intrinsics;
+        if (v != 0.0)
+        {
+          // theta (1 + theta^2 / 3 + 2 theta^4 / 15 + ...) is tan(theta)'s
+          // series: at small s the fisheye is nearly the pinhole (0.3 px
+          // apart at the corners of the 77° x 62° view), so that the budget's
+          // sweep from off is continuous.
+          k.lensModel = LensModel::Fisheye;
+          k.distortion =
+            (1.0 - v) * Eigen::Vector4d(1.0 / 3.0, 2.0 / 15.0, 17.0 / 315.0, 62.0 / 2835.0);
+        }
+        else if (k.lensModel == LensModel::Fisheye)
+        {
+          // Off leaves a radial-tangential lens alone: it is the "lens" source's.
+          k.removeDistortion();
+        }
+      },
+      false },
+    { "distortion-calibration",
+      "relative error of the given distortion coefficients (with the lens k1 = -0.35, k2 = 0.1 "
+      "when there is none)",
+      0.0, 0.03,
+      [](WorldSettings& w, double v)
+      {
+        // Without a lens the error has nothing to act on: on, it switches on
+        // the "lens" source's lens; off, it removes a radial-tangential lens
+        // (the one it switched on; a fisheye stays).
+        w.video.calibrationDistortionErrorRelative = v;
+        PinholeCamera& k = w.video.intrinsics;
+        if (v != 0.0 && !hasLensDistortion(k))
+        {
+          k.lensModel = LensModel::RadialTangential;
+          k.distortion = Eigen::Vector4d(-0.35, 0.1, 0.0, 0.0);
+        }
+        else if (v == 0.0 && k.lensModel == LensModel::RadialTangential)
+        {
+          k.removeDistortion();
+        }
+      },
+      false },
   };
   return sources;
 }
@@ -102,7 +154,14 @@ void applyWorldPreset(WorldSettings& settings, const std::string& name)
   }
   for (const ErrorSource& s : errorSources())
   {
-    s.set(settings, name == "ideal" ? s.offValue : s.clinicalValue);
+    if (name == "ideal")
+    {
+      s.set(settings, s.offValue);
+    }
+    else if (s.inClinicalPreset)
+    {
+      s.set(settings, s.clinicalValue);
+    }
   }
 }
 

@@ -40,7 +40,7 @@ RegistrationData makeVideoRegistrationData(const SfmReconstruction& sfm,
     VideoFrame frame;
     frame.frameId = static_cast<int>(f);
     frame.intrinsics = sfm.frames[f].intrinsics;
-    frame.intrinsics.distortion.resize(0);
+    frame.intrinsics.removeDistortion();
     frame.cameraToSfm = sfm.frames[f].cameraToSfm;
     frame.contour = contoursPerFrame[f];
     data.frames.push_back(frame);

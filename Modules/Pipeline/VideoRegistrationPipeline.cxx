@@ -226,7 +226,7 @@ void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
   d.need(d.FramesLoaded, "load the frames");
   d.progress("sfm", 0.0);
   PinholeCamera ideal = d.Intrinsics;
-  ideal.distortion.resize(0);
+  ideal.removeDistortion();
   const cv::Mat mask = d.View && !d.View->isEverything() ? d.View->mask() : cv::Mat();
   SfmReconstruction sfm = reconstructFrames(d.Frames, d.Names, ideal, colmapFolder, d.Log, mask);
   if (sfm.numberOfRegisteredFrames() < 2 || sfm.points.size() < 10)

@@ -255,7 +255,7 @@ vimlop::EndoscopeImage vtkVIMLOPVirtualEndoscope::Render(
   large.cy = s * (k.cy + 0.5) - 0.5;
   large.widthPx = s * w;
   large.heightPx = s * h;
-  large.distortion.resize(0);
+  large.removeDistortion();
   this->Window->SetSize(large.widthPx, large.heightPx);
   vimlop::setVTKCamera(
     this->Renderer->GetActiveCamera(), large, pose, this->NearClipMm, this->FarClipMm);

@@ -13,7 +13,7 @@ namespace
 {
 
 constexpr ColmapCameraModel supportedModels[] = { { "SIMPLE_PINHOLE", 0, 3 }, { "PINHOLE", 1, 4 },
-  { "SIMPLE_RADIAL", 2, 4 }, { "RADIAL", 3, 5 }, { "OPENCV", 4, 8 } };
+  { "SIMPLE_RADIAL", 2, 4 }, { "RADIAL", 3, 5 }, { "OPENCV", 4, 8 }, { "OPENCV_FISHEYE", 5, 8 } };
 /// Every COLMAP model by id, for messages about the ones VIMLOP does not read.
 constexpr const char* colmapModelNames[] = { "SIMPLE_PINHOLE", "PINHOLE", "SIMPLE_RADIAL", "RADIAL",
   "OPENCV", "OPENCV_FISHEYE", "FULL_OPENCV", "FOV", "SIMPLE_RADIAL_FISHEYE", "RADIAL_FISHEYE",
@@ -84,7 +84,7 @@ PinholeCamera intrinsicsOf(const std::string& path, std::uint64_t cameraId,
       fail(path, camera + " has a non-finite parameter");
     }
   }
-  if (!(p[0] > 0.0) || ((model.id == 1 || model.id == 4) && !(p[1] > 0.0)))
+  if (!(p[0] > 0.0) || ((model.id == 1 || model.id == 4 || model.id == 5) && !(p[1] > 0.0)))
   {
     fail(path, camera + " has a focal length that is not positive");
   }
@@ -106,6 +106,10 @@ PinholeCamera intrinsicsOf(const std::string& path, std::uint64_t cameraId,
       break;
     case 4: // OPENCV: fx, fy, cx, cy, k1, k2, p1, p2
       k.distortion = Eigen::Vector4d(p[4], p[5], p[6], p[7]);
+      break;
+    case 5: // OPENCV_FISHEYE: fx, fy, cx, cy, k1, k2, k3, k4 (OpenCV's cv::fisheye)
+      k.distortion = Eigen::Vector4d(p[4], p[5], p[6], p[7]);
+      k.lensModel = LensModel::Fisheye;
       break;
     default:
       break;

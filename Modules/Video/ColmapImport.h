@@ -21,9 +21,10 @@ enum class ColmapFormat
  * @brief Reads a COLMAP sparse model (a folder such as `sparse/0`) into an
  * SfmReconstruction.
  *
- * Camera models: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL and OPENCV
- * (the ones used with endoscopes); their radial and tangential coefficients
- * become OpenCV distortion coefficients (k1, k2, p1, p2). COLMAP poses are
+ * Camera models: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV and
+ * OPENCV_FISHEYE (the ones used with endoscopes); their radial and
+ * tangential coefficients become OpenCV distortion coefficients (k1, k2, p1,
+ * p2), OPENCV_FISHEYE's a fisheye lens (LensModel::Fisheye, k1..k4). COLMAP poses are
  * world-to-camera (q, t) with the same camera axes as OpenCV; they become
  * camera-to-SfM poses. COLMAP puts the centre of the top-left pixel at
  * (0.5, 0.5), VIMLOP at (0, 0): principal points and observations are shifted

@@ -61,6 +61,30 @@ void checkMatrixNode(
   }
 }
 
+/// The lens model that the optional entry `distortion_model` names. Without
+/// it, OpenCV's default model, so that every file from before the entry
+/// reads as it did. The names are OpenCV's and ROS camera_info's.
+LensModel readLensModel(const cv::FileNode& root, const std::string& path)
+{
+  const cv::FileNode node = root["distortion_model"];
+  if (node.empty())
+  {
+    return LensModel::RadialTangential;
+  }
+  const std::string name = node.isString() ? static_cast<std::string>(node) : std::string();
+  if (name == "plumb_bob" || name == "radial_tangential")
+  {
+    return LensModel::RadialTangential;
+  }
+  if (name == "fisheye" || name == "equidistant")
+  {
+    return LensModel::Fisheye;
+  }
+  fail(path,
+    "unknown distortion_model '" + name +
+      "' (expected plumb_bob or radial_tangential, OpenCV's default, or fisheye or equidistant)");
+}
+
 } // namespace
 
 namespace
@@ -290,6 +314,7 @@ PinholeCamera readIntrinsics(const std::string& path)
         }
       }
     }
+    camera.lensModel = readLensModel(root, path);
   }
   catch (const Error&)
   {
@@ -345,6 +370,12 @@ void writeIntrinsics(const PinholeCamera& camera, const std::string& path)
     for (int i = 0; i < d.cols; ++i)
     {
       d.at<double>(0, i) = camera.distortion[i];
+    }
+    // Only the fisheye is named, so that files of the default model stay as they were.
+    if (d.cols > 0 && camera.lensModel == LensModel::Fisheye)
+    {
+      storage << "distortion_model"
+              << "fisheye";
     }
     if (d.cols > 0)
     {

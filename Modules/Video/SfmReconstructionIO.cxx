@@ -23,6 +23,12 @@ json intrinsicsJson(const PinholeCamera& k)
     { "height", k.heightPx } };
   std::vector<double> d(k.distortion.data(), k.distortion.data() + k.distortion.size());
   j["distortion"] = d;
+  // Only the fisheye is named (as in IntrinsicsIO), so that files of the default model stay as they
+  // were.
+  if (k.lensModel == LensModel::Fisheye)
+  {
+    j["distortion_model"] = "fisheye";
+  }
   return j;
 }
 
@@ -50,6 +56,12 @@ PinholeCamera intrinsicsFrom(const json& j)
   k.heightPx = intFrom(j.at("height"), "height");
   const std::vector<double> d = j.value("distortion", std::vector<double>());
   k.distortion = Eigen::Map<const Eigen::VectorXd>(d.data(), static_cast<Eigen::Index>(d.size()));
+  const std::string model = j.value("distortion_model", std::string("plumb_bob"));
+  if (model != "plumb_bob" && model != "fisheye")
+  {
+    throw Error("unknown distortion_model '" + model + "' (expected plumb_bob or fisheye)");
+  }
+  k.lensModel = model == "fisheye" ? LensModel::Fisheye : LensModel::RadialTangential;
   return k;
 }
 

@@ -18,7 +18,8 @@
  *  "tracker_scale_mm_per_unit": 0.52,                   // 0 when no tracker was used
  *  "frames": [{"name": "frame000.png", "registered": true,
  *              "intrinsics": {"fx": .., "fy": .., "cx": .., "cy": .., "width": .., "height": ..,
- *                             "distortion": [k1, k2, p1, p2, ...]},
+ *                             "distortion": [k1, k2, p1, p2, ...],
+ *                             "distortion_model": "fisheye"},   // only for a fisheye (k1..k4)
  *              "rotation": [r00, r01, r02, r10, ..., r22],   // camera axes as columns, row-major
  *              "centre": [x, y, z]}, ...],
  *  "points": [{"position": [x, y, z],

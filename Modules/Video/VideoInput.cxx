@@ -5,6 +5,7 @@
 #include <vimlop/Video/StructureFromMotion.h>
 
 #include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <limits>
 #include <ostream>
@@ -22,21 +23,32 @@ std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCam
       std::to_string(sequence.widthPx()) + "x" + std::to_string(sequence.heightPx()));
   }
   // SfM and contours work on ideal pinhole frames: lens distortion is removed first.
-  const bool distorted = k.distortion.size() > 0 && !k.distortion.isZero();
+  const bool fisheye = k.lensModel == LensModel::Fisheye && k.distortion.size() > 0;
+  const bool distorted = fisheye || (k.distortion.size() > 0 && !k.distortion.isZero());
   cv::Mat matrix;
   cv::Mat coefficients;
+  cv::Mat fisheyeMapU;
+  cv::Mat fisheyeMapV;
   if (distorted)
   {
     if (log)
     {
-      *log
-        << "vimlop: note: undistorting the frames with the intrinsics' distortion coefficients\n";
+      *log << "vimlop: note: undistorting the frames with the intrinsics' "
+           << (fisheye ? "fisheye " : "") << "distortion coefficients\n";
     }
     matrix = (cv::Mat_<double>(3, 3) << k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0);
     coefficients = cv::Mat(1, static_cast<int>(k.distortion.size()), CV_64F);
     for (int i = 0; i < coefficients.cols; ++i)
     {
       coefficients.at<double>(i) = k.distortion[i];
+    }
+    if (fisheye)
+    {
+      // The undistorted frames keep K (as cv::undistort does for the other
+      // model), so that the pinhole intrinsics downstream are the file's.
+      // One map for the whole sequence.
+      cv::fisheye::initUndistortRectifyMap(matrix, coefficients, cv::Matx33d::eye(), matrix,
+        cv::Size(k.widthPx, k.heightPx), CV_32FC1, fisheyeMapU, fisheyeMapV);
     }
   }
   std::vector<cv::Mat> frames;
@@ -46,7 +58,15 @@ std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCam
     if (distorted)
     {
       cv::Mat undistorted;
-      cv::undistort(frame, undistorted, matrix, coefficients);
+      if (fisheye)
+      {
+        cv::remap(frame, undistorted, fisheyeMapU, fisheyeMapV, cv::INTER_LINEAR,
+          cv::BORDER_CONSTANT, cv::Scalar::all(0));
+      }
+      else
+      {
+        cv::undistort(frame, undistorted, matrix, coefficients);
+      }
       frame = undistorted;
     }
     frames.push_back(frame);

@@ -24,7 +24,11 @@ namespace vimlop
 
 /**
  * @brief The frames as an ideal pinhole camera sees them: undistorted with
- * the intrinsics' coefficients (a note on `log` when they are not zero).
+ * the intrinsics' coefficients (a note on `log` when they are not zero),
+ * in their lens model: cv::undistort, or for the fisheye
+ * cv::fisheye::initUndistortRectifyMap and cv::remap; either keeps K, so
+ * that the undistorted frames are the pinhole camera of the same fx, fy,
+ * cx, cy (black where the lens saw nothing).
  * @throws vimlop::Error when the intrinsics are not for the frames' size.
  */
 std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCamera& intrinsics,

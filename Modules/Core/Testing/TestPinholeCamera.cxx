@@ -1,3 +1,4 @@
+#include "ErrorMessage.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/PinholeCamera.h>
 
@@ -99,4 +100,20 @@ TEST(PinholeCamera, TheSimulatedEndoscopeIsValidWithItsPrincipalPointAtTheCentre
   EXPECT_DOUBLE_EQ(k.cy, 0.5 * (k.heightPx - 1));
   // 77 degrees across: 2 atan(160 / 200).
   EXPECT_NEAR(2.0 * std::atan(0.5 * k.widthPx / k.fx) * 180.0 / M_PI, 77.3, 0.1);
+}
+
+TEST(PinholeCamera, AFisheyeLensNeedsExactlyFourCoefficientsAndRemovingTheLensMakesAPinhole)
+{
+  PinholeCamera k = makeCamera();
+  EXPECT_EQ(k.lensModel, LensModel::RadialTangential);
+  k.lensModel = LensModel::Fisheye;
+  k.distortion = Eigen::Vector4d(0.03, -0.01, 0.002, -0.0005);
+  EXPECT_NO_THROW(k.validate());
+  k.distortion = Eigen::Vector3d(0.03, -0.01, 0.002);
+  EXPECT_EQ(fixtures::errorMessageOf([&] { k.validate(); }),
+    "the fisheye lens model needs exactly 4 distortion coefficients (k1, k2, k3, k4), not 3");
+  k.removeDistortion();
+  EXPECT_EQ(k.distortion.size(), 0);
+  EXPECT_EQ(k.lensModel, LensModel::RadialTangential);
+  EXPECT_NO_THROW(k.validate());
 }

@@ -1,3 +1,4 @@
+#include "TestFolders.h"
 #include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
@@ -193,6 +194,63 @@ TEST(EndoscopeSimulation, LensDistortionKeepsTheCentreAndMovesTheRestOfTheFrame)
   // ... and farther out the barrel lens shows what lies farther out.
   EXPECT_GT(meanDifference(pinhole.frames[1], distorted.frames[1], 40, 40, 10), 5.0);
   EXPECT_EQ(distorted.calibratedIntrinsics.distortion, o.intrinsics.distortion);
+}
+
+TEST(EndoscopeSimulation, AFisheyeLensKeepsTheCentreAndShowsMoreOfTheAirwayFartherOut)
+{
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeSimulationOptions o;
+  o.frames = 2;
+  o.noiseSigma = 0.0;
+  const SimulatedVideo pinhole = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  o.intrinsics.lensModel = LensModel::Fisheye;
+  o.intrinsics.distortion = Eigen::Vector4d(0.03, -0.01, 0.002, -0.0005);
+  const SimulatedVideo fisheye = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  ASSERT_EQ(fisheye.camerasCT[1].centre, pinhole.camerasCT[1].centre);
+  EXPECT_LE(meanDifference(pinhole.frames[1], fisheye.frames[1], 160, 120, 1), 2.0);
+  EXPECT_NEAR(fisheye.depth[1].at(160, 120), pinhole.depth[1].at(160, 120),
+    1e-3 * pinhole.depth[1].at(160, 120));
+  EXPECT_GT(meanDifference(pinhole.frames[1], fisheye.frames[1], 40, 40, 10), 5.0);
+  EXPECT_EQ(fisheye.calibratedIntrinsics.lensModel, LensModel::Fisheye);
+  EXPECT_EQ(fisheye.calibratedIntrinsics.distortion, o.intrinsics.distortion);
+}
+
+TEST(EndoscopeSimulation, TheGivenDistortionCoefficientsAreOffByTheCalibrationsDistortionError)
+{
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeSimulationOptions o;
+  o.frames = 2;
+  o.intrinsics.distortion = Eigen::Vector4d(-0.35, 0.1, 0.001, -0.002);
+  const SimulatedVideo exact = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  o.calibrationDistortionErrorRelative = 0.04;
+  const SimulatedVideo video = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  // The frames are the true lens's, whatever the calibration says.
+  EXPECT_EQ(cv::countNonZero(exact.frames[1].reshape(1) != video.frames[1].reshape(1)), 0);
+  const std::filesystem::path folder = fixtures::freshTestFolder("simulated-distortion-error");
+  writeSimulatedVideo(video, folder.string());
+  const PinholeCamera given = readIntrinsics((folder / "intrinsics.yaml").string());
+  const PinholeCamera truth = readIntrinsics((folder / "truth" / "intrinsics.yaml").string());
+  EXPECT_EQ(truth.distortion, o.intrinsics.distortion);
+  ASSERT_EQ(given.distortion.size(), 4);
+  for (Eigen::Index i = 0; i < 4; ++i)
+  {
+    EXPECT_NEAR(given.distortion[i] / truth.distortion[i] - 1.0, 0.04, 1e-12) << i;
+  }
+  EXPECT_EQ(given.fx, truth.fx);
+
+  // A fisheye's four coefficients alike, and the given file says it is one.
+  o.intrinsics.lensModel = LensModel::Fisheye;
+  o.intrinsics.distortion = Eigen::Vector4d(0.03, -0.01, 0.002, -0.0005);
+  o.calibrationDistortionErrorRelative = -0.05;
+  o.frames = 2;
+  const SimulatedVideo fisheye = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  writeSimulatedVideo(fisheye, folder.string());
+  const PinholeCamera givenFisheye = readIntrinsics((folder / "intrinsics.yaml").string());
+  EXPECT_EQ(givenFisheye.lensModel, LensModel::Fisheye);
+  for (Eigen::Index i = 0; i < 4; ++i)
+  {
+    EXPECT_NEAR(givenFisheye.distortion[i] / o.intrinsics.distortion[i] - 1.0, -0.05, 1e-12) << i;
+  }
 }
 
 TEST(EndoscopeSimulation, WritesWhatAUserHasAndTheTrueIntrinsicsPosesAndDepthApart)

@@ -1,9 +1,14 @@
+#include "TestFolders.h"
 #include <vimlop/Evaluation/LensDistortionRendering.h>
+#include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Video/IntrinsicsIO.h>
+#include <vimlop/Video/VideoInput.h>
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -19,6 +24,16 @@ PinholeCamera barrelCamera()
 {
   PinholeCamera k = PinholeCamera::simulatedEndoscope();
   k.distortion = Eigen::Vector4d(-0.3, 0.05, 0.001, -0.0015);
+  return k;
+}
+
+/// A wide-angle endoscope's fisheye lens: nearly equidistant, with small
+/// coefficients of the size OpenCV's fisheye calibration gives such lenses.
+PinholeCamera fisheyeCamera()
+{
+  PinholeCamera k = PinholeCamera::simulatedEndoscope();
+  k.lensModel = LensModel::Fisheye;
+  k.distortion = Eigen::Vector4d(0.03, -0.01, 0.002, -0.0005);
   return k;
 }
 
@@ -95,7 +110,7 @@ TEST(LensDistortionRendering, DistortionBendsStraightLinesAndTheWrittenCoefficie
   const PinholeCamera distorted = barrelCamera();
   ASSERT_TRUE(hasLensDistortion(distorted));
   PinholeCamera pinhole = distorted;
-  pinhole.distortion.resize(0);
+  pinhole.removeDistortion();
   const double rowPx = distorted.cy + 80.0;
   const cv::Mat straight = horizontalLine(pinhole, rowPx);
   const cv::Mat bent = renderLensDistortion(straight, distortedToPinholeMap(distorted, pinhole));
@@ -171,4 +186,88 @@ TEST(LensDistortionRendering, BarrelDistortionNeedsAWiderPinholeViewAndBlacksOut
   EXPECT_EQ(seen.widthPx, 320);
   EXPECT_EQ(seen.at(0, 0), DepthMap::noSurface());
   EXPECT_EQ(seen.at(260, 120), std::round(right[0]));
+}
+
+TEST(LensDistortionRendering, AFisheyeIsADistortionEvenWithZeroCoefficients)
+{
+  PinholeCamera equidistant = PinholeCamera::simulatedEndoscope();
+  equidistant.lensModel = LensModel::Fisheye;
+  equidistant.distortion = Eigen::Vector4d::Zero();
+  EXPECT_TRUE(hasLensDistortion(equidistant));
+  // Pixel (260, 120), (100.5, 0.5) px from the principal point, sees the ray
+  // at theta = its distance / f from the axis (equidistant), which the
+  // pinhole puts tan(theta) / theta times as far out.
+  PinholeCamera pinhole = equidistant;
+  pinhole.removeDistortion();
+  EXPECT_FALSE(hasLensDistortion(pinhole));
+  const cv::Vec2f seen = distortedToPinholeMap(equidistant, pinhole).at<cv::Vec2f>(120, 260);
+  const double theta = std::hypot(100.5, 0.5) / 200.0;
+  const double outwards = std::tan(theta) / theta;
+  EXPECT_NEAR(seen[0], pinhole.cx + 100.5 * outwards, 1e-3);
+  EXPECT_NEAR(seen[1], pinhole.cy + 0.5 * outwards, 1e-3);
+  EXPECT_GT(outwards, 1.08);
+}
+
+TEST(LensDistortionRendering, AFisheyeNeedsAWiderPinholeViewAndBlacksOutRaysAtNinetyDegrees)
+{
+  // At f = 100 px the frame's border is 1.6 rad off the axis (160 px / f),
+  // beyond the 90° that a pinhole picture can hold.
+  PinholeCamera fisheye = fisheyeCamera();
+  fisheye.fx = fisheye.fy = 100.0;
+  const PinholeCamera pinhole = pinholeCameraCovering(fisheye);
+  EXPECT_FALSE(hasLensDistortion(pinhole));
+  EXPECT_GT(pinhole.widthPx, 2 * fisheye.widthPx);
+  EXPECT_LE(pinhole.widthPx, 4 * fisheye.widthPx + 4);
+  const cv::Mat map = distortedToPinholeMap(fisheye, pinhole);
+  EXPECT_LT(map.at<cv::Vec2f>(120, 0)[0], -1000.0f);
+  EXPECT_LT(map.at<cv::Vec2f>(0, 0)[0], -1000.0f);
+  const cv::Vec2f centre = map.at<cv::Vec2f>(120, 160);
+  EXPECT_NEAR(centre[0], 160.0 + (pinhole.cx - fisheye.cx), 0.1);
+  cv::Mat white(pinhole.heightPx, pinhole.widthPx, CV_8UC3, cv::Scalar::all(200));
+  const cv::Mat picture = renderLensDistortion(white, map);
+  EXPECT_EQ(picture.at<cv::Vec3b>(120, 0), cv::Vec3b(0, 0, 0));
+  EXPECT_EQ(picture.at<cv::Vec3b>(120, 160), cv::Vec3b(200, 200, 200));
+}
+
+TEST(
+  LensDistortionRendering, AFisheyeBendsStraightLinesAndTheRegistrationsUndistortionStraightensThem)
+{
+  const PinholeCamera fisheye = fisheyeCamera();
+  const PinholeCamera pinhole = pinholeCameraCovering(fisheye);
+  // The line 80 px below the centre in the true pinhole picture (0.4 in
+  // normalized coordinates).
+  const double rowPx = fisheye.cy + 80.0;
+  const cv::Mat straight = horizontalLine(pinhole, pinhole.cy + 80.0);
+  const cv::Mat bent = renderLensDistortion(straight, distortedToPinholeMap(fisheye, pinhole));
+  const std::vector<cv::Point2d> seen = lineCentres(bent, 20, 300);
+  ASSERT_GT(seen.size(), 250u);
+  EXPECT_GT(largestDeviationFromTheChordPx(seen), 5.0);
+
+  // The frame and the intrinsics as a user has them, loaded as the
+  // registration loads them (idealFrames: cv::fisheye's undistortion).
+  const std::filesystem::path folder = fixtures::freshTestFolder("fisheye-line");
+  std::filesystem::create_directories(folder / "frames");
+  cv::Mat frame;
+  bent.convertTo(frame, CV_8U);
+  cv::cvtColor(frame, frame, cv::COLOR_GRAY2BGR);
+  ASSERT_TRUE(cv::imwrite((folder / "frames" / "frame000.png").string(), frame));
+  const std::string intrinsicsPath = (folder / "intrinsics.yaml").string();
+  writeIntrinsics(fisheye, intrinsicsPath);
+  const PinholeCamera read = readIntrinsics(intrinsicsPath);
+  ASSERT_EQ(read.lensModel, LensModel::Fisheye);
+  const std::vector<cv::Mat> ideal = idealFrames(FrameSequence::load((folder / "frames").string()),
+    read, (folder / "frames").string(), intrinsicsPath, nullptr);
+  ASSERT_EQ(ideal.size(), 1u);
+  cv::Mat grey;
+  cv::cvtColor(ideal[0], grey, cv::COLOR_BGR2GRAY);
+  grey.convertTo(grey, CV_32F);
+  const std::vector<cv::Point2d> undistorted = lineCentres(grey, 20, 300);
+  ASSERT_GT(undistorted.size(), 250u);
+  double largest = 0.0;
+  for (const cv::Point2d& p : undistorted)
+  {
+    largest = std::max(largest, std::abs(p.y - rowPx));
+  }
+  EXPECT_LT(largest, 0.3);
+  EXPECT_LT(largestDeviationFromTheChordPx(undistorted), 0.3);
 }

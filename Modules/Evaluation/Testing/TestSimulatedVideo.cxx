@@ -108,9 +108,36 @@ TEST(SimulatedVideo, TheDefaultWorldIsIdealAndEachErrorSourceMakesItReal)
     { o.calibrationPrincipalPointErrorPx = Eigen::Vector2d(0.0, 2.0); }));
   EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.trackerLatencyS = 0.02; }));
   EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.trackerClockOffsetS = -0.1; }));
-  // Zero coefficients are no distortion.
+  EXPECT_TRUE(
+    real([](EndoscopeSimulationOptions& o) { o.calibrationDistortionErrorRelative = 0.03; }));
+  // Zero coefficients are no distortion, except for a fisheye: the
+  // equidistant lens is not the pinhole.
   EXPECT_FALSE(
     real([](EndoscopeSimulationOptions& o) { o.intrinsics.distortion = Eigen::Vector4d::Zero(); }));
+  EXPECT_TRUE(real(
+    [](EndoscopeSimulationOptions& o)
+    {
+      o.intrinsics.lensModel = LensModel::Fisheye;
+      o.intrinsics.distortion = Eigen::Vector4d::Zero();
+    }));
+}
+
+TEST(SimulatedVideo, RefusesAFisheyeWithoutFourCoefficientsAndAWildDistortionError)
+{
+  EndoscopeSimulationOptions o;
+  o.intrinsics.lensModel = LensModel::Fisheye;
+  o.intrinsics.distortion = Eigen::Matrix<double, 5, 1>::Zero();
+  EXPECT_EQ(validationMessage(o),
+    "the fisheye lens model needs exactly 4 distortion coefficients (k1, k2, k3, k4), not 5");
+  o.intrinsics.distortion = Eigen::Vector4d(0.03, -0.01, 0.002, -0.0005);
+  EXPECT_EQ(validationMessage(o), "no error");
+  o.intrinsics.distortion(2) = 20.0;
+  EXPECT_EQ(
+    validationMessage(o), "the lens distortion coefficients must be finite and within [-10, 10]");
+  o = EndoscopeSimulationOptions();
+  o.calibrationDistortionErrorRelative = -1.0;
+  EXPECT_EQ(validationMessage(o),
+    "the calibration's relative distortion error must lie in (-1, 1), not -1");
 }
 
 TEST(SimulatedVideo, RefusesANegativeLatencyAWildFocalErrorAndAnOddNumberOfCoefficients)

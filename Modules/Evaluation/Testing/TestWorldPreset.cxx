@@ -65,7 +65,10 @@ TEST(WorldPreset, EachSourceAloneLeavesTheIdealWorldAndComesBackToIt)
     }
     for (const ErrorSource& other : errorSources())
     {
-      if (other.name != source.name)
+      // "distortion-calibration" switches on the "lens" source's lens and,
+      // when off, removes it: the one pair of sources that share a knob.
+      const bool shareTheLens = source.name == "lens" && other.name == "distortion-calibration";
+      if (other.name != source.name && !shareTheLens)
       {
         // Only its own knobs: the others' are still off.
         WorldSettings alone = w;
@@ -80,8 +83,63 @@ TEST(WorldPreset, EachSourceAloneLeavesTheIdealWorldAndComesBackToIt)
   EXPECT_EQ(fixtures::errorMessageOf([] { errorSource("weather"); }),
     "unknown error source 'weather' (expected one of anatomy, segmentation, swelling, "
     "image-circle, lens, calibration, tracker, roll, motion-blur, specular, exposure, shot-noise, "
-    "compression, occluders)");
+    "compression, occluders, fisheye, distortion-calibration)");
   WorldSettings w;
   EXPECT_EQ(fixtures::errorMessageOf([&] { applyWorldPreset(w, "mars"); }),
     "unknown world 'mars' (expected ideal or clinical)");
+}
+
+TEST(WorldPreset, TheClinicalPresetLeavesTheBudgetOnlySourcesOff)
+{
+  // The README's clinical figures were measured without the fisheye and the
+  // distortion's calibration error: the clinical world stays that world.
+  WorldSettings w;
+  applyWorldPreset(w, "clinical");
+  EXPECT_EQ(w.video.intrinsics.lensModel, LensModel::RadialTangential);
+  ASSERT_EQ(w.video.intrinsics.distortion.size(), 4);
+  EXPECT_EQ(w.video.intrinsics.distortion(0), -0.35);
+  EXPECT_DOUBLE_EQ(w.video.intrinsics.distortion(1), 0.1);
+  EXPECT_EQ(w.video.calibrationDistortionErrorRelative, 0.0);
+  for (const char* name : { "fisheye", "distortion-calibration" })
+  {
+    EXPECT_FALSE(errorSource(name).inClinicalPreset) << name;
+  }
+  for (const char* name : { "anatomy", "lens", "calibration", "occluders" })
+  {
+    EXPECT_TRUE(errorSource(name).inClinicalPreset) << name;
+  }
+  // The ideal world has no lens of either model.
+  WorldSettings fisheye;
+  errorSource("fisheye").set(fisheye, 1.0);
+  ASSERT_EQ(fisheye.video.intrinsics.lensModel, LensModel::Fisheye);
+  applyWorldPreset(fisheye, "ideal");
+  EXPECT_TRUE(isIdeal(fisheye));
+}
+
+TEST(WorldPreset, TheFisheyeAndTheDistortionsCalibrationErrorEachSwitchOnALens)
+{
+  WorldSettings w;
+  const ErrorSource& fisheye = errorSource("fisheye");
+  fisheye.set(w, 0.25);
+  EXPECT_EQ(w.video.intrinsics.lensModel, LensModel::Fisheye);
+  // s = 0.25: three quarters of tan's Taylor coefficients.
+  EXPECT_DOUBLE_EQ(w.video.intrinsics.distortion(0), 0.75 / 3.0);
+  EXPECT_DOUBLE_EQ(w.video.intrinsics.distortion(3), 0.75 * 62.0 / 2835.0);
+  EXPECT_NO_THROW(w.video.validate());
+  fisheye.set(w, fisheye.clinicalValue);
+  EXPECT_EQ(w.video.intrinsics.distortion, Eigen::Vector4d::Zero());
+  EXPECT_FALSE(isIdeal(w));
+  // The calibration error acts on the lens there is (here the fisheye).
+  const ErrorSource& calibration = errorSource("distortion-calibration");
+  calibration.set(w, calibration.clinicalValue);
+  EXPECT_EQ(w.video.intrinsics.lensModel, LensModel::Fisheye);
+  EXPECT_EQ(w.video.calibrationDistortionErrorRelative, 0.03);
+  // Alone, it brings the "lens" source's lens.
+  WorldSettings alone;
+  calibration.set(alone, calibration.clinicalValue);
+  EXPECT_EQ(alone.video.intrinsics.lensModel, LensModel::RadialTangential);
+  EXPECT_EQ(alone.video.intrinsics.distortion, Eigen::Vector4d(-0.35, 0.1, 0.0, 0.0));
+  EXPECT_NO_THROW(alone.video.validate());
+  calibration.set(alone, 0.0);
+  EXPECT_TRUE(isIdeal(alone));
 }

@@ -219,6 +219,22 @@ TEST(ColmapImport, OpenCVModelKeepsItsDistortion)
   EXPECT_EQ(k.fy, 210.0);
 }
 
+TEST(ColmapImport, OpenCVFisheyeModelBecomesAFisheyeLensWithItsFourCoefficients)
+{
+  const std::string folder = freshFolder("colmap-opencv-fisheye");
+  writeText(folder);
+  std::ofstream(folder + "/cameras.txt")
+    << "3 OPENCV_FISHEYE 320 240 200 210 160 120 0.05 -0.01 0.002 -0.0005\n"
+    << "7 PINHOLE 320 240 205 205 161 121\n";
+  const SfmReconstruction r = readColmapModel(folder, ColmapFormat::Text);
+  const PinholeCamera& fisheye = r.frames[1].intrinsics;
+  EXPECT_EQ(fisheye.lensModel, LensModel::Fisheye);
+  EXPECT_EQ(fisheye.distortion, Eigen::Vector4d(0.05, -0.01, 0.002, -0.0005));
+  EXPECT_EQ(fisheye.fy, 210.0);
+  EXPECT_EQ(fisheye.cx, 159.5);
+  EXPECT_EQ(r.frames[0].intrinsics.lensModel, LensModel::RadialTangential);
+}
+
 TEST(ColmapImport, FollowsTheGivenFrameNames)
 {
   const std::string folder = freshFolder("colmap-frames");
@@ -246,16 +262,16 @@ TEST(ColmapImport, RejectsUnknownAndUnsupportedCameraModels)
   EXPECT_EQ(messageOf(folder),
     "'" + folder +
       "/cameras.txt': unknown camera model 'MAGIC_LENS' (supported: SIMPLE_PINHOLE, PINHOLE, "
-      "SIMPLE_RADIAL, RADIAL, OPENCV)");
-  writeText(folder, "OPENCV_FISHEYE");
-  EXPECT_NE(messageOf(folder).find("cameras.txt': unsupported camera model 'OPENCV_FISHEYE'"),
+      "SIMPLE_RADIAL, RADIAL, OPENCV, OPENCV_FISHEYE)");
+  writeText(folder, "FULL_OPENCV");
+  EXPECT_NE(messageOf(folder).find("cameras.txt': unsupported camera model 'FULL_OPENCV'"),
     std::string::npos);
   const std::string binary = freshFolder("colmap-unknown-model-bin");
   writeBinary(binary, 42);
   EXPECT_EQ(messageOf(binary),
     "'" + binary +
       "/cameras.bin': unknown camera model id 42 (supported: SIMPLE_PINHOLE, PINHOLE, "
-      "SIMPLE_RADIAL, RADIAL, OPENCV)");
+      "SIMPLE_RADIAL, RADIAL, OPENCV, OPENCV_FISHEYE)");
 }
 
 TEST(ColmapImport, RejectsDanglingIds)
