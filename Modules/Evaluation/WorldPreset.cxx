@@ -76,6 +76,20 @@ const std::vector<ErrorSource>& errorSources()
       } },
     { "occluders", "fraction of frames with fluid on the lens (10 % of the frame each)", 0.0, 0.1,
       [](WorldSettings& w, double v) { w.video.artifacts.occludedFrameFraction = v; } },
+    // The path's motion: outside the clinical preset (inClinicalPreset
+    // false), since the README's clinical figures were measured without them.
+    { "fast-motion", "advance along the passage per frame, mm", 0.5, 1.5,
+      [](WorldSettings& w, double v) { w.video.trajectory.stepMm = v; }, false },
+    { "jitter", "hand tremor, RMS offset of the optical centre per frame, mm (view: 2 deg per mm)",
+      0.0, 0.25,
+      [](WorldSettings& w, double v)
+      {
+        w.video.trajectory.jitterMm = v;
+        w.video.trajectory.jitterDeg = 2.0 * v;
+      },
+      false },
+    { "curved-path", "turn of the path's axis, deg per mm", 0.0, 1.0,
+      [](WorldSettings& w, double v) { w.video.trajectory.turnDegPerMm = v; }, false },
   };
   return sources;
 }
@@ -102,7 +116,10 @@ void applyWorldPreset(WorldSettings& settings, const std::string& name)
   }
   for (const ErrorSource& s : errorSources())
   {
-    s.set(settings, name == "ideal" ? s.offValue : s.clinicalValue);
+    if (s.inClinicalPreset)
+    {
+      s.set(settings, name == "ideal" ? s.offValue : s.clinicalValue);
+    }
   }
 }
 
