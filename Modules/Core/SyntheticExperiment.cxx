@@ -67,8 +67,18 @@ std::vector<char> seenBy(const RegistrationModel& model, const PinholeCamera& k,
   return visible;
 }
 
-std::vector<CameraPose> cameraPath(
-  const RegistrationModel& model, const SyntheticOptions& o, Sampler& rng)
+/// True when `centre` is inside `model` at least `clearanceMm` from its wall.
+bool hasClearance(const RegistrationModel& model, const Eigen::Vector3d& centre, double clearanceMm)
+{
+  return model.isInside(centre) && model.locator().closestPoint(centre).distanceMm >= clearanceMm;
+}
+
+/// A camera path in the anatomy `model`; with `alsoInside`, the cameras keep
+/// their clearance in it too (the registration's model, when the data come
+/// from another surface: V-IMLOP's anatomical constraint needs the true
+/// cameras inside the model).
+std::vector<CameraPose> cameraPath(const RegistrationModel& model, const SyntheticOptions& o,
+  Sampler& rng, const RegistrationModel* alsoInside)
 {
   const Eigen::Matrix<double, 3, 2> bounds = model.mesh().bounds();
   const double pathLength = (o.cameras - 1) * o.cameraStepMm;
@@ -109,8 +119,8 @@ std::vector<CameraPose> cameraPath(
     for (int c = 0; c < o.cameras && ok; ++c)
     {
       const Eigen::Vector3d centre = start + c * o.cameraStepMm * best;
-      ok = model.isInside(centre) &&
-        model.locator().closestPoint(centre).distanceMm >= o.minClearanceMm;
+      ok = hasClearance(model, centre, o.minClearanceMm) &&
+        (alsoInside == nullptr || hasClearance(*alsoInside, centre, o.minClearanceMm));
       // Each view turns by up to 10° from the path, as a hand-held endoscope does.
       const Eigen::Vector3d look =
         rotationFromVector(10.0 * Degree * rng.uniform(0.0, 1.0) * rng.direction()) * best;
@@ -180,7 +190,8 @@ SyntheticTrial makeSyntheticTrial(const RegistrationModel& model,
   for (int attempt = 0; attempt < 50; ++attempt)
   {
     SyntheticTrial trial;
-    trial.trueCamerasCT = cameraPath(dataSurface, o, rng);
+    trial.trueCamerasCT =
+      cameraPath(dataSurface, o, rng, &dataSurface == &model ? nullptr : &model);
 
     // Targets: faces visible to the middle camera.
     const CameraPose& middle = trial.trueCamerasCT[trial.trueCamerasCT.size() / 2];
@@ -350,7 +361,10 @@ SyntheticTrial makeSyntheticTrial(const RegistrationModel& model,
       enoughContours = enoughContours && frame.contour.size() >= 10;
       trial.data.frames.push_back(frame);
     }
-    if (!enoughContours)
+    // The frames' cameras had noise of their own: they too must start inside
+    // (drawn again otherwise, rather than a registration that refuses them;
+    // rare next to the model itself, less so next to a finer data surface).
+    if (!enoughContours || !camerasInside(model, trial.data.frames, trial.initialSfmToCT))
     {
       continue;
     }

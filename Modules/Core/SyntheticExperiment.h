@@ -93,8 +93,10 @@ SyntheticTrial makeSyntheticTrial(
  * constraint needs a start inside).
  *
  * The cameras move, the points lie and the contours are seen in
- * `dataSurface` (the anatomy as it is); the TRE targets and the start's
- * check that the cameras are inside use `model` (what the registration has).
+ * `dataSurface` (the anatomy as it is); the cameras keep their clearance in
+ * `model` too (V-IMLOP's anatomical constraint holds the true cameras inside
+ * the model); the TRE targets and the start's check that the cameras are
+ * inside use `model` (what the registration has).
  * With `dataSurface` the model (or the same surface), the trial is the one
  * of makeSyntheticTrial(model, options, seed), bit for bit.
  *
