@@ -57,7 +57,8 @@ struct EndoscopeSimulationOptions
   Eigen::Vector2d calibrationPrincipalPointErrorPx = Eigen::Vector2d::Zero();
   /// The endoscope's image circle and vignetting (default none).
   FieldStopOptions fieldStop;
-  /// The path: frames, step, clearance, sway (frames and intrinsics are set from above).
+  /// The path: frames, step, clearance, sway, tremor, turn (frames and
+  /// intrinsics are set from above).
   EndoscopeTrajectoryOptions trajectory;
   /// Video frame rate, frames per second (default 30).
   double framesPerSecond = 30.0;
