@@ -5,6 +5,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/PerturbationProtocol.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
+#include <vimlop/Evaluation/SyntheticDataSurface.h>
 #include <vimlop/Evaluation/SyntheticProtocol.h>
 #include <vimlop/Evaluation/VideoProtocol.h>
 #include <vimlop/Evaluation/WorldPreset.h>
@@ -35,7 +36,27 @@ struct SyntheticCommand
     joinNumbers({ protocol.synthetic.misalignMinMm, protocol.synthetic.misalignMaxMm });
   std::string misalignDeg =
     joinNumbers({ protocol.synthetic.misalignMinDeg, protocol.synthetic.misalignMaxDeg });
+  std::string dataSurface = "model";
 };
+
+/// P1's model and the surface its data are drawn from (the model by default).
+TriangleMesh syntheticModel(const SyntheticCommand& c, SyntheticProtocolOptions& options)
+{
+  if (options.dataSurfaceMaking.surface == SyntheticDataSurface::Model)
+  {
+    return airwayMeshFrom(c.mesh, c.ct);
+  }
+  if (c.mesh.empty() == c.ct.empty())
+  {
+    throw Error("give exactly one of --mesh and --ct");
+  }
+  const SyntheticSurfaces surfaces = c.ct.empty()
+    ? makeSyntheticSurfaces(loadAirwayMesh(c.mesh), options.dataSurfaceMaking)
+    : makeSyntheticSurfaces(
+        readCTVolume(c.ct), options.dataSurfaceMaking, terminalEvaluationProgress());
+  options.dataSurface = surfaces.data;
+  return surfaces.model;
+}
 
 void runSynthetic(SyntheticCommand c)
 {
@@ -50,7 +71,10 @@ void runSynthetic(SyntheticCommand c)
     parseRange(c.misalignMm, "--misalign-mm");
   std::tie(options.synthetic.misalignMinDeg, options.synthetic.misalignMaxDeg) =
     parseRange(c.misalignDeg, "--misalign-deg");
-  const TriangleMesh mesh = airwayMeshFrom(c.mesh, c.ct);
+  options.dataSurfaceMaking.surface = syntheticDataSurfaceFromString(c.dataSurface);
+  // Before the CT is read: a wrong setting is reported at once.
+  validateSyntheticProtocolOptions(options);
+  const TriangleMesh mesh = syntheticModel(c, options);
   const SyntheticProtocolReport report =
     runSyntheticProtocol(mesh, options, terminalEvaluationProgress());
   writeJsonFile(report.toJson(), c.out);
@@ -79,6 +103,7 @@ void runVideo(VideoCommand c)
     parseRange(c.perturbDeg, "--perturb-deg");
   options.simulation = c.world.video;
   options.validate();
+  options.simulation.validate();
   c.world.model.validate();
   if (c.mesh.empty() == c.ct.empty())
   {
@@ -159,6 +184,27 @@ CLI::App* addEvaluateCommand(CLI::App& app)
       "concentration of the noise on contour normals (the paper's 200; 0: none)")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
+  // P1 faithful to a wrong model (issue 14): no range checks here, so that
+  // the library's validation names the bad value in one message.
+  p1->add_option("--data-surface", synthetic->dataSurface,
+      "draw the points and contours from another surface than the model: model, finer (the "
+      "CT's undecimated iso-surface), threshold (the CT segmented at --data-offset-hu) or "
+      "deformed (the model through a smooth field of --data-deformation-mm)")
+    ->capture_default_str()
+    ->check(CLI::IsMember({ "model", "finer", "threshold", "deformed" }));
+  p1->add_option("--data-offset-hu", p1Options.dataSurfaceMaking.offsetHU,
+      "with --data-surface threshold: the data's air threshold minus the model's, HU")
+    ->capture_default_str();
+  p1->add_option("--data-deformation-mm", p1Options.dataSurfaceMaking.deformationMm,
+      "with --data-surface deformed: the field's largest displacement, mm")
+    ->capture_default_str();
+  p1->add_option("--assumed-noise-scale", p1Options.assumedNoiseScale,
+      "misspecified noise: the registration's noise model (point covariances, contour variance) "
+      "is this times the true one")
+    ->capture_default_str();
+  p1->add_option("--start-scale-error", p1Options.synthetic.startScaleError,
+      "wrong start scale: the registration starts from (1 + this) times the true scale")
+    ->capture_default_str();
   p1->add_option("--methods", synthetic->methods,
       std::string("comma-separated methods: ") + syntheticProtocolMethodNames())
     ->capture_default_str();

@@ -94,9 +94,6 @@ void addSimulateCommand(CLI::App& app)
   simulate->add_option("--focal", k.fx, "focal length, pixels (principal point at the centre)")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
-  simulate->add_option("--step-mm", o->settings.video.trajectory.stepMm, "advance per frame, mm")
-    ->capture_default_str()
-    ->check(CLI::PositiveNumber);
   simulate
     ->add_option("--clearance-mm", o->settings.video.trajectory.minClearanceMm,
       "least distance of the optical centre to the wall, mm")

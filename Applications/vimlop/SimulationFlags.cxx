@@ -101,6 +101,23 @@ void addSimulationOptions(CLI::App& c, EndoscopeSimulationOptions& s)
     ->delimiter(',')
     ->expected(2)
     ->default_str("0,0");
+  // The path's motion: no range checks here either, for the same one message.
+  EndoscopeTrajectoryOptions& path = s.trajectory;
+  c.add_option("--step-mm", path.stepMm,
+     "advance along the passage per frame, mm (faster motion: larger steps)")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  c.add_option("--jitter-mm", path.jitterMm,
+     "hand tremor: each optical centre moved off the smooth path by an independent random offset "
+     "of this root-mean-square length, mm (0: none; about 0.1 to 0.5)")
+    ->capture_default_str();
+  c.add_option("--jitter-deg", path.jitterDeg,
+     "hand tremor of the view: each view turned by an independent random rotation of this "
+     "root-mean-square angle, degrees (0: none; about 0.5)")
+    ->capture_default_str();
+  c.add_option("--turn-deg-per-mm", path.turnDegPerMm,
+     "curved path: the passage axis turns at this rate, degrees per mm of path (0: straight)")
+    ->capture_default_str();
   c.add_option("--tracker-latency-s", s.trackerLatencyS,
      "tracker latency, seconds: each sample reports the tip this long before its time stamp")
     ->capture_default_str();

@@ -5,6 +5,7 @@
 #include <vimlop/Core/NoiseModel.h>
 #include <vimlop/Core/RayClearance.h>
 #include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/VisibleModelContours.h>
 
 #include <Eigen/Dense>
@@ -66,8 +67,18 @@ std::vector<char> seenBy(const RegistrationModel& model, const PinholeCamera& k,
   return visible;
 }
 
-std::vector<CameraPose> cameraPath(
-  const RegistrationModel& model, const SyntheticOptions& o, Sampler& rng)
+/// True when `centre` is inside `model` at least `clearanceMm` from its wall.
+bool hasClearance(const RegistrationModel& model, const Eigen::Vector3d& centre, double clearanceMm)
+{
+  return model.isInside(centre) && model.locator().closestPoint(centre).distanceMm >= clearanceMm;
+}
+
+/// A camera path in the anatomy `model`; with `alsoInside`, the cameras keep
+/// their clearance in it too (the registration's model, when the data come
+/// from another surface: V-IMLOP's anatomical constraint needs the true
+/// cameras inside the model).
+std::vector<CameraPose> cameraPath(const RegistrationModel& model, const SyntheticOptions& o,
+  Sampler& rng, const RegistrationModel* alsoInside)
 {
   const Eigen::Matrix<double, 3, 2> bounds = model.mesh().bounds();
   const double pathLength = (o.cameras - 1) * o.cameraStepMm;
@@ -108,8 +119,8 @@ std::vector<CameraPose> cameraPath(
     for (int c = 0; c < o.cameras && ok; ++c)
     {
       const Eigen::Vector3d centre = start + c * o.cameraStepMm * best;
-      ok = model.isInside(centre) &&
-        model.locator().closestPoint(centre).distanceMm >= o.minClearanceMm;
+      ok = hasClearance(model, centre, o.minClearanceMm) &&
+        (alsoInside == nullptr || hasClearance(*alsoInside, centre, o.minClearanceMm));
       // Each view turns by up to 10° from the path, as a hand-held endoscope does.
       const Eigen::Vector3d look =
         rotationFromVector(10.0 * Degree * rng.uniform(0.0, 1.0) * rng.direction()) * best;
@@ -143,6 +154,12 @@ Eigen::Vector3d randomPointOnFace(const TriangleMesh& mesh, int face, Sampler& r
 SyntheticTrial makeSyntheticTrial(
   const RegistrationModel& model, const SyntheticOptions& o, std::uint64_t seed)
 {
+  return makeSyntheticTrial(model, model, o, seed);
+}
+
+SyntheticTrial makeSyntheticTrial(const RegistrationModel& model,
+  const RegistrationModel& dataSurface, const SyntheticOptions& o, std::uint64_t seed)
+{
   if (o.cameras < 1 || o.points < 3)
   {
     throw Error("synthetic experiment: needs at least 1 camera and 3 points");
@@ -151,21 +168,30 @@ SyntheticTrial makeSyntheticTrial(
   {
     throw Error("synthetic experiment: the contour noise and its kappa must not be negative");
   }
+  if (!(o.startScaleError > -1.0 && std::isfinite(o.startScaleError)))
+  {
+    throw Error("synthetic experiment: the start's scale error must be a finite number above -1, "
+                "not " +
+      formatText("%g", o.startScaleError));
+  }
   o.intrinsics.validate();
   Sampler rng(seed);
+  // The targets are the model's faces; the points are drawn from the data's.
   const TriangleMesh& mesh = model.mesh();
-  std::vector<double> cumulativeArea(static_cast<size_t>(mesh.numberOfFaces()));
+  const TriangleMesh& dataMesh = dataSurface.mesh();
+  std::vector<double> cumulativeArea(static_cast<size_t>(dataMesh.numberOfFaces()));
   double area = 0.0;
-  for (int f = 0; f < mesh.numberOfFaces(); ++f)
+  for (int f = 0; f < dataMesh.numberOfFaces(); ++f)
   {
-    area += mesh.faceAreas()[f];
+    area += dataMesh.faceAreas()[f];
     cumulativeArea[f] = area;
   }
 
   for (int attempt = 0; attempt < 50; ++attempt)
   {
     SyntheticTrial trial;
-    trial.trueCamerasCT = cameraPath(model, o, rng);
+    trial.trueCamerasCT =
+      cameraPath(dataSurface, o, rng, &dataSurface == &model ? nullptr : &model);
 
     // Targets: faces visible to the middle camera.
     const CameraPose& middle = trial.trueCamerasCT[trial.trueCamerasCT.size() / 2];
@@ -199,12 +225,12 @@ SyntheticTrial makeSyntheticTrial(
         const int face =
           static_cast<int>(std::lower_bound(cumulativeArea.begin(), cumulativeArea.end(), a) -
             cumulativeArea.begin());
-        c = randomPointOnFace(mesh, std::min(face, mesh.numberOfFaces() - 1), rng);
+        c = randomPointOnFace(dataMesh, std::min(face, dataMesh.numberOfFaces() - 1), rng);
       }
       std::vector<std::vector<char>> seen;
       for (const CameraPose& camera : trial.trueCamerasCT)
       {
-        seen.push_back(seenBy(model, o.intrinsics, camera, candidates));
+        seen.push_back(seenBy(dataSurface, o.intrinsics, camera, candidates));
       }
       for (size_t i = 0; i < candidates.size() && static_cast<int>(truePoints.size()) < o.points;
            ++i)
@@ -258,6 +284,7 @@ SyntheticTrial makeSyntheticTrial(
       noisyFrames[c].cameraToSfm = noisyCameras[c];
     }
     SimilarityTransform misalign;
+    SimilarityTransform start; // SfM to CT: identity, or scaled by the start's error
     bool inside = false;
     for (int draw = 0; draw < 200 && !inside; ++draw)
     {
@@ -265,14 +292,29 @@ SyntheticTrial makeSyntheticTrial(
         rng.uniform(o.misalignMinDeg, o.misalignMaxDeg) * Degree * rng.direction());
       misalign.translation = centroid - misalign.rotation * centroid +
         rng.uniform(o.misalignMinMm, o.misalignMaxMm) * rng.direction();
-      inside = camerasInside(model, noisyFrames, misalign);
+      if (o.startScaleError == 0.0)
+      {
+        inside = camerasInside(model, noisyFrames, misalign);
+        continue;
+      }
+      // Scaled about the mean camera centre in the SfM frame, so that the
+      // cameras move least; the start must still leave them inside.
+      Eigen::Vector3d camerasSfm = Eigen::Vector3d::Zero();
+      for (const VideoFrame& frame : noisyFrames)
+      {
+        camerasSfm += misalign.apply(frame.cameraToSfm.centre);
+      }
+      camerasSfm /= static_cast<double>(noisyFrames.size());
+      start.scale = 1.0 + o.startScaleError;
+      start.translation = (1.0 - start.scale) * camerasSfm;
+      inside = camerasInside(model, noisyFrames, start.compose(misalign));
     }
     if (!inside)
     {
       continue;
     }
     trial.truthSfmToCT = misalign.inverse();
-    trial.initialSfmToCT = SimilarityTransform();
+    trial.initialSfmToCT = start;
 
     for (size_t i = 0; i < truePoints.size(); ++i)
     {
@@ -304,7 +346,7 @@ SyntheticTrial makeSyntheticTrial(
       OccludingContourOptions contourOptions;
       contourOptions.sampleSpacingPx = o.contourSpacingPx;
       for (const ModelContourPoint& sample :
-        visibleModelContours(model, o.intrinsics, truth, contourOptions))
+        visibleModelContours(dataSurface, o.intrinsics, truth, contourOptions))
       {
         ContourPoint p;
         p.pixel = sample.pixel + o.contourNoisePx * Eigen::Vector2d(rng.normal(), rng.normal());
@@ -319,7 +361,10 @@ SyntheticTrial makeSyntheticTrial(
       enoughContours = enoughContours && frame.contour.size() >= 10;
       trial.data.frames.push_back(frame);
     }
-    if (!enoughContours)
+    // The frames' cameras had noise of their own: they too must start inside
+    // (drawn again otherwise, rather than a registration that refuses them;
+    // rare next to the model itself, less so next to a finer data surface).
+    if (!enoughContours || !camerasInside(model, trial.data.frames, trial.initialSfmToCT))
     {
       continue;
     }

@@ -47,6 +47,11 @@ struct SyntheticOptions
   /// 1/sqrt(κ), which it matches within 1 % for κ above 50 (default 0: none;
   /// the paper's P1: 200, an angle std of 4.1 degrees).
   double contourNormalKappa = 0.0;
+  /// A wrong start scale: the registration starts from a scale (1 + this)
+  /// times the true one, about the mean camera centre so that the cameras
+  /// stay in the airway (default 0: the true scale, as the paper). Finite
+  /// and above -1; VIMLOP recovers it within its scale bounds (P1: 0.8 to 1.25).
+  double startScaleError = 0.0;
 
   /// @brief The paper's synthetic data (Sec. 3): these defaults with its
   /// contour noise, Σ2d = 9 px² (3 px per axis) and κ = 200.
@@ -67,7 +72,16 @@ struct SyntheticTrial
 };
 
 /**
- * @brief Builds one P1 trial on `model`, reproducibly from `seed`.
+ * @brief Builds one P1 trial on `model`, reproducibly from `seed`: the data
+ * drawn from the model itself (makeSyntheticTrial(model, model, ...)).
+ */
+SyntheticTrial makeSyntheticTrial(
+  const RegistrationModel& model, const SyntheticOptions& options, std::uint64_t seed);
+
+/**
+ * @brief Builds one P1 trial whose data are drawn from `dataSurface`, a
+ * surface in the model's frame other than the model (a finer or otherwise
+ * segmented one, a deformed one: a model error), reproducibly from `seed`.
  *
  * Cameras lie on a straight path inside the cavity (every one at least
  * `minClearanceMm` from the wall), looking roughly along it; points are drawn
@@ -78,10 +92,19 @@ struct SyntheticTrial
  * until every camera still starts inside the airway (V-IMLOP's anatomical
  * constraint needs a start inside).
  *
- * @throws vimlop::Error if no camera path with enough view can be found.
+ * The cameras move, the points lie and the contours are seen in
+ * `dataSurface` (the anatomy as it is); the cameras keep their clearance in
+ * `model` too (V-IMLOP's anatomical constraint holds the true cameras inside
+ * the model); the TRE targets and the start's check that the cameras are
+ * inside use `model` (what the registration has).
+ * With `dataSurface` the model (or the same surface), the trial is the one
+ * of makeSyntheticTrial(model, options, seed), bit for bit.
+ *
+ * @throws vimlop::Error for invalid options or if no camera path with enough
+ * view can be found.
  */
-SyntheticTrial makeSyntheticTrial(
-  const RegistrationModel& model, const SyntheticOptions& options, std::uint64_t seed);
+SyntheticTrial makeSyntheticTrial(const RegistrationModel& model,
+  const RegistrationModel& dataSurface, const SyntheticOptions& options, std::uint64_t seed);
 
 } // namespace vimlop
 

@@ -51,7 +51,8 @@ bool EndoscopeSimulationOptions::isIdealWorld() const
   return !hasLensDistortion(this->intrinsics) && this->fieldStop.isOff() &&
     this->calibrationFocalErrorRelative == 0.0 && this->calibrationDistortionErrorRelative == 0.0 &&
     this->calibrationPrincipalPointErrorPx.isZero(0.0) && this->trackerLatencyS == 0.0 &&
-    this->trackerClockOffsetS == 0.0 && this->artifacts.isOff();
+    this->trackerClockOffsetS == 0.0 && this->artifacts.isOff() &&
+    this->trajectory.jitterMm == 0.0 && this->trajectory.jitterDeg == 0.0;
 }
 
 void EndoscopeSimulationOptions::validate() const
@@ -63,6 +64,7 @@ void EndoscopeSimulationOptions::validate() const
   this->intrinsics.validate();
   this->fieldStop.validate();
   this->artifacts.validate();
+  this->trajectory.validate();
   const Eigen::Index coefficients = this->intrinsics.distortion.size();
   // PinholeCamera::validate() above refuses a fisheye without its 4.
   if (this->intrinsics.lensModel == LensModel::RadialTangential && coefficients != 0 &&

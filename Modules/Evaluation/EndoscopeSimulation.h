@@ -31,8 +31,10 @@ namespace vimlop
  * user (`calibrationFocalErrorRelative`, `calibrationPrincipalPointErrorPx`,
  * `calibrationDistortionErrorRelative`),
  * tracker latency and clock offset (`trackerLatencyS`,
- * `trackerClockOffsetS`), and the video artifacts (`artifacts`: motion blur,
- * specular highlights, exposure, shot noise, compression, occluders).
+ * `trackerClockOffsetS`), the video artifacts (`artifacts`: motion blur,
+ * specular highlights, exposure, shot noise, compression, occluders) and the
+ * hand's tremor (`trajectory.jitterMm`, `trajectory.jitterDeg`). The path's
+ * own settings (its step, roll, turn) are not errors and leave the world ideal.
  * Realistic values and their sources:
  * Documentation/Simulation.md.
  */
@@ -65,7 +67,8 @@ struct EndoscopeSimulationOptions
   Eigen::Vector2d calibrationPrincipalPointErrorPx = Eigen::Vector2d::Zero();
   /// The endoscope's image circle and vignetting (default none).
   FieldStopOptions fieldStop;
-  /// The path: frames, step, clearance, sway (frames and intrinsics are set from above).
+  /// The path: frames, step, clearance, sway, tremor, turn (frames and
+  /// intrinsics are set from above).
   EndoscopeTrajectoryOptions trajectory;
   /// Video frame rate, frames per second (default 30).
   double framesPerSecond = 30.0;
@@ -91,14 +94,16 @@ struct EndoscopeSimulationOptions
   /// The artifacts of real endoscope video (default none).
   VideoArtifactOptions artifacts;
 
-  /// @brief True when every error source of the realistic world is off (the defaults).
+  /// @brief True when every error source of the realistic world is off (the
+  /// defaults); the path's step, roll and turn do not count.
   bool isIdealWorld() const;
 
   /**
    * @brief Checks the settings.
    * @throws vimlop::Error naming the first problem: fewer than 2 frames,
    * invalid intrinsics or field stop, non-finite or out-of-range distortion,
-   * calibration error, tracker rate, latency or clock offset, video artifacts.
+   * calibration error, tracker rate, latency or clock offset, video
+   * artifacts, the path's options (EndoscopeTrajectoryOptions::validate()).
    */
   void validate() const;
 };

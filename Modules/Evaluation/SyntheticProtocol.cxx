@@ -10,10 +10,14 @@
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <memory>
+#include <optional>
 
 namespace vimlop
 {
@@ -28,6 +32,7 @@ struct MethodRecord
   std::vector<double> cameraPosition;
   std::vector<double> cameraAngle;
   std::vector<double> runtime;
+  std::vector<double> residual;
   int successes = 0;
 };
 
@@ -41,8 +46,11 @@ RegistrationOptions registrationOptions(
 {
   RegistrationOptions o;
   o.method = registrationMethodFromString(method);
-  o.contourMatch.positionCovariancePx2 = options.contourVariancePx2 * Eigen::Matrix2d::Identity();
-  o.contourMatch.kappa = options.kappa;
+  // The assumed noise model: scaled variances, and the orientation's
+  // variance 1/κ scaled alike.
+  o.contourMatch.positionCovariancePx2 =
+    options.assumedNoiseScale * options.contourVariancePx2 * Eigen::Matrix2d::Identity();
+  o.contourMatch.kappa = options.kappa / options.assumedNoiseScale;
   o.stallRelativeDecrease = options.stallRelativeDecrease;
   o.stallIterations = options.stallIterations;
   o.maxIterations = options.maxIterations;
@@ -73,6 +81,11 @@ nlohmann::json SyntheticProtocolReport::toJson() const
   nlohmann::json report = { { "protocol", "P1" }, { "trials", this->trials },
     { "seed", this->seed }, { "mesh_triangles", this->meshTriangles },
     { "success_threshold_mm", this->successThresholdMm } };
+  nlohmann::json modelError = this->dataSurface.toJson();
+  modelError["data_surface_triangles"] = this->dataSurfaceTriangles;
+  modelError["assumed_noise_scale"] = this->assumedNoiseScale;
+  modelError["start_scale_error"] = this->startScaleError;
+  report["model_error"] = modelError;
   nlohmann::json methodsJson = nlohmann::json::object();
   for (const SyntheticProtocolMethodReport& m : this->methods)
   {
@@ -81,6 +94,7 @@ nlohmann::json SyntheticProtocolReport::toJson() const
       { "success_rate", m.successRate },
       { "camera_position_mm", { { "median", m.cameraPositionMedianMm } } },
       { "camera_angle_deg", { { "median", m.cameraAngleMedianDeg } } },
+      { "residual_mm", { { "median", m.residualMedianMm } } },
       { "runtime_s", { { "median", m.runtimeMedianS }, { "p95", m.runtimeP95S } } }
     };
   }
@@ -115,15 +129,39 @@ void checkSyntheticProtocolMethods(const std::vector<std::string>& methods)
   }
 }
 
-SyntheticProtocolReport runSyntheticProtocol(const TriangleMesh& mesh,
-  const SyntheticProtocolOptions& options, const EvaluationProgress& progress)
+void validateSyntheticProtocolOptions(const SyntheticProtocolOptions& options)
 {
   if (options.trials < 1)
   {
     throw Error("the number of trials must be at least 1");
   }
+  if (!(options.assumedNoiseScale > 0.0 && std::isfinite(options.assumedNoiseScale)))
+  {
+    throw Error(formatText("P1: the assumed noise scale must be a finite number > 0, not %g",
+      options.assumedNoiseScale));
+  }
+  const double startScale = 1.0 + options.synthetic.startScaleError;
+  if (!(startScale >= options.minScale && startScale <= options.maxScale))
+  {
+    throw Error(formatText("P1: the start's scale 1 + %g lies outside the scale bounds [%g, %g]",
+      options.synthetic.startScaleError, options.minScale, options.maxScale));
+  }
+  options.dataSurfaceMaking.validate();
+}
+
+SyntheticProtocolReport runSyntheticProtocol(const TriangleMesh& mesh,
+  const SyntheticProtocolOptions& options, const EvaluationProgress& progress)
+{
+  validateSyntheticProtocolOptions(options);
   checkSyntheticProtocolMethods(options.methods);
   const RegistrationModel model = makeEmbreeRegistrationModel(mesh);
+  // The anatomy the data are drawn from: the model unless given.
+  std::optional<RegistrationModel> dataModel;
+  if (options.dataSurface.numberOfFaces() > 0)
+  {
+    dataModel.emplace(makeEmbreeRegistrationModel(options.dataSurface));
+  }
+  const RegistrationModel& dataSurface = dataModel ? *dataModel : model;
   std::unique_ptr<Open3DPeers> peers;
   if (std::any_of(options.methods.begin(), options.methods.end(), isOpen3D))
   {
@@ -142,7 +180,11 @@ SyntheticProtocolReport runSyntheticProtocol(const TriangleMesh& mesh,
   {
     const std::uint64_t trialSeed =
       options.seed * 1000003ull + static_cast<std::uint64_t>(trialIndex);
-    const SyntheticTrial trial = makeSyntheticTrial(model, options.synthetic, trialSeed);
+    SyntheticTrial trial = makeSyntheticTrial(model, dataSurface, options.synthetic, trialSeed);
+    for (Eigen::Matrix3d& covariance : trial.data.pointCovariances)
+    {
+      covariance *= options.assumedNoiseScale;
+    }
     for (size_t m = 0; m < options.methods.size(); ++m)
     {
       const std::string& method = options.methods[m];
@@ -184,6 +226,12 @@ SyntheticProtocolReport runSyntheticProtocol(const TriangleMesh& mesh,
       r.tre.push_back(tre);
       r.successes += tre < options.successThresholdMm;
       r.runtime.push_back(seconds);
+      double residualSum = 0.0;
+      for (const Eigen::Vector3d& point : trial.data.points)
+      {
+        residualSum += model.locator().closestPoint(estimate.apply(point)).distanceMm;
+      }
+      r.residual.push_back(residualSum / static_cast<double>(trial.data.points.size()));
       for (size_t c = 0; c < trial.trueCamerasCT.size(); ++c)
       {
         const CameraPose camera = estimate.apply(trial.data.frames[c].cameraToSfm);
@@ -199,6 +247,10 @@ SyntheticProtocolReport runSyntheticProtocol(const TriangleMesh& mesh,
   report.seed = options.seed;
   report.meshTriangles = mesh.numberOfFaces();
   report.successThresholdMm = options.successThresholdMm;
+  report.dataSurface = options.dataSurfaceMaking;
+  report.dataSurfaceTriangles = options.dataSurface.numberOfFaces();
+  report.assumedNoiseScale = options.assumedNoiseScale;
+  report.startScaleError = options.synthetic.startScaleError;
   for (size_t m = 0; m < options.methods.size(); ++m)
   {
     const MethodRecord& r = records[m];
@@ -212,6 +264,7 @@ SyntheticProtocolReport runSyntheticProtocol(const TriangleMesh& mesh,
     method.successRate = static_cast<double>(r.successes) / options.trials;
     method.cameraPositionMedianMm = summarize(r.cameraPosition).median;
     method.cameraAngleMedianDeg = summarize(r.cameraAngle).median;
+    method.residualMedianMm = summarize(r.residual).median;
     method.runtimeMedianS = runtime.median;
     method.runtimeP95S = runtime.p95;
     report.methods.push_back(method);

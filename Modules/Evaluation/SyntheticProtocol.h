@@ -4,6 +4,7 @@
 #include <vimlop/Core/SyntheticExperiment.h>
 #include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Evaluation/SyntheticDataSurface.h>
 
 #include <nlohmann/json.hpp>
 
@@ -47,6 +48,19 @@ struct SyntheticProtocolOptions
   int maxIterations = 100;
   /// Threads per registration, 0 for all cores (default 0; results do not depend on it).
   int threads = 0;
+  /// Model error (issue 14, item 4): the surface the points and contours
+  /// are drawn from, in the model's frame, while the registration still has
+  /// the model (makeSyntheticTrial(model, dataSurface, ...)). Default empty:
+  /// the model itself, the paper's P1. See SyntheticDataSurface.h.
+  TriangleMesh dataSurface;
+  /// How `dataSurface` was made, for the record in the JSON (default: the model).
+  SyntheticDataSurfaceOptions dataSurfaceMaking;
+  /// Misspecified noise: the noise model the registration is given is this
+  /// factor times the true one: the point covariances and the contour
+  /// position variance Σ2d times it, κ divided by it (default 1: the true
+  /// noise, as the paper). Finite and > 0. (A wrong start scale is
+  /// `synthetic.startScaleError`.)
+  double assumedNoiseScale = 1.0;
   /// When not empty: trial 0 and its registration by the first of V-IMLOP,
   /// IMLP, trimmed ICP among `methods` are written to this result folder
   /// (see TrialSaving.h; needs an X display). Default empty.
@@ -66,6 +80,10 @@ struct SyntheticProtocolMethodReport
   /// Median over trials and cameras of the camera position (mm) and angle (degrees) errors.
   double cameraPositionMedianMm = 0.0;
   double cameraAngleMedianDeg = 0.0;
+  /// Median over trials of the 3-D residual: the mean distance of the
+  /// registered points to the model's surface, mm (grows when the data are
+  /// drawn from another surface than the model).
+  double residualMedianMm = 0.0;
   /// Registration runtime per trial, s.
   double runtimeMedianS = 0.0;
   double runtimeP95S = 0.0;
@@ -78,6 +96,12 @@ struct SyntheticProtocolReport
   std::uint64_t seed = 0;
   int meshTriangles = 0;
   double successThresholdMm = 0.0;
+  /// The model error of the run: how the data surface was made (and its
+  /// triangles; 0 for the model), the assumed noise scale, the start's scale error.
+  SyntheticDataSurfaceOptions dataSurface;
+  int dataSurfaceTriangles = 0;
+  double assumedNoiseScale = 1.0;
+  double startScaleError = 0.0;
   /// In the order of the options' methods.
   std::vector<SyntheticProtocolMethodReport> methods;
 
@@ -96,6 +120,13 @@ const char* syntheticProtocolMethodNames();
  * that needs Open3D when this build lacks it.
  */
 void checkSyntheticProtocolMethods(const std::vector<std::string>& methods);
+
+/**
+ * @brief Checks the options that need no mesh: trials, assumed noise scale,
+ * start scale error (1 + it within the scale bounds), the data surface's settings.
+ * @throws vimlop::Error naming the first problem.
+ */
+void validateSyntheticProtocolOptions(const SyntheticProtocolOptions& options);
 
 /**
  * @brief Runs P1: `trials` synthetic trials on `mesh`, every method on every

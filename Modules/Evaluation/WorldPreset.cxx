@@ -128,6 +128,20 @@ const std::vector<ErrorSource>& errorSources()
         }
       },
       false },
+    // The path's motion: outside the clinical preset (inClinicalPreset
+    // false), since the README's clinical figures were measured without them.
+    { "fast-motion", "advance along the passage per frame, mm", 0.5, 1.5,
+      [](WorldSettings& w, double v) { w.video.trajectory.stepMm = v; }, false },
+    { "jitter", "hand tremor, RMS offset of the optical centre per frame, mm (view: 2 deg per mm)",
+      0.0, 0.25,
+      [](WorldSettings& w, double v)
+      {
+        w.video.trajectory.jitterMm = v;
+        w.video.trajectory.jitterDeg = 2.0 * v;
+      },
+      false },
+    { "curved-path", "turn of the path's axis, deg per mm", 0.0, 1.0,
+      [](WorldSettings& w, double v) { w.video.trajectory.turnDegPerMm = v; }, false },
   };
   return sources;
 }

@@ -40,10 +40,12 @@ struct ErrorSource
   double clinicalValue = 0.0;
   std::function<void(WorldSettings&, double)> set;
   /// Whether the clinical preset sets it (default true). False for the
-  /// sources added after the README's clinical figures were measured
-  /// ("fisheye", "distortion-calibration"): they are budget-only (P5 varies
-  /// them alone) until the clinical world is measured again with them, so
-  /// that the clinical preset stays the world those figures describe.
+  /// sources added after the README's clinical figures were measured (the
+  /// fisheye, the distortion's calibration error, fast motion, jitter,
+  /// curved paths): they are budget-only (P5 varies them alone) until the
+  /// clinical world is measured again with them, so that the clinical preset
+  /// stays the world those figures describe. The ideal world turns them off
+  /// like every other source.
   bool inClinicalPreset = true;
 };
 

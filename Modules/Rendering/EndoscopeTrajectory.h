@@ -49,6 +49,31 @@ struct EndoscopeTrajectoryOptions
   int minContourSamples = 150;
   /// Random start positions tried before giving up (default 4000).
   int maxAttempts = 4000;
+  /// Hand tremor: each optical centre is moved off the smooth path by an
+  /// independent random offset (isotropic Gaussian) whose root-mean-square
+  /// length is this, mm (default 0: none). White, not smooth, because
+  /// physiological tremor lies at 8-12 Hz, close to the 15 Hz Nyquist limit
+  /// of 30 fps video: successive frames see nearly independent phases. A
+  /// realistic value: 0.1-0.5 mm (an estimate, Documentation/Simulation.md).
+  /// Finite and at least 0.
+  double jitterMm = 0.0;
+  /// Hand tremor of the view: each view turned by an independent random
+  /// rotation (isotropic Gaussian rotation vector) whose root-mean-square
+  /// angle is this, degrees (default 0: none; about 0.5, an estimate).
+  /// Finite and at least 0.
+  double jitterDeg = 0.0;
+  /// Curved paths: the passage axis turns at this rate along the path,
+  /// degrees per mm (default 0: a straight axis, as before), about an axis
+  /// across the passage chosen, like the passage axis, to keep farthest from
+  /// the walls, so that the path follows a curved passage. Finite and at least 0.
+  double turnDegPerMm = 0.0;
+
+  /**
+   * @brief Checks the options (the intrinsics apart, which the caller may
+   * set later).
+   * @throws vimlop::Error naming the first problem.
+   */
+  void validate() const;
 };
 
 /**
@@ -58,7 +83,9 @@ struct EndoscopeTrajectoryOptions
  * The path follows a straight passage axis (the longest free direction from
  * a random start with enough clearance, so it runs along the passage) with a
  * smooth sideways sway; the scope looks along the axis with a small smooth
- * wobble and roll. Every optical centre is inside the airway at least
+ * wobble and roll. With `turnDegPerMm` the axis is an arc instead, turning at
+ * that rate; with `jitterMm` and `jitterDeg` each pose gets an independent
+ * random tremor on top. Every optical centre is inside the airway at least
  * `minClearanceMm` from the wall, and every view shows at least
  * `minContourSamples` visible occluding-contour samples.
  *

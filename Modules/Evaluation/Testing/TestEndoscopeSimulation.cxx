@@ -350,3 +350,36 @@ TEST(EndoscopeSimulation, TheVideoArtifactsChangeTheFramesButNotTheirCountOrDept
   const SimulatedVideo again = simulateEndoscopeVideo(model, o, EvaluationProgress());
   EXPECT_EQ(cv::norm(again.frames[2], real.frames[2], cv::NORM_INF), 0.0);
 }
+
+TEST(EndoscopeSimulation, TheTremorAndTheTurnOfThePathReachTheRenderedSequence)
+{
+  const RegistrationModel model(fixtures::makeTube(6.0, 80.0));
+  EndoscopeSimulationOptions o;
+  o.frames = 4;
+  const SimulatedVideo smooth = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  o.trajectory.jitterMm = 0.3;
+  o.trajectory.jitterDeg = 0.5;
+  const SimulatedVideo shaken = simulateEndoscopeVideo(model, o, EvaluationProgress());
+  ASSERT_EQ(shaken.camerasCT.size(), 4u);
+  double offsetMm = 0.0;
+  for (size_t f = 0; f < shaken.camerasCT.size(); ++f)
+  {
+    offsetMm = std::max(offsetMm, (shaken.camerasCT[f].centre - smooth.camerasCT[f].centre).norm());
+  }
+  EXPECT_GT(offsetMm, 0.05);
+  EXPECT_LT(offsetMm, 2.0);
+  EXPECT_GT(cv::norm(shaken.frames[1], smooth.frames[1], cv::NORM_L1), 0.0);
+  // A bad value is refused before anything is rendered.
+  o.trajectory.turnDegPerMm = -1.0;
+  try
+  {
+    simulateEndoscopeVideo(model, o, EvaluationProgress());
+    FAIL() << "expected an error";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_STREQ(e.what(),
+      "endoscope trajectory: the turn of the path must be a finite number >= 0 degrees per mm, "
+      "not -1");
+  }
+}

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -160,4 +161,35 @@ TEST(SimulatedVideo, RefusesANegativeLatencyAWildFocalErrorAndAnOddNumberOfCoeff
   o = EndoscopeSimulationOptions();
   o.trackerClockOffsetS = std::nan("");
   EXPECT_EQ(validationMessage(o), "the tracker's clock offset must be finite");
+}
+
+TEST(SimulatedVideo, TremorMakesTheWorldRealButTheStepAndTurnOfThePathDoNot)
+{
+  auto real = [](auto change)
+  {
+    EndoscopeSimulationOptions o;
+    change(o);
+    return !o.isIdealWorld();
+  };
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.trajectory.jitterMm = 0.2; }));
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.trajectory.jitterDeg = 0.5; }));
+  EXPECT_FALSE(real([](EndoscopeSimulationOptions& o) { o.trajectory.stepMm = 1.5; }));
+  EXPECT_FALSE(real([](EndoscopeSimulationOptions& o) { o.trajectory.turnDegPerMm = 1.0; }));
+}
+
+TEST(SimulatedVideo, RefusesANegativeOrNonFiniteJitterOrTurnOfThePath)
+{
+  EndoscopeSimulationOptions o;
+  o.trajectory.jitterMm = -0.1;
+  EXPECT_EQ(validationMessage(o),
+    "endoscope trajectory: the position jitter must be a finite number >= 0 mm, not -0.1");
+  o = EndoscopeSimulationOptions();
+  o.trajectory.jitterDeg = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(validationMessage(o),
+    "endoscope trajectory: the view jitter must be a finite number >= 0 degrees, not inf");
+  o = EndoscopeSimulationOptions();
+  o.trajectory.turnDegPerMm = std::nan("");
+  EXPECT_EQ(validationMessage(o),
+    "endoscope trajectory: the turn of the path must be a finite number >= 0 degrees per mm, not "
+    "nan");
 }

@@ -58,8 +58,9 @@ TEST(WorldPreset, EachSourceAloneLeavesTheIdealWorldAndComesBackToIt)
     WorldSettings w;
     applyWorldPreset(w, "ideal");
     source.set(w, source.clinicalValue);
-    // Roll is a path setting, not an error of the world's model or video.
-    if (source.name != "roll")
+    // Roll, the step and the turn are path settings, not errors of the
+    // world's model or video.
+    if (source.name != "roll" && source.name != "fast-motion" && source.name != "curved-path")
     {
       EXPECT_FALSE(isIdeal(w)) << source.name;
     }
@@ -83,7 +84,7 @@ TEST(WorldPreset, EachSourceAloneLeavesTheIdealWorldAndComesBackToIt)
   EXPECT_EQ(fixtures::errorMessageOf([] { errorSource("weather"); }),
     "unknown error source 'weather' (expected one of anatomy, segmentation, swelling, "
     "image-circle, lens, calibration, tracker, roll, motion-blur, specular, exposure, shot-noise, "
-    "compression, occluders, fisheye, distortion-calibration)");
+    "compression, occluders, fisheye, distortion-calibration, fast-motion, jitter, curved-path)");
   WorldSettings w;
   EXPECT_EQ(fixtures::errorMessageOf([&] { applyWorldPreset(w, "mars"); }),
     "unknown world 'mars' (expected ideal or clinical)");
@@ -142,4 +143,42 @@ TEST(WorldPreset, TheFisheyeAndTheDistortionsCalibrationErrorEachSwitchOnALens)
   EXPECT_NO_THROW(alone.video.validate());
   calibration.set(alone, 0.0);
   EXPECT_TRUE(isIdeal(alone));
+}
+
+TEST(WorldPreset, TheClinicalPresetLeavesTheMotionSourcesAsTheyWere)
+{
+  WorldSettings w;
+  w.video.trajectory.jitterMm = 0.3; // given by its own flag: kept by the clinical preset
+  applyWorldPreset(w, "clinical");
+  EXPECT_EQ(w.video.trajectory.stepMm, 0.5);
+  EXPECT_EQ(w.video.trajectory.jitterMm, 0.3);
+  EXPECT_EQ(w.video.trajectory.jitterDeg, 0.0);
+  EXPECT_EQ(w.video.trajectory.turnDegPerMm, 0.0);
+  // The ideal world turns every source off, those outside the preset too.
+  applyWorldPreset(w, "ideal");
+  EXPECT_EQ(w.video.trajectory.jitterMm, 0.0);
+  std::set<std::string> outside;
+  for (const ErrorSource& source : errorSources())
+  {
+    if (!source.inClinicalPreset)
+    {
+      outside.insert(source.name);
+    }
+  }
+  EXPECT_EQ(outside, (std::set<std::string>{
+    "fisheye", "distortion-calibration", "fast-motion", "jitter", "curved-path" }));
+}
+
+TEST(WorldPreset, TheMotionSourcesSetThePathAtTheirRealisticValues)
+{
+  WorldSettings w;
+  errorSource("fast-motion").set(w, errorSource("fast-motion").clinicalValue);
+  errorSource("jitter").set(w, errorSource("jitter").clinicalValue);
+  errorSource("curved-path").set(w, errorSource("curved-path").clinicalValue);
+  EXPECT_EQ(w.video.trajectory.stepMm, 1.5);
+  EXPECT_EQ(w.video.trajectory.jitterMm, 0.25);
+  EXPECT_EQ(w.video.trajectory.jitterDeg, 0.5);
+  EXPECT_EQ(w.video.trajectory.turnDegPerMm, 1.0);
+  EXPECT_NO_THROW(w.video.validate());
+  EXPECT_FALSE(w.video.isIdealWorld());
 }

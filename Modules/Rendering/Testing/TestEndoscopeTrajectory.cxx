@@ -1,10 +1,14 @@
+#include "ErrorMessage.h"
 #include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Rendering/EndoscopeTrajectory.h>
 
+#include <Eigen/Geometry>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 using namespace vimlop;
 
@@ -132,4 +136,147 @@ TEST(EndoscopeTrajectory, UprightScopeKeepsTheImageUpNearSuperior)
   // The roll offset, plus half the view wobble.
   EXPECT_LT(largest, o.uprightRollDeg + 0.5 * o.viewSwayDeg + 0.5);
   EXPECT_GT(largest, 1.0);
+}
+
+namespace
+{
+
+/// Root-mean-square distance between the optical centres of two paths, mm.
+double rmsCentreDistanceMm(const std::vector<CameraPose>& a, const std::vector<CameraPose>& b)
+{
+  double sum = 0.0;
+  for (size_t f = 0; f < a.size(); ++f)
+  {
+    sum += (a[f].centre - b[f].centre).squaredNorm();
+  }
+  return std::sqrt(sum / a.size());
+}
+
+/// Root-mean-square angle between the rotations of two paths, degrees.
+double rmsRotationDeg(const std::vector<CameraPose>& a, const std::vector<CameraPose>& b)
+{
+  double sum = 0.0;
+  for (size_t f = 0; f < a.size(); ++f)
+  {
+    const double angle =
+      Eigen::AngleAxisd(a[f].rotation.transpose() * b[f].rotation).angle() * 180.0 / M_PI;
+    sum += angle * angle;
+  }
+  return std::sqrt(sum / a.size());
+}
+
+} // namespace
+
+TEST(EndoscopeTrajectory, WithoutJitterOrTurnThePathIsTheSmoothOneBitForBit)
+{
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeTrajectoryOptions off = tubeOptions();
+  off.jitterMm = 0.0;
+  off.jitterDeg = 0.0;
+  off.turnDegPerMm = 0.0;
+  const std::vector<CameraPose> a = makeEndoscopeTrajectory(model, tubeOptions(), 7);
+  const std::vector<CameraPose> b = makeEndoscopeTrajectory(model, off, 7);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t f = 0; f < a.size(); ++f)
+  {
+    EXPECT_EQ(a[f].centre, b[f].centre) << f;
+    EXPECT_EQ(a[f].rotation, b[f].rotation) << f;
+  }
+}
+
+TEST(EndoscopeTrajectory, JitterMovesTheCentresAndViewsOffTheSmoothPathByAboutTheSetAmount)
+{
+  // A wide tube, so that the tremor never pushes a centre into the clearance
+  // and the jittered path starts where the smooth one does.
+  const RegistrationModel model(fixtures::makeTube(7.0, 80.0));
+  EndoscopeTrajectoryOptions o = tubeOptions();
+  o.frames = 60;
+  const std::vector<CameraPose> smooth = makeEndoscopeTrajectory(model, o, 4);
+  o.jitterMm = 0.3;
+  const std::vector<CameraPose> shaken = makeEndoscopeTrajectory(model, o, 4);
+  const double offsetMm = rmsCentreDistanceMm(smooth, shaken);
+  EXPECT_GT(offsetMm, 0.7 * o.jitterMm);
+  EXPECT_LT(offsetMm, 1.3 * o.jitterMm);
+  EXPECT_LT(rmsRotationDeg(smooth, shaken), 1e-9); // the views are the smooth path's
+  for (const CameraPose& pose : shaken)
+  {
+    EXPECT_GE(model.locator().closestPoint(pose.centre).distanceMm, o.minClearanceMm - 1e-9);
+  }
+
+  o.jitterMm = 0.0;
+  o.jitterDeg = 0.8;
+  const std::vector<CameraPose> turned = makeEndoscopeTrajectory(model, o, 4);
+  EXPECT_LT(rmsCentreDistanceMm(smooth, turned), 1e-12);
+  const double angleDeg = rmsRotationDeg(smooth, turned);
+  EXPECT_GT(angleDeg, 0.7 * o.jitterDeg);
+  EXPECT_LT(angleDeg, 1.3 * o.jitterDeg);
+}
+
+TEST(EndoscopeTrajectory, ATurnCurvesThePathByTheRateTimesItsLength)
+{
+  const RegistrationModel model(fixtures::makeTube(7.0, 80.0));
+  EndoscopeTrajectoryOptions o = tubeOptions();
+  // No sway or wobble: the view is then the axis' own direction.
+  o.swayAmplitudeMm = 0.0;
+  o.viewSwayDeg = 0.0;
+  o.turnDegPerMm = 1.0;
+  for (std::uint64_t seed : { 1u, 2u })
+  {
+    const std::vector<CameraPose> path = makeEndoscopeTrajectory(model, o, seed);
+    ASSERT_EQ(path.size(), 30u);
+    const double lengthMm = (o.frames - 1) * o.stepMm;
+    EXPECT_NEAR(angleDeg(path.front().viewDirection(), path.back().viewDirection()),
+      o.turnDegPerMm * lengthMm, 0.05)
+      << seed;
+    for (size_t f = 0; f < path.size(); ++f)
+    {
+      EXPECT_TRUE(model.isInside(path[f].centre)) << f;
+      EXPECT_GE(model.locator().closestPoint(path[f].centre).distanceMm, o.minClearanceMm - 1e-9);
+      if (f > 0)
+      {
+        // An arc: each step as long as asked and turned by rate x step.
+        const Eigen::Vector3d step = path[f].centre - path[f - 1].centre;
+        EXPECT_NEAR(step.norm(), o.stepMm, 1e-3) << f;
+        EXPECT_NEAR(angleDeg(path[f].viewDirection(), path[f - 1].viewDirection()),
+          o.turnDegPerMm * o.stepMm, 1e-6)
+          << f;
+        EXPECT_LT(angleDeg(step, path[f].viewDirection()), o.turnDegPerMm * o.stepMm) << f;
+      }
+    }
+  }
+  // With the sway and wobble on, the turn is still there, within the wobble.
+  o = tubeOptions();
+  o.turnDegPerMm = 1.0;
+  const std::vector<CameraPose> swaying = makeEndoscopeTrajectory(model, o, 3);
+  EXPECT_NEAR(angleDeg(swaying.front().viewDirection(), swaying.back().viewDirection()),
+    o.turnDegPerMm * (o.frames - 1) * o.stepMm, 2.0 * o.viewSwayDeg);
+}
+
+TEST(EndoscopeTrajectory, ATurnTooTightForThePassageFailsWithTheUsualError)
+{
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeTrajectoryOptions o = tubeOptions();
+  o.turnDegPerMm = 20.0;
+  o.maxAttempts = 100;
+  EXPECT_EQ(fixtures::errorMessageOf([&] { makeEndoscopeTrajectory(model, o, 1); }),
+    "endoscope trajectory: found no passage turning 20 deg/mm of 22.5 mm with 2.0 mm clearance "
+    "(and contours in view) in 100 attempts");
+}
+
+TEST(EndoscopeTrajectory, RefusesANegativeOrNonFiniteJitterOrTurn)
+{
+  const RegistrationModel model(fixtures::makeTube());
+  EndoscopeTrajectoryOptions o = tubeOptions();
+  o.jitterMm = -0.5;
+  EXPECT_EQ(fixtures::errorMessageOf([&] { makeEndoscopeTrajectory(model, o, 1); }),
+    "endoscope trajectory: the position jitter must be a finite number >= 0 mm, not -0.5");
+  o = tubeOptions();
+  o.jitterDeg = -1.0;
+  EXPECT_EQ(fixtures::errorMessageOf([&] { o.validate(); }),
+    "endoscope trajectory: the view jitter must be a finite number >= 0 degrees, not -1");
+  o = tubeOptions();
+  o.turnDegPerMm = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(fixtures::errorMessageOf([&] { o.validate(); }),
+    "endoscope trajectory: the turn of the path must be a finite number >= 0 degrees per mm, not "
+    "inf");
 }
