@@ -178,6 +178,12 @@ std::vector<ModelContourPoint> extractOccludingContours(const TriangleMesh& mesh
 {
   const SegmentSampler sampler(k, cameraToCT, options);
   std::vector<ModelContourPoint> samples;
+  // The registration extracts the contours of every frame at every
+  // iteration, thousands of samples each time, and growing the vector one
+  // doubling at a time cost about 4 % of the main job (perf): reserve what
+  // this thread's last extraction found, plus a margin.
+  thread_local size_t lastCount = 0;
+  samples.reserve(lastCount + lastCount / 4);
   if (options.generator == ContourGenerator::MeshEdges)
   {
     meshEdgeContours(mesh, cameraToCT.centre, sampler, samples);
@@ -186,6 +192,7 @@ std::vector<ModelContourPoint> extractOccludingContours(const TriangleMesh& mesh
   {
     interpolatedNormalContours(mesh, cameraToCT.centre, sampler, samples);
   }
+  lastCount = samples.size();
   return samples;
 }
 
