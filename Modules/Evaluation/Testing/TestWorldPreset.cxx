@@ -165,8 +165,9 @@ TEST(WorldPreset, TheClinicalPresetLeavesTheMotionSourcesAsTheyWere)
       outside.insert(source.name);
     }
   }
-  EXPECT_EQ(outside, (std::set<std::string>{
-    "fisheye", "distortion-calibration", "fast-motion", "jitter", "curved-path" }));
+  EXPECT_EQ(outside,
+    (std::set<std::string>{
+      "fisheye", "distortion-calibration", "fast-motion", "jitter", "curved-path" }));
 }
 
 TEST(WorldPreset, TheMotionSourcesSetThePathAtTheirRealisticValues)
