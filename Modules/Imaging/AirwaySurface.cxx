@@ -208,6 +208,7 @@ AirwaySurface AirwaySurface::compute(
   // topology-preserving decimation removes flat runs first and leaves fewer
   // folded or pinched triangles than on a smoothed surface.
   const vtkIdType isoTriangles = surface->GetNumberOfPolys();
+  const int isoSurfaceTriangles = static_cast<int>(isoTriangles);
   if (options.targetTriangles > 0 && isoTriangles > options.targetTriangles)
   {
     vtkNew<vtkDecimatePro> decimate;
@@ -247,6 +248,8 @@ AirwaySurface AirwaySurface::compute(
   pieces->SetExtractionModeToAllRegions();
   runFilter(pieces, progress, 0.85, 0.9, "connectivity");
   AirwaySurface result;
+  result.isoSurfaceTriangles = isoSurfaceTriangles;
+  result.targetTriangles = options.targetTriangles;
   result.droppedPieces = std::max(0, pieces->GetNumberOfExtractedRegions() - 1);
   {
     vtkIdTypeArray* sizes = pieces->GetRegionSizes();
@@ -348,6 +351,15 @@ std::vector<std::string> AirwaySurface::warnings() const
   {
     warnings.push_back(formatText("%d disconnected pieces (%.1f%% of the surface) were dropped",
       this->droppedPieces, 100.0 * this->droppedTriangleFraction));
+  }
+  if (this->targetTriangles > this->isoSurfaceTriangles)
+  {
+    // Decimation cannot add triangles, and subdividing would add none of the
+    // anatomy's detail: the voxels bound it.
+    warnings.push_back(formatText(
+      "asked for %d triangles, but the iso-surface of the airway has only %d: it is kept "
+      "undecimated (a finer surface needs a CT with smaller voxels)",
+      this->targetTriangles, this->isoSurfaceTriangles));
   }
   return warnings;
 }

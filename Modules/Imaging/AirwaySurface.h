@@ -71,6 +71,11 @@ struct AirwaySurface
   /// Pieces dropped in step 4, and their share of the iso-surface's triangles.
   int droppedPieces = 0;
   double droppedTriangleFraction = 0.0;
+  /// Triangles of the iso-surface before decimation, and the target asked
+  /// for (AirwaySurfaceOptions::targetTriangles): decimation only removes
+  /// triangles, so a target above the iso-surface's count keeps them all.
+  int isoSurfaceTriangles = 0;
+  int targetTriangles = 0;
   /// Volume enclosed by the surface (mm^3), from the divergence theorem.
   double enclosedVolumeMm3 = 0.0;
   /// Surface area (mm^2).
@@ -87,8 +92,9 @@ struct AirwaySurface
   /// @brief "surface N triangles, M vertices, encloses V cm^3, area A cm^2, E open edges, F
   /// non-manifold edges", as `vimlop segment` prints it.
   VIMLOPIMAGING_EXPORT std::string summaryText() const;
-  /// @brief What a user should know of the surface: open or non-manifold edges, and
-  /// disconnected pieces over 1 % of it that were dropped (empty when none).
+  /// @brief What a user should know of the surface: open or non-manifold edges,
+  /// disconnected pieces over 1 % of it that were dropped, and a triangle
+  /// target above what the iso-surface has (empty when none).
   VIMLOPIMAGING_EXPORT std::vector<std::string> warnings() const;
 
   /**

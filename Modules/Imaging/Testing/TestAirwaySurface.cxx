@@ -173,6 +173,32 @@ TEST(AirwaySurface, KeepsTheLargestPieceAndClosesAtTheVolumeBorder)
   EXPECT_NEAR(bounds[1], 12.5, 1e-9);
 }
 
+TEST(AirwaySurface, SaysWhenTheTriangleTargetIsAboveWhatTheIsoSurfaceHas)
+{
+  CTVolume label = fixtures::emptyVolume({ 16, 16, 16 });
+  std::fill(label.intensities.begin(), label.intensities.end(), 0.0f);
+  fixtures::paint(label, 1.0f,
+    [](int i, int j, int k) {
+      return fixtures::inBox(i, j, k, { 3, 12, 3, 12, 3, 12 });
+    });
+  AirwaySurfaceOptions options;
+  options.smoothingIterations = 0;
+  options.targetTriangles = 100;
+  const AirwaySurface decimated = AirwaySurface::compute(label, options);
+  EXPECT_GT(decimated.isoSurfaceTriangles, 100);
+  EXPECT_LE(decimated.triangles, decimated.isoSurfaceTriangles);
+  EXPECT_TRUE(decimated.warnings().empty());
+
+  options.targetTriangles = 1000000;
+  const AirwaySurface kept = AirwaySurface::compute(label, options);
+  EXPECT_EQ(kept.triangles, kept.isoSurfaceTriangles);
+  ASSERT_EQ(kept.warnings().size(), 1u);
+  EXPECT_EQ(kept.warnings()[0],
+    "asked for 1000000 triangles, but the iso-surface of the airway has only " +
+      std::to_string(kept.isoSurfaceTriangles) +
+      ": it is kept undecimated (a finer surface needs a CT with smaller voxels)");
+}
+
 // An open surface (here the ball's surface with a cap cut off) encloses
 // nothing, so the loaders' rule keeps whatever face order it has; the label
 // knows the air side, and orientIntoAir() turns the faces into the ball
