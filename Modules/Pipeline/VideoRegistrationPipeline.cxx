@@ -30,22 +30,28 @@ namespace vimlop
 void VideoRegistrationPipeline::loadModel(const TriangleMesh& airwayCT)
 {
   Internals& d = *this->Impl;
+  const StageTimings::Stopwatch watch;
   d.progress("model", 0.0);
   d.Mesh = airwayCT;
   d.Model = std::make_unique<RegistrationModel>(makeEmbreeRegistrationModel(*d.Mesh));
+  d.Timings.set("model", watch);
   d.progress("model", 1.0);
 }
 
 void VideoRegistrationPipeline::loadModel(const std::string& meshPath, const std::string& ctPath)
 {
+  // The model's time includes reading the mesh or segmenting the CT, its longest part.
+  const StageTimings::Stopwatch watch;
   this->Impl->say("model");
   this->loadModel(airwayMeshFrom(meshPath, ctPath));
+  this->Impl->Timings.set("model", watch);
 }
 
 void VideoRegistrationPipeline::loadFrames(const std::string& path, const PinholeCamera& intrinsics,
   int maxFrames, const std::string& intrinsicsSource)
 {
   Internals& d = *this->Impl;
+  const StageTimings::Stopwatch watch;
   d.progress("frames", 0.0);
   const FrameSequence sequence = FrameSequence::load(path, maxFrames);
   intrinsics.validate();
@@ -70,6 +76,7 @@ void VideoRegistrationPipeline::loadFrames(const std::string& path, const Pinhol
     d.say(text.str());
   }
   d.FramesLoaded = true;
+  d.Timings.set("frames", watch);
   d.progress("frames", 1.0);
 }
 
@@ -77,6 +84,7 @@ void VideoRegistrationPipeline::detectContours()
 {
   Internals& d = *this->Impl;
   d.need(d.FramesLoaded, "load the frames");
+  const StageTimings::Stopwatch watch;
   d.say("contours of " + std::to_string(d.Frames.size()) + " frames");
   const OccludingContourDetector detector{ d.Opts.contours };
   d.Contours.clear();
@@ -101,6 +109,7 @@ void VideoRegistrationPipeline::detectContours()
     d.say(text.str());
   }
   d.ContoursDetected = true;
+  d.Timings.set("contours", watch);
   d.progress("contours", 1.0);
 }
 
@@ -108,6 +117,7 @@ void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
 {
   Internals& d = *this->Impl;
   d.need(d.FramesLoaded, "load the frames");
+  const StageTimings::Stopwatch watch;
   d.progress("sfm", 0.0);
   PinholeCamera ideal = d.Intrinsics;
   ideal.distortion.resize(0);
@@ -119,6 +129,7 @@ void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
       " frames and " + std::to_string(sfm.points.size()) + " points; too few to register");
   }
   d.Sfm = std::move(sfm);
+  d.Timings.set("sfm", watch);
   d.progress("sfm", 1.0);
 }
 
@@ -127,6 +138,7 @@ void VideoRegistrationPipeline::estimateInitialScale(
 {
   Internals& d = *this->Impl;
   const SfmReconstruction& sfm = d.need(d.Sfm, "reconstruct");
+  const StageTimings::Stopwatch watch;
   if (!tracker && !(givenScale > 0.0))
   {
     throw Error("give a tracker recording or an initial scale: SfM alone has no metric scale");
@@ -159,6 +171,7 @@ void VideoRegistrationPipeline::estimateInitialScale(
   std::ostringstream text;
   text << "initial scale " << scale << " mm per SfM unit";
   d.say(text.str());
+  d.Timings.set("scale", watch);
 }
 
 void VideoRegistrationPipeline::makeData()
@@ -167,9 +180,11 @@ void VideoRegistrationPipeline::makeData()
   const SfmReconstruction& sfm = d.need(d.Sfm, "reconstruct");
   d.need(d.ContoursDetected, "detect the contours");
   d.need(d.Scale > 0.0, "estimate the initial scale");
+  const StageTimings::Stopwatch watch;
   d.Data =
     makeVideoRegistrationData(sfm, d.Contours, d.Scale, d.Opts.pointNoiseFloorMm, &d.FrameOf);
   d.DataMade = true;
+  d.Timings.set("data", watch);
 }
 
 void VideoRegistrationPipeline::makeCanonicalStarts(
@@ -178,6 +193,7 @@ void VideoRegistrationPipeline::makeCanonicalStarts(
   Internals& d = *this->Impl;
   d.need(d.Model != nullptr, "load the model");
   d.need(d.DataMade, "make the data");
+  const StageTimings::Stopwatch watch;
   std::vector<CameraPose> poses;
   if (!posesCT)
   {
@@ -213,12 +229,14 @@ void VideoRegistrationPipeline::makeCanonicalStarts(
   d.Mode = StartMode::Canonical;
   d.say(std::to_string(poses.size()) + " canonical poses, frame " + std::to_string(d.Anchor) +
     " placed at each");
+  d.Timings.set("starts", watch);
 }
 
 void VideoRegistrationPipeline::makeManualStart(const FramePose& pose)
 {
   Internals& d = *this->Impl;
   d.need(d.DataMade, "make the data");
+  const StageTimings::Stopwatch watch;
   auto it = std::find_if(d.Data.frames.begin(), d.Data.frames.end(),
     [&](const VideoFrame& f) { return f.frameId == pose.frameId; });
   if (it == d.Data.frames.end())
@@ -229,6 +247,7 @@ void VideoRegistrationPipeline::makeManualStart(const FramePose& pose)
   d.Starts = { startFromCameraPose(pose.cameraToWorld, it->cameraToSfm, d.Scale) };
   d.Mode = StartMode::Manual;
   d.Anchor = pose.frameId;
+  d.Timings.set("starts", watch);
 }
 
 void VideoRegistrationPipeline::setStarts(
@@ -249,17 +268,36 @@ void VideoRegistrationPipeline::run()
   d.need(d.Model != nullptr, "load the model");
   d.need(d.DataMade, "make the data");
   d.need(!d.Starts.empty(), "make the starts");
+  // The registration's phases of an earlier run() are replaced by this one's.
+  for (const char* phase : { "screening", "final", "registration" })
+  {
+    d.Timings.remove(phase);
+  }
+  StageTimings::Stopwatch watch;
   const RegistrationOptions options = d.Opts.registrationOptions(d.Scale);
   MultiStartOptions multi = d.Opts.multiStart;
   multi.registration = options;
   multi.threads = d.Opts.registration.threads;
   if (d.Starts.size() > 1)
   {
+    bool screened = false;
     try
     {
       d.Outcome = registerMultiStart(*d.Model, d.Data, d.Starts, multi,
         [&](const char* phase, int done, int total)
         {
+          // The screening ends where the final phase starts; the time before
+          // the first phase (the screening's subsample) counts to the first.
+          const std::string name = phase;
+          if (done == 0 && name == "screening")
+          {
+            screened = true;
+          }
+          else if (done == 0 && name == "final" && screened)
+          {
+            d.Timings.set("screening", watch);
+            watch = StageTimings::Stopwatch();
+          }
           if (d.Log && (done == total || done % 10 == 0))
           {
             *d.Log << "vimlop register: " << phase << " " << done << "/" << total << "\n";
@@ -274,6 +312,7 @@ void VideoRegistrationPipeline::run()
       d.progress("registration", 1.0); // a cancellation shows as PipelineCancelled
       throw;
     }
+    d.Timings.set("final", watch);
     d.warnAtScaleBound();
     return;
   }
@@ -303,6 +342,7 @@ void VideoRegistrationPipeline::run()
   outcome.failureThresholdPx = multi.failureContourErrorPx;
   outcome.failure = isFlaggedAsFailure(outcome.best, multi);
   d.Outcome = std::move(outcome);
+  d.Timings.set("registration", watch);
   d.warnAtScaleBound();
 }
 

@@ -127,6 +127,11 @@ bool VideoRegistrationPipeline::flaggedAsFailure() const
   return this->outcome().failure;
 }
 
+const StageTimings& VideoRegistrationPipeline::timings() const
+{
+  return this->Impl->Timings;
+}
+
 void VideoRegistrationPipeline::writeFrame(int index, const std::string& path) const
 {
   const Internals& d = *this->Impl;

@@ -6,6 +6,7 @@
 // each stays under the project's 600 lines.
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Pipeline/StageTimings.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 #include <vimlop/Video/FieldOfView.h>
 
@@ -49,6 +50,8 @@ struct VideoRegistrationPipeline::Internals
   std::optional<VideoRegistrationInputs> Inputs;
   std::optional<TrackerTrajectory> Tracker;
   std::vector<FramePose> StartPoses;
+  /// The time of each stage run, in order (timings()).
+  StageTimings Timings;
 
   void say(const std::string& text) const
   {
