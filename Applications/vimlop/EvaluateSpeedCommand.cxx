@@ -72,6 +72,10 @@ void runSpeed(SpeedCommand c)
   writeJsonFile(report.toJson(), c.out);
   printLines(report.tableLines());
   printLines(report.scalingLines());
+  for (const std::string& w : report.warnings())
+  {
+    std::cerr << "vimlop: warning: " << w << "\n";
+  }
   std::cout << "wrote '" << c.out << "'\n";
 }
 

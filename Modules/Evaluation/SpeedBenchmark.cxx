@@ -130,7 +130,9 @@ std::vector<int> SpeedBenchmarkOptions::parseCounts(
 SpeedBenchmarkReport runSpeedBenchmark(const SpeedBenchmarkOptions& o, std::ostream* progress)
 {
   o.validate();
-  const std::string program = o.executable.empty() ? currentExecutablePath() : o.executable;
+  // /proc/self/exe itself, not the path it names: in the child it is still
+  // this program's file even if a build replaces the file at that path meanwhile.
+  const std::string program = o.executable.empty() ? "/proc/self/exe" : o.executable;
   auto say = [&](const std::string& text)
   {
     if (progress)
@@ -146,6 +148,7 @@ SpeedBenchmarkReport runSpeedBenchmark(const SpeedBenchmarkOptions& o, std::ostr
     throw Error("'" + work.string() + "': cannot create the work folder (" + ec.message() + ")");
   }
   SpeedBenchmarkReport report;
+  report.program = o.executable.empty() ? currentExecutablePath() : o.executable;
   report.ctPath = o.ctPath;
   report.seed = o.seed;
   report.machine = MachineDescription::ofThisMachine();
@@ -164,7 +167,9 @@ SpeedBenchmarkReport runSpeedBenchmark(const SpeedBenchmarkOptions& o, std::ostr
     for (int threads : o.threadCounts)
     {
       const std::string name = formatText("register-%d-t%d", frames, threads);
-      say(formatText("%d frames, %d threads: registering", frames, threads));
+      const std::string label =
+        formatText("%d frames, %d thread%s", frames, threads, threads == 1 ? "" : "s");
+      say(label + ": registering");
       const fs::path out = work / (name + ".json");
       // Exit code 3: the result is flagged as a failure, but it was written and timed.
       const ChildProcessResult r =
@@ -207,9 +212,8 @@ SpeedBenchmarkReport runSpeedBenchmark(const SpeedBenchmarkOptions& o, std::ostr
                                "run took: the timings are wrong",
           out.string().c_str(), run.stages.totalWallS(), run.wallS));
       }
-      say(formatText("%d frames, %d threads: %.1f s (result after %.1f s), peak %.0f MiB%s", frames,
-        threads, run.wallS, run.resultS(), run.peakResidentMiB,
-        run.flaggedAsFailure ? ", flagged as a failure" : ""));
+      say(formatText("%s: %.1f s (result after %.1f s), peak %.0f MiB%s", label.c_str(), run.wallS,
+        run.resultS(), run.peakResidentMiB, run.flaggedAsFailure ? ", flagged as a failure" : ""));
       report.runs.push_back(std::move(run));
     }
   }

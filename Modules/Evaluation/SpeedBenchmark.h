@@ -31,7 +31,9 @@ struct SpeedBenchmarkOptions
   std::uint64_t seed = 1;
   /// Where the sequences and results go (required; the caller makes and removes it).
   std::string workFolder;
-  /// The `vimlop` program run as a child (default: empty, this program, /proc/self/exe).
+  /// The `vimlop` program run as a child (default: empty, this program:
+  /// /proc/self/exe, which stays this program's file even when a build
+  /// replaces the file at its path during the benchmark).
   std::string executable;
 
   /**

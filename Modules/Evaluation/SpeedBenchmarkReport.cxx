@@ -70,6 +70,11 @@ double SpeedBenchmarkRun::outputsS() const
   return this->stages.totalWallS() - this->resultS();
 }
 
+double SpeedBenchmarkRun::cpuPerWall() const
+{
+  return this->wallS > 0.0 ? (this->userCpuS + this->systemCpuS) / this->wallS : 0.0;
+}
+
 double SpeedBenchmarkRun::unaccountedS() const
 {
   return this->wallS - this->stages.totalWallS();
@@ -130,7 +135,7 @@ std::vector<std::string> SpeedBenchmarkReport::tableLines() const
     widths.push_back(std::max(8, static_cast<int>(n.size()) + 1));
     header += formatText("%*s", widths.back(), n.c_str());
   }
-  header += "  peak MiB";
+  header += " CPU/wall  peak MiB";
   std::vector<std::string> lines = { header };
   for (const SpeedBenchmarkRun& run : this->runs)
   {
@@ -141,8 +146,34 @@ std::vector<std::string> SpeedBenchmarkReport::tableLines() const
       const StageTimings::Stage* s = run.stages.find(names[i]);
       line += s ? formatText("%*.2f", widths[i], s->wallS) : formatText("%*s", widths[i], "-");
     }
-    line += formatText(" %9.0f%s", run.peakResidentMiB, run.flaggedAsFailure ? "  (flagged)" : "");
+    line += formatText(" %8.2f %9.0f%s", run.cpuPerWall(), run.peakResidentMiB,
+      run.flaggedAsFailure ? "  (flagged)" : "");
     lines.push_back(line);
+  }
+  return lines;
+}
+
+std::vector<std::string> SpeedBenchmarkReport::warnings() const
+{
+  std::vector<std::string> lines;
+  const int cpus = this->machine.logicalCpus;
+  const double busiest = std::max(this->machine.loadAverage[0], this->loadAverageEnd[0]);
+  if (cpus > 0 && busiest >= cpus)
+  {
+    lines.push_back(formatText("the machine was busy: a load average of %.2f on %d logical "
+                               "processors; the times include waiting for them, and the thread "
+                               "scaling says little",
+      busiest, cpus));
+  }
+  for (const SpeedBenchmarkRun& run : this->runs)
+  {
+    // One thread alone keeps one processor busy, unless others take it.
+    if (run.threads == 1 && run.wallS > 0.0 && run.cpuPerWall() < 0.8)
+    {
+      lines.push_back(formatText("%d frames, 1 thread: the run had the processor %.0f %% of its "
+                                 "wall time (other processes took the rest)",
+        run.frames, 100.0 * run.cpuPerWall()));
+    }
   }
   return lines;
 }
@@ -193,7 +224,7 @@ nlohmann::json SpeedBenchmarkReport::toJson() const
     runsJson.push_back({ { "frames", run.frames }, { "threads", run.threads },
       { "wall_s", run.wallS }, { "result_s", run.resultS() }, { "outputs_s", run.outputsS() },
       { "unaccounted_s", run.unaccountedS() }, { "user_cpu_s", run.userCpuS },
-      { "system_cpu_s", run.systemCpuS },
+      { "system_cpu_s", run.systemCpuS }, { "cpu_per_wall", run.cpuPerWall() },
       { "peak_resident_mib",
         run.peakResidentMiB >= 0.0 ? nlohmann::json(run.peakResidentMiB)
                                    : nlohmann::json(nullptr) },
@@ -223,8 +254,9 @@ nlohmann::json SpeedBenchmarkReport::toJson() const
   }
   return { { "benchmark", "vimlop evaluate speed" }, { "version", this->version },
     { "commit", this->commit.empty() ? nlohmann::json(nullptr) : nlohmann::json(this->commit) },
-    { "ct", this->ctPath }, { "seed", this->seed }, { "machine", machineJson },
-    { "sequences", sequences }, { "runs", runsJson }, { "scaling", scalingJson } };
+    { "program", this->program }, { "ct", this->ctPath }, { "seed", this->seed },
+    { "machine", machineJson }, { "sequences", sequences }, { "runs", runsJson },
+    { "scaling", scalingJson }, { "warnings", this->warnings() } };
 }
 
 } // namespace vimlop

@@ -43,6 +43,9 @@ struct SpeedBenchmarkRun
   double resultS() const;
   /// @brief The output stages' time, s.
   double outputsS() const;
+  /// @brief (user + system CPU) / wall: about the thread count when the run
+  /// had its processors to itself and kept them busy, less when it waited.
+  double cpuPerWall() const;
   /// @brief The wall time no stage covers (start-up, reading the small files, exit), s.
   double unaccountedS() const;
 };
@@ -70,6 +73,8 @@ public:
   std::string version;
   /// The source tree's commit (git describe), empty when unknown.
   std::string commit;
+  /// The program that ran as the children (its path).
+  std::string program;
   std::string ctPath;
   std::uint64_t seed = 1;
   /// The machine when the benchmark started, and its load average at the end.
@@ -87,11 +92,18 @@ public:
   /// @brief The run of the same sequence on the fewest threads (nullptr when none).
   const SpeedBenchmarkRun* baseOf(const SpeedBenchmarkRun& run) const;
 
-  /// @brief One row per run: frames, threads, wall, result, each stage (s), peak MiB.
+  /// @brief One row per run: frames, threads, wall, result, each stage (s),
+  /// CPU per wall, peak MiB.
   std::vector<std::string> tableLines() const;
   /// @brief Per run on more threads than its base: the speed-up and efficiency of the total,
   /// the result and each stage.
   std::vector<std::string> scalingLines() const;
+  /**
+   * @brief What makes the figures doubtful: a load average at the start or
+   * the end at least the number of processors, a 1-thread run that had its
+   * processor less than 80 % of its wall time.
+   */
+  std::vector<std::string> warnings() const;
   nlohmann::json toJson() const;
 };
 

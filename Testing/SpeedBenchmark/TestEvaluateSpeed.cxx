@@ -36,7 +36,7 @@ TEST(EvaluateSpeed, TimesEachStageOfASixFrameRunAndTheirSumStaysWithinItsWallTim
       (dir / "stdout.txt").string(), (dir / "stderr.txt").string());
   ASSERT_EQ(r.exitCode, 0) << readText(dir / "stderr.txt");
   // Progress on stderr, the table on stdout.
-  EXPECT_NE(readText(dir / "stderr.txt").find("vimlop evaluate speed: 6 frames, 1 threads: "),
+  EXPECT_NE(readText(dir / "stderr.txt").find("vimlop evaluate speed: 6 frames, 1 thread: "),
     std::string::npos);
   const std::string table = readText(dir / "stdout.txt");
   EXPECT_EQ(table.rfind("frames threads   wall s result s  frames   model", 0), 0u) << table;
@@ -49,6 +49,7 @@ TEST(EvaluateSpeed, TimesEachStageOfASixFrameRunAndTheirSumStaysWithinItsWallTim
   EXPECT_EQ(j.at("benchmark"), "vimlop evaluate speed");
   EXPECT_EQ(j.at("seed"), 1);
   EXPECT_TRUE(j.at("version").is_string());
+  EXPECT_EQ(j.at("program"), VIMLOP_PROGRAM);
   EXPECT_TRUE(j.at("commit").is_string() || j.at("commit").is_null());
   const nlohmann::json& machine = j.at("machine");
   EXPECT_TRUE(machine.at("cpu_model").is_string());
@@ -59,6 +60,7 @@ TEST(EvaluateSpeed, TimesEachStageOfASixFrameRunAndTheirSumStaysWithinItsWallTim
   EXPECT_GT(j.at("sequences")[0].at("simulate_wall_s").get<double>(), 0.0);
   // One thread count: nothing to scale against.
   EXPECT_TRUE(j.at("scaling").empty());
+  EXPECT_TRUE(j.at("warnings").is_array());
 
   ASSERT_EQ(j.at("runs").size(), 1u);
   const nlohmann::json& run = j.at("runs")[0];
@@ -95,6 +97,8 @@ TEST(EvaluateSpeed, TimesEachStageOfASixFrameRunAndTheirSumStaysWithinItsWallTim
   EXPECT_GT(run.at("peak_resident_mib").get<double>(), 50.0);
   EXPECT_GE(run.at("rusage_max_rss_mib").get<double>(), run.at("peak_resident_mib").get<double>());
   EXPECT_GT(run.at("user_cpu_s").get<double>(), 0.0);
+  EXPECT_NEAR(run.at("cpu_per_wall").get<double>(),
+    (run.at("user_cpu_s").get<double>() + run.at("system_cpu_s").get<double>()) / wallS, 1e-9);
 }
 
 } // namespace

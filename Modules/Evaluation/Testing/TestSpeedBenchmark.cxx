@@ -100,6 +100,7 @@ SpeedBenchmarkRun runOf(
   run.threads = threads;
   run.wallS = wallS;
   run.peakResidentMiB = 512.0;
+  run.userCpuS = 0.75 * threads * wallS;
   for (const auto& [name, seconds] : stages)
   {
     run.stages.set(name, seconds, threads * seconds);
@@ -150,9 +151,12 @@ TEST(SpeedBenchmarkReport, ItsTableHasARowPerRunAndAColumnPerStage)
 {
   const std::vector<std::string> lines = twoThreadReport().tableLines();
   ASSERT_EQ(lines.size(), 3u);
-  EXPECT_EQ(lines[0], "frames threads   wall s result s   model   final   video  peak MiB");
-  EXPECT_EQ(lines[1], "     6       1    10.00     8.00    2.00    6.00    1.00       512");
-  EXPECT_EQ(lines[2], "     6       2     6.00     5.00    2.00    3.00    0.50       512");
+  EXPECT_EQ(
+    lines[0], "frames threads   wall s result s   model   final   video CPU/wall  peak MiB");
+  EXPECT_EQ(
+    lines[1], "     6       1    10.00     8.00    2.00    6.00    1.00     0.75       512");
+  EXPECT_EQ(
+    lines[2], "     6       2     6.00     5.00    2.00    3.00    0.50     1.50       512");
   const std::vector<std::string> scaling = twoThreadReport().scalingLines();
   ASSERT_EQ(scaling.size(), 1u);
   EXPECT_EQ(scaling[0],
@@ -181,6 +185,27 @@ TEST(SpeedBenchmarkReport, ItsJsonHoldsTheMachineTheRunsAndTheScaling)
   EXPECT_EQ(j.at("scaling")[0].at("base_threads"), 1);
   EXPECT_EQ(j.at("scaling")[0].at("total").at("efficiency"), 10.0 / 6.0 / 2.0);
   EXPECT_EQ(j.at("scaling")[0].at("stages")[0].at("name"), "model");
+}
+
+TEST(SpeedBenchmarkReport, WarnsOfABusyMachineAndOfARunStarvedOfItsProcessor)
+{
+  SpeedBenchmarkReport report = twoThreadReport();
+  report.machine.logicalCpus = 2;
+  report.machine.loadAverage = { 1.0, 1.0, 1.0 };
+  report.loadAverageEnd = { 3.5, 2.0, 1.0 };
+  const std::vector<std::string> warnings = report.warnings();
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[0],
+    "the machine was busy: a load average of 3.50 on 2 logical processors; the times include "
+    "waiting for them, and the thread scaling says little");
+  EXPECT_EQ(warnings[1],
+    "6 frames, 1 thread: the run had the processor 75 % of its wall time (other processes took "
+    "the rest)");
+  // A quiet machine and a run with its processor: nothing to say.
+  report.loadAverageEnd = { 0.5, 0.5, 0.5 };
+  report.runs[0].userCpuS = report.runs[0].wallS;
+  EXPECT_TRUE(report.warnings().empty());
+  EXPECT_TRUE(report.toJson().at("warnings").empty());
 }
 
 TEST(MachineDescription, ReadsTheCpuModelAndTheLoadAverageFromProcTexts)
