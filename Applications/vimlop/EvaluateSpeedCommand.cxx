@@ -66,9 +66,11 @@ void runSpeed(SpeedCommand c)
     temporary.path = fs::temp_directory_path() / ("vimlop-speed-" + std::to_string(::getpid()));
     o.workFolder = temporary.path.string();
   }
+  // The commit before the runs: the tree may change while they go on.
+  const std::string commit = sourceCommit(VIMLOP_SOURCE_DIR);
   SpeedBenchmarkReport report = runSpeedBenchmark(o, &std::cerr);
   report.version = VIMLOP_VERSION;
-  report.commit = sourceCommit(VIMLOP_SOURCE_DIR);
+  report.commit = commit;
   writeJsonFile(report.toJson(), c.out);
   printLines(report.tableLines());
   printLines(report.scalingLines());
@@ -95,6 +97,9 @@ void addEvaluateSpeedCommand(CLI::App& evaluate)
   speed->add_option("--threads", c->threads, "thread counts of each registration")
     ->capture_default_str();
   speed->add_option("--seed", c->benchmark.seed, "the simulation's seed")->capture_default_str();
+  speed->add_option("--step-mm", c->benchmark.stepMm,
+    "the simulated endoscope's advance per frame, mm (default: simulate's, 0.5; long sequences "
+    "need less to fit in the airway, e.g. 0.2 for 100 frames)");
   speed->add_option("--keep", c->keep,
     "keep the sequences, results and the children's logs in this folder (default: a "
     "temporary folder, removed)");

@@ -5,6 +5,7 @@
 #include <vimlop/Evaluation/ChildProcess.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -94,6 +95,12 @@ void SpeedBenchmarkOptions::validate() const
   }
   checkCounts(this->frameCounts, "--frames", "frame count", 2, 10000);
   checkCounts(this->threadCounts, "--threads", "thread count", 1, 1024);
+  if (!(this->stepMm >= 0.0) || !std::isfinite(this->stepMm))
+  {
+    throw Error(formatText("speed benchmark: --step-mm: must be zero (simulate's default) or "
+                           "positive, got %g",
+      this->stepMm));
+  }
 }
 
 std::vector<int> SpeedBenchmarkOptions::parseCounts(
@@ -151,19 +158,29 @@ SpeedBenchmarkReport runSpeedBenchmark(const SpeedBenchmarkOptions& o, std::ostr
   report.program = o.executable.empty() ? currentExecutablePath() : o.executable;
   report.ctPath = o.ctPath;
   report.seed = o.seed;
+  report.stepMm = o.stepMm;
   report.machine = MachineDescription::ofThisMachine();
+  auto sequenceOf = [&](int frames) { return work / formatText("sequence-%d", frames); };
   for (int frames : o.frameCounts)
   {
-    const fs::path sequence = work / formatText("sequence-%d", frames);
+    const fs::path sequence = sequenceOf(frames);
     fs::remove_all(sequence, ec);
     say(formatText(
       "simulating %d frames (seed %llu)", frames, static_cast<unsigned long long>(o.seed)));
-    const ChildProcessResult simulated =
-      runStep({ program, "simulate", "--ct", o.ctPath, "--frames", std::to_string(frames), "--seed",
-                std::to_string(o.seed), "--out", sequence.string() },
-        work / formatText("simulate-%d.out", frames), work / formatText("simulate-%d.err", frames),
-        formatText("vimlop simulate (%d frames)", frames), { 0 });
+    std::vector<std::string> simulate = { program, "simulate", "--ct", o.ctPath, "--frames",
+      std::to_string(frames), "--seed", std::to_string(o.seed), "--out", sequence.string() };
+    if (o.stepMm > 0.0)
+    {
+      simulate.insert(simulate.end(), { "--step-mm", formatText("%.17g", o.stepMm) });
+    }
+    const ChildProcessResult simulated = runStep(simulate,
+      work / formatText("simulate-%d.out", frames), work / formatText("simulate-%d.err", frames),
+      formatText("vimlop simulate (%d frames)", frames), { 0 });
     report.simulateWallS.emplace_back(frames, simulated.wallS);
+  }
+  for (int frames : o.frameCounts)
+  {
+    const fs::path sequence = sequenceOf(frames);
     for (int threads : o.threadCounts)
     {
       const std::string name = formatText("register-%d-t%d", frames, threads);

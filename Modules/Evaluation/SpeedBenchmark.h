@@ -29,6 +29,12 @@ struct SpeedBenchmarkOptions
   std::vector<int> threadCounts{ 1, 2 };
   /// The simulation's seed (default 1, the CLI tests' sequence).
   std::uint64_t seed = 1;
+  /// The simulated endoscope's advance per frame, mm (default 0: `vimlop
+  /// simulate`'s own, 0.5 mm). The path is about (frames + 15) x this long
+  /// and must fit in a straight passage: in the bundled CT 30 frames fit at
+  /// 0.5 mm and 60 do not (37.5 mm), so longer sequences need a shorter step
+  /// (0.2 mm: 100 frames in 23 mm). Zero or positive, finite.
+  double stepMm = 0.0;
   /// Where the sequences and results go (required; the caller makes and removes it).
   std::string workFolder;
   /// The `vimlop` program run as a child (default: empty, this program:
@@ -39,7 +45,7 @@ struct SpeedBenchmarkOptions
   /**
    * @brief Checks the settings.
    * @throws vimlop::Error naming the first problem: no CT or work folder,
-   * no or a repeated or out-of-range frame or thread count.
+   * no or a repeated or out-of-range frame or thread count, a negative step.
    */
   void validate() const;
   /**
@@ -50,10 +56,11 @@ struct SpeedBenchmarkOptions
 };
 
 /**
- * @brief Runs the benchmark: for each frame count, `vimlop simulate --frames
- * N --seed S` (the ideal world) into the work folder, then for each thread
- * count `vimlop register` on the simulated user files as a user would (the
- * CT, frames, intrinsics and tracker; canonical starts; default outputs;
+ * @brief Runs the benchmark: first, for each frame count, `vimlop simulate
+ * --frames N --seed S [--step-mm D]` (the ideal world) into the work folder
+ * (so that a sequence the airway cannot hold fails before the long work),
+ * then for each sequence and thread count `vimlop register` on the simulated user files as a user
+ * would (the CT, frames, intrinsics and tracker; canonical starts; default outputs;
  * `--threads T --json`), each a child process timed by wall clock and wait4()
  * (peak memory, CPU), with the stages it reports. Progress lines go to
  * `progress` (none when null).

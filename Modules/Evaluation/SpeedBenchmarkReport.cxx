@@ -255,6 +255,7 @@ nlohmann::json SpeedBenchmarkReport::toJson() const
   return { { "benchmark", "vimlop evaluate speed" }, { "version", this->version },
     { "commit", this->commit.empty() ? nlohmann::json(nullptr) : nlohmann::json(this->commit) },
     { "program", this->program }, { "ct", this->ctPath }, { "seed", this->seed },
+    { "step_mm", this->stepMm > 0.0 ? nlohmann::json(this->stepMm) : nlohmann::json(nullptr) },
     { "machine", machineJson }, { "sequences", sequences }, { "runs", runsJson },
     { "scaling", scalingJson }, { "warnings", this->warnings() } };
 }

@@ -77,6 +77,8 @@ public:
   std::string program;
   std::string ctPath;
   std::uint64_t seed = 1;
+  /// The simulation's step per frame, mm (0: simulate's default).
+  double stepMm = 0.0;
   /// The machine when the benchmark started, and its load average at the end.
   MachineDescription machine;
   std::array<double, 3> loadAverageEnd{ -1.0, -1.0, -1.0 };

@@ -70,6 +70,16 @@ TEST(SpeedBenchmarkOptions, RefusesNoZeroOrNegativeThreadCounts)
   EXPECT_EQ(validationMessage(o), "speed benchmark: --threads: give at least one thread count");
 }
 
+TEST(SpeedBenchmarkOptions, RefusesANegativeStep)
+{
+  SpeedBenchmarkOptions o = validOptions();
+  o.stepMm = 0.2;
+  EXPECT_EQ(validationMessage(o), "no error");
+  o.stepMm = -0.5;
+  EXPECT_EQ(validationMessage(o),
+    "speed benchmark: --step-mm: must be zero (simulate's default) or positive, got -0.5");
+}
+
 TEST(SpeedBenchmarkOptions, RefusesACountListedTwice)
 {
   SpeedBenchmarkOptions o = validOptions();
