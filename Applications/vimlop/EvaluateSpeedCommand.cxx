@@ -27,7 +27,7 @@ struct SpeedCommand
   std::string out, keep;
 };
 
-/// Removes the temporary work folder on every way out (not a --keep folder).
+/// Removes the temporary work folder (not a --keep folder) unless a child failed.
 struct TemporaryFolder
 {
   std::filesystem::path path;
@@ -68,7 +68,17 @@ void runSpeed(SpeedCommand c)
   }
   // The commit before the runs: the tree may change while they go on.
   const std::string commit = sourceCommit(VIMLOP_SOURCE_DIR);
-  SpeedBenchmarkReport report = runSpeedBenchmark(o, &std::cerr);
+  SpeedBenchmarkReport report;
+  try
+  {
+    report = runSpeedBenchmark(o, &std::cerr);
+  }
+  catch (const Error&)
+  {
+    // The message points at a child's log in the work folder: keep it.
+    temporary.path.clear();
+    throw;
+  }
   report.version = VIMLOP_VERSION;
   report.commit = commit;
   writeJsonFile(report.toJson(), c.out);

@@ -173,9 +173,19 @@ SpeedBenchmarkReport runSpeedBenchmark(const SpeedBenchmarkOptions& o, std::ostr
     {
       simulate.insert(simulate.end(), { "--step-mm", formatText("%.17g", o.stepMm) });
     }
-    const ChildProcessResult simulated = runStep(simulate,
-      work / formatText("simulate-%d.out", frames), work / formatText("simulate-%d.err", frames),
-      formatText("vimlop simulate (%d frames)", frames), { 0 });
+    ChildProcessResult simulated;
+    try
+    {
+      simulated = runStep(simulate, work / formatText("simulate-%d.out", frames),
+        work / formatText("simulate-%d.err", frames),
+        formatText("vimlop simulate (%d frames)", frames), { 0 });
+    }
+    catch (const Error& e)
+    {
+      // The usual cause: the path of a long sequence is longer than any straight passage.
+      throw Error(std::string(e.what()) +
+        (o.stepMm > 0.0 ? "" : "; a long sequence may need a shorter --step-mm (e.g. 0.2)"));
+    }
     report.simulateWallS.emplace_back(frames, simulated.wallS);
   }
   for (int frames : o.frameCounts)
