@@ -28,6 +28,11 @@ CLI::App* addEvaluateCommand(CLI::App& app);
 void addEvaluateWarpCommand(CLI::App& evaluate);
 /// @brief Adds `budget` (protocol P5, the error budget) to the `vimlop evaluate` group.
 void addEvaluateBudgetCommand(CLI::App& evaluate);
+/**
+ * @brief Adds `speed` (the main job's speed benchmark, issue 22) to the
+ * `vimlop evaluate` group.
+ */
+void addEvaluateSpeedCommand(CLI::App& evaluate);
 /// @brief Adds `vimlop info <file>`: what a CT, mesh or intrinsics file holds.
 void addInfoCommand(CLI::App& app);
 /**

@@ -1,6 +1,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/ProcessMemory.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Pipeline/RegistrationOutputs.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
@@ -44,7 +45,7 @@ struct RegisterCommand
   VideoRegistrationInputs inputs;
   VideoRegistrationOptions pipeline;
   std::string video, sfm = "builtin", init = "canonical", method = "vimlop", truth, out;
-  bool force = false, json = false, printOptions = false, serve = false;
+  bool force = false, json = false, printOptions = false, serve = false, timings = false;
   RegistrationOutputOptions outputs;
   PoseServingOptions serving;
 };
@@ -101,17 +102,27 @@ void runRegister(RegisterCommand c)
     throw ExitRequest{ 130 };
   }
 
+  // The pipeline's stages, then the record's and the outputs' (the order they run).
+  StageTimings timings = pipeline.timings();
+  const StageTimings::Stopwatch recordWatch;
   const RegistrationRecord record =
     makeRegistrationRecord(pipeline, "vimlop register " + inputs.framesPath, truth, c.truth);
+  timings.set("record", recordWatch);
   if (!c.outputs.video && !c.outputs.report)
   {
     log << "vimlop register: result folder\n";
   }
-  writeRegistrationOutputs(pipeline, record, c.out, inputs.framesPerSecond, c.outputs, &log);
+  writeRegistrationOutputs(
+    pipeline, record, c.out, inputs.framesPerSecond, c.outputs, &log, &timings);
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const nlohmann::json summary = registrationSummaryJson(
-    pipeline, record, (std::filesystem::path(c.out) / "result.json").string(), seconds);
+  nlohmann::json summary = registrationSummaryJson(
+    pipeline, record, (std::filesystem::path(c.out) / "result.json").string(), seconds, &timings);
+  // This process's own peak (since its exec), for `vimlop evaluate speed`.
+  if (const double peakMiB = peakResidentMiBOfThisProcess(); peakMiB >= 0.0)
+  {
+    summary["peak_resident_mib"] = peakMiB;
+  }
   if (c.json)
   {
     std::cout << summary.dump(2) << std::endl;
@@ -119,6 +130,10 @@ void runRegister(RegisterCommand c)
   else
   {
     printLines(registrationSummaryLines(summary));
+    if (c.timings)
+    {
+      std::cout << "timings: " << timings.summaryLine() << "\n";
+    }
     std::cout << "wrote '" << c.out << "' (result.json, VTK files, registered video, report)\n";
   }
   if (pipeline.outcome().failure)
@@ -180,7 +195,10 @@ void addRegisterCommand(CLI::App& app)
     ->check(CLI::Range(2, 100000));
   r->add_option("--out", c->out, "result folder")->required();
   r->add_flag("--force", c->force, "replace the result folder's files if it exists");
-  r->add_flag("--json", c->json, "print only a JSON summary on stdout");
+  r->add_flag("--json", c->json,
+    "print only a JSON summary on stdout (with each stage's wall and CPU time as \"timings\")");
+  r->add_flag("--timings", c->timings,
+    "also print one line of each stage's wall time (frames, model, contours, sfm, ..., report)");
   r->add_flag("--print-options", c->printOptions,
     "print the registration settings (defaults and flags) as JSON and exit");
   r->add_flag(

@@ -28,6 +28,7 @@ int main(int argc, char** argv)
   CLI::App* evaluate = vimlop::addEvaluateCommand(app);
   vimlop::addEvaluateWarpCommand(*evaluate);
   vimlop::addEvaluateBudgetCommand(*evaluate);
+  vimlop::addEvaluateSpeedCommand(*evaluate);
   vimlop::addSimulateCommand(app);
   vimlop::addContoursCommand(app);
   vimlop::addSfmCommand(app);

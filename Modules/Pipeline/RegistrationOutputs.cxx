@@ -87,8 +87,11 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
 
 void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
   const RegistrationRecord& record, const std::string& folder, double fps,
-  const RegistrationOutputOptions& options, std::ostream* log)
+  const RegistrationOutputOptions& options, std::ostream* log, StageTimings* timings)
 {
+  StageTimings local;
+  StageTimings& t = timings ? *timings : local;
+  StageTimings::Stopwatch watch;
   std::error_code ec;
   fs::remove(fs::path(folder) / "result.json", ec);
   fs::create_directories(fs::path(folder) / "frames", ec);
@@ -101,29 +104,39 @@ void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
   {
     pipeline.writeFrame(frameOf[j], (fs::path(folder) / record.frameImages[j]).string());
   }
+  t.set("pictures", watch);
   if (options.video)
   {
     if (log)
     {
       *log << "vimlop register: registered video\n";
     }
+    watch = StageTimings::Stopwatch();
     writeRegisteredVideo(record, folder, fps);
+    t.set("video", watch);
   }
+  watch = StageTimings::Stopwatch();
   writeCameraPath(record.result, (fs::path(folder) / "camera-path.vtp").string());
+  t.set("camera_path", watch);
+  watch = StageTimings::Stopwatch();
   writeRegistrationRecord(record, folder);
+  t.set("result_json", watch);
   if (options.report)
   {
     if (log)
     {
       *log << "vimlop register: report\n";
     }
+    watch = StageTimings::Stopwatch();
     RegistrationReport::write(
       &record, folder, {}, (fs::path(folder) / "report").string(), RegistrationReportOptions());
+    t.set("report", watch);
   }
 }
 
 nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline,
-  const RegistrationRecord& record, const std::string& resultPath, double seconds)
+  const RegistrationRecord& record, const std::string& resultPath, double seconds,
+  const StageTimings* timings)
 {
   const MultiStartResult& outcome = pipeline.outcome();
   const RegistrationResult& result = outcome.best;
@@ -134,6 +147,10 @@ nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline
     { "residual_error_mm", result.residualErrorMm }, { "contour_error_px", result.contourErrorPx },
     { "failure", outcome.failure }, { "failure_threshold_px", outcome.failureThresholdPx },
     { "runtime_s", seconds } };
+  if (timings)
+  {
+    summary["timings"] = timings->toJson();
+  }
   if (record.truth)
   {
     std::vector<double> position;

@@ -2,6 +2,7 @@
 #define vimlop_RegistrationOutputs_h
 
 #include <vimlop/Core/FramePose.h>
+#include <vimlop/Pipeline/StageTimings.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 #include <vimlop/Results/RegistrationRecord.h>
 
@@ -45,19 +46,24 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
  * video (needs a display), camera-path.vtp, result.json (last, so that a
  * folder holding one is complete; see RegistrationRecordIO.h) and the report.
  * An existing result.json is removed first. Progress lines go to `log`.
+ * When `timings` is given, the time of each part written is set in it, in
+ * order: "pictures" (the frames'), "video", "camera_path", "result_json",
+ * "report" (those skipped by `options` absent).
  * @throws vimlop::Error when a file cannot be written.
  */
 void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
   const RegistrationRecord& record, const std::string& folder, double fps,
-  const RegistrationOutputOptions& options, std::ostream* log);
+  const RegistrationOutputOptions& options, std::ostream* log, StageTimings* timings = nullptr);
 
 /**
  * @brief The summary of a finished registration as `vimlop register --json`
  * prints it: counts, scale, errors, failure flag, runtime, and the camera
- * errors against the record's truth when it has one.
+ * errors against the record's truth when it has one, and the stage
+ * timings as "timings" (StageTimings::toJson()) when `timings` is given.
  */
 nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline,
-  const RegistrationRecord& record, const std::string& resultPath, double seconds);
+  const RegistrationRecord& record, const std::string& resultPath, double seconds,
+  const StageTimings* timings = nullptr);
 
 /**
  * @brief registrationSummaryJson() as the lines `vimlop register` prints:

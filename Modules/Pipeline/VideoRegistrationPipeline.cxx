@@ -1,5 +1,6 @@
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
+#include "VideoRegistrationPipelineInternals.h"
 #include <vimlop/Core/CanonicalStarts.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Registration.h>
@@ -26,142 +27,31 @@
 namespace vimlop
 {
 
-struct VideoRegistrationPipeline::Internals
-{
-  VideoRegistrationOptions Opts;
-  std::ostream* Log = nullptr;
-  std::function<void(const std::string&)> Warn = [](const std::string& text)
-  { std::cerr << "vimlop: warning: " << text << "\n"; };
-  Progress Report;
-
-  std::optional<TriangleMesh> Mesh;
-  std::unique_ptr<RegistrationModel> Model;
-  PinholeCamera Intrinsics;
-  bool FramesLoaded = false;
-  std::vector<cv::Mat> Frames;
-  std::vector<std::string> Names;
-  /// The frames' field of view (field stop), found with the frames.
-  std::optional<FieldOfView> View;
-  bool ContoursDetected = false;
-  std::vector<std::vector<ContourPoint>> Contours;
-  std::optional<SfmReconstruction> Sfm;
-  double Scale = 0.0;
-  bool DataMade = false;
-  RegistrationData Data;
-  std::vector<int> FrameOf;
-  std::vector<SimilarityTransform> Starts;
-  StartMode Mode = StartMode::Canonical;
-  int Anchor = -1;
-  std::optional<MultiStartResult> Outcome;
-  // prepare(): the inputs and the small files read from them.
-  std::optional<VideoRegistrationInputs> Inputs;
-  std::optional<TrackerTrajectory> Tracker;
-  std::vector<FramePose> StartPoses;
-
-  void say(const std::string& text) const
-  {
-    if (this->Log)
-    {
-      *this->Log << "vimlop register: " << text << "\n";
-    }
-  }
-
-  /// Cancels (PipelineCancelled) when the progress callback says so.
-  void progress(const std::string& stage, double fraction) const
-  {
-    if (this->Report && !this->Report(stage, fraction))
-    {
-      throw PipelineCancelled{};
-    }
-  }
-
-  /// A registration that ends at its scale bound was probably held there: the
-  /// initial scale (the tracker's) is likely wrong.
-  void warnAtScaleBound() const
-  {
-    const double scale = this->Outcome->best.sfmToCT.scale;
-    const double change = scale / this->Scale;
-    if (change > 0.98 * this->Opts.scaleBoundFactor || change < 1.02 / this->Opts.scaleBoundFactor)
-    {
-      std::ostringstream text;
-      text << "the registration ended at its scale bound (scale " << scale << ", initial "
-           << this->Scale << "): the tracker's scale may be wrong";
-      this->Warn(text.str());
-    }
-  }
-
-  template <typename T>
-  const T& need(const std::optional<T>& value, const char* what) const
-  {
-    if (!value)
-    {
-      throw Error(std::string("video registration: ") + what + " first");
-    }
-    return *value;
-  }
-  void need(bool done, const char* what) const
-  {
-    if (!done)
-    {
-      throw Error(std::string("video registration: ") + what + " first");
-    }
-  }
-};
-
-VideoRegistrationPipeline::VideoRegistrationPipeline(const VideoRegistrationOptions& options)
-  : Impl(std::make_unique<Internals>())
-{
-  options.validate();
-  this->Impl->Opts = options;
-}
-
-VideoRegistrationPipeline::~VideoRegistrationPipeline() = default;
-
-const VideoRegistrationOptions& VideoRegistrationPipeline::options() const
-{
-  return this->Impl->Opts;
-}
-
-void VideoRegistrationPipeline::setRegistrationOptions(const RegistrationOptions& options)
-{
-  options.validate();
-  this->Impl->Opts.registration = options;
-}
-
-void VideoRegistrationPipeline::setLog(std::ostream* log)
-{
-  this->Impl->Log = log;
-}
-
-void VideoRegistrationPipeline::setWarningHandler(std::function<void(const std::string&)> handler)
-{
-  this->Impl->Warn = std::move(handler);
-}
-
-void VideoRegistrationPipeline::setProgress(Progress progress)
-{
-  this->Impl->Report = std::move(progress);
-}
-
 void VideoRegistrationPipeline::loadModel(const TriangleMesh& airwayCT)
 {
   Internals& d = *this->Impl;
+  const StageTimings::Stopwatch watch;
   d.progress("model", 0.0);
   d.Mesh = airwayCT;
   d.Model = std::make_unique<RegistrationModel>(makeEmbreeRegistrationModel(*d.Mesh));
+  d.Timings.set("model", watch);
   d.progress("model", 1.0);
 }
 
 void VideoRegistrationPipeline::loadModel(const std::string& meshPath, const std::string& ctPath)
 {
+  // The model's time includes reading the mesh or segmenting the CT, its longest part.
+  const StageTimings::Stopwatch watch;
   this->Impl->say("model");
   this->loadModel(airwayMeshFrom(meshPath, ctPath));
+  this->Impl->Timings.set("model", watch);
 }
 
 void VideoRegistrationPipeline::loadFrames(const std::string& path, const PinholeCamera& intrinsics,
   int maxFrames, const std::string& intrinsicsSource)
 {
   Internals& d = *this->Impl;
+  const StageTimings::Stopwatch watch;
   d.progress("frames", 0.0);
   const FrameSequence sequence = FrameSequence::load(path, maxFrames);
   intrinsics.validate();
@@ -186,6 +76,7 @@ void VideoRegistrationPipeline::loadFrames(const std::string& path, const Pinhol
     d.say(text.str());
   }
   d.FramesLoaded = true;
+  d.Timings.set("frames", watch);
   d.progress("frames", 1.0);
 }
 
@@ -193,6 +84,7 @@ void VideoRegistrationPipeline::detectContours()
 {
   Internals& d = *this->Impl;
   d.need(d.FramesLoaded, "load the frames");
+  const StageTimings::Stopwatch watch;
   d.say("contours of " + std::to_string(d.Frames.size()) + " frames");
   const OccludingContourDetector detector{ d.Opts.contours };
   d.Contours.clear();
@@ -217,6 +109,7 @@ void VideoRegistrationPipeline::detectContours()
     d.say(text.str());
   }
   d.ContoursDetected = true;
+  d.Timings.set("contours", watch);
   d.progress("contours", 1.0);
 }
 
@@ -224,6 +117,7 @@ void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
 {
   Internals& d = *this->Impl;
   d.need(d.FramesLoaded, "load the frames");
+  const StageTimings::Stopwatch watch;
   d.progress("sfm", 0.0);
   PinholeCamera ideal = d.Intrinsics;
   ideal.removeDistortion();
@@ -235,6 +129,7 @@ void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
       " frames and " + std::to_string(sfm.points.size()) + " points; too few to register");
   }
   d.Sfm = std::move(sfm);
+  d.Timings.set("sfm", watch);
   d.progress("sfm", 1.0);
 }
 
@@ -243,6 +138,7 @@ void VideoRegistrationPipeline::estimateInitialScale(
 {
   Internals& d = *this->Impl;
   const SfmReconstruction& sfm = d.need(d.Sfm, "reconstruct");
+  const StageTimings::Stopwatch watch;
   if (!tracker && !(givenScale > 0.0))
   {
     throw Error("give a tracker recording or an initial scale: SfM alone has no metric scale");
@@ -275,6 +171,7 @@ void VideoRegistrationPipeline::estimateInitialScale(
   std::ostringstream text;
   text << "initial scale " << scale << " mm per SfM unit";
   d.say(text.str());
+  d.Timings.set("scale", watch);
 }
 
 void VideoRegistrationPipeline::makeData()
@@ -283,9 +180,11 @@ void VideoRegistrationPipeline::makeData()
   const SfmReconstruction& sfm = d.need(d.Sfm, "reconstruct");
   d.need(d.ContoursDetected, "detect the contours");
   d.need(d.Scale > 0.0, "estimate the initial scale");
+  const StageTimings::Stopwatch watch;
   d.Data =
     makeVideoRegistrationData(sfm, d.Contours, d.Scale, d.Opts.pointNoiseFloorMm, &d.FrameOf);
   d.DataMade = true;
+  d.Timings.set("data", watch);
 }
 
 void VideoRegistrationPipeline::makeCanonicalStarts(
@@ -294,6 +193,7 @@ void VideoRegistrationPipeline::makeCanonicalStarts(
   Internals& d = *this->Impl;
   d.need(d.Model != nullptr, "load the model");
   d.need(d.DataMade, "make the data");
+  const StageTimings::Stopwatch watch;
   std::vector<CameraPose> poses;
   if (!posesCT)
   {
@@ -329,12 +229,14 @@ void VideoRegistrationPipeline::makeCanonicalStarts(
   d.Mode = StartMode::Canonical;
   d.say(std::to_string(poses.size()) + " canonical poses, frame " + std::to_string(d.Anchor) +
     " placed at each");
+  d.Timings.set("starts", watch);
 }
 
 void VideoRegistrationPipeline::makeManualStart(const FramePose& pose)
 {
   Internals& d = *this->Impl;
   d.need(d.DataMade, "make the data");
+  const StageTimings::Stopwatch watch;
   auto it = std::find_if(d.Data.frames.begin(), d.Data.frames.end(),
     [&](const VideoFrame& f) { return f.frameId == pose.frameId; });
   if (it == d.Data.frames.end())
@@ -345,6 +247,7 @@ void VideoRegistrationPipeline::makeManualStart(const FramePose& pose)
   d.Starts = { startFromCameraPose(pose.cameraToWorld, it->cameraToSfm, d.Scale) };
   d.Mode = StartMode::Manual;
   d.Anchor = pose.frameId;
+  d.Timings.set("starts", watch);
 }
 
 void VideoRegistrationPipeline::setStarts(
@@ -365,17 +268,36 @@ void VideoRegistrationPipeline::run()
   d.need(d.Model != nullptr, "load the model");
   d.need(d.DataMade, "make the data");
   d.need(!d.Starts.empty(), "make the starts");
+  // The registration's phases of an earlier run() are replaced by this one's.
+  for (const char* phase : { "screening", "final", "registration" })
+  {
+    d.Timings.remove(phase);
+  }
+  StageTimings::Stopwatch watch;
   const RegistrationOptions options = d.Opts.registrationOptions(d.Scale);
   MultiStartOptions multi = d.Opts.multiStart;
   multi.registration = options;
   multi.threads = d.Opts.registration.threads;
   if (d.Starts.size() > 1)
   {
+    bool screened = false;
     try
     {
       d.Outcome = registerMultiStart(*d.Model, d.Data, d.Starts, multi,
         [&](const char* phase, int done, int total)
         {
+          // The screening ends where the final phase starts; the time before
+          // the first phase (the screening's subsample) counts to the first.
+          const std::string name = phase;
+          if (done == 0 && name == "screening")
+          {
+            screened = true;
+          }
+          else if (done == 0 && name == "final" && screened)
+          {
+            d.Timings.set("screening", watch);
+            watch = StageTimings::Stopwatch();
+          }
           if (d.Log && (done == total || done % 10 == 0))
           {
             *d.Log << "vimlop register: " << phase << " " << done << "/" << total << "\n";
@@ -390,6 +312,7 @@ void VideoRegistrationPipeline::run()
       d.progress("registration", 1.0); // a cancellation shows as PipelineCancelled
       throw;
     }
+    d.Timings.set("final", watch);
     d.warnAtScaleBound();
     return;
   }
@@ -419,6 +342,7 @@ void VideoRegistrationPipeline::run()
   outcome.failureThresholdPx = multi.failureContourErrorPx;
   outcome.failure = isFlaggedAsFailure(outcome.best, multi);
   d.Outcome = std::move(outcome);
+  d.Timings.set("registration", watch);
   d.warnAtScaleBound();
 }
 
@@ -506,101 +430,6 @@ void VideoRegistrationPipeline::process()
     this->makeCanonicalStarts(&poses, in.startPosesPath);
   }
   this->run();
-}
-
-const TriangleMesh& VideoRegistrationPipeline::mesh() const
-{
-  return this->Impl->need(this->Impl->Mesh, "load the model");
-}
-
-const RegistrationModel& VideoRegistrationPipeline::model() const
-{
-  this->Impl->need(this->Impl->Model != nullptr, "load the model");
-  return *this->Impl->Model;
-}
-
-const PinholeCamera& VideoRegistrationPipeline::intrinsics() const
-{
-  this->Impl->need(this->Impl->FramesLoaded, "load the frames");
-  return this->Impl->Intrinsics;
-}
-
-int VideoRegistrationPipeline::numberOfFrames() const
-{
-  return static_cast<int>(this->Impl->Frames.size());
-}
-
-const std::vector<std::string>& VideoRegistrationPipeline::frameNames() const
-{
-  return this->Impl->Names;
-}
-
-const std::vector<std::vector<ContourPoint>>& VideoRegistrationPipeline::contours() const
-{
-  return this->Impl->Contours;
-}
-
-const SfmReconstruction& VideoRegistrationPipeline::sfm() const
-{
-  return this->Impl->need(this->Impl->Sfm, "reconstruct");
-}
-
-double VideoRegistrationPipeline::initialScale() const
-{
-  return this->Impl->Scale;
-}
-
-const RegistrationData& VideoRegistrationPipeline::data() const
-{
-  return this->Impl->Data;
-}
-
-const std::vector<int>& VideoRegistrationPipeline::frameOf() const
-{
-  return this->Impl->FrameOf;
-}
-
-const std::vector<SimilarityTransform>& VideoRegistrationPipeline::starts() const
-{
-  return this->Impl->Starts;
-}
-
-StartMode VideoRegistrationPipeline::startMode() const
-{
-  return this->Impl->Mode;
-}
-
-int VideoRegistrationPipeline::anchorFrameId() const
-{
-  return this->Impl->Anchor;
-}
-
-const MultiStartResult& VideoRegistrationPipeline::outcome() const
-{
-  return this->Impl->need(this->Impl->Outcome, "run the registration");
-}
-
-const RegistrationResult& VideoRegistrationPipeline::result() const
-{
-  return this->outcome().best;
-}
-
-bool VideoRegistrationPipeline::flaggedAsFailure() const
-{
-  return this->outcome().failure;
-}
-
-void VideoRegistrationPipeline::writeFrame(int index, const std::string& path) const
-{
-  const Internals& d = *this->Impl;
-  if (index < 0 || index >= static_cast<int>(d.Frames.size()))
-  {
-    throw Error("video registration: no frame " + std::to_string(index));
-  }
-  if (!cv::imwrite(path, d.Frames[static_cast<size_t>(index)]))
-  {
-    throw Error("'" + path + "': cannot write the frame");
-  }
 }
 
 } // namespace vimlop

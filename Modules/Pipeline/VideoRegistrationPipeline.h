@@ -10,6 +10,7 @@
 #include <vimlop/Core/RegistrationModel.h>
 #include <vimlop/Core/RegistrationOptions.h>
 #include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Pipeline/StageTimings.h>
 #include <vimlop/Pipeline/VideoRegistrationInputs.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
 #include <vimlop/Video/SfmReconstruction.h>
@@ -177,6 +178,17 @@ public:
   const RegistrationResult& result() const;
   bool flaggedAsFailure() const;
   ///@}
+
+  /**
+   * @brief The wall and CPU time of each stage run so far, in the order they
+   * ran: "frames", "model" (reading the mesh or segmenting the CT
+   * included), "contours", "sfm", "scale", "data", "starts" (not for starts
+   * given with setStarts()), then run()'s: "screening" and "final" for a
+   * multi-start ("screening" only when it screened), "registration" for a
+   * single start. A stage run again replaces its time; a stage not run is
+   * absent.
+   */
+  const StageTimings& timings() const;
 
   /**
    * @brief Writes frame `index` (of the loaded, undistorted frames) as a

@@ -120,5 +120,59 @@ TEST(VideoRegistrationPipeline, ACancelledRunSaysSo)
   EXPECT_THROW(pipeline.run(), PipelineCancelled);
 }
 
+std::vector<std::string> stageNames(const StageTimings& timings)
+{
+  std::vector<std::string> names;
+  for (const StageTimings::Stage& s : timings.stages())
+  {
+    names.push_back(s.name);
+  }
+  return names;
+}
+
+TEST(VideoRegistrationPipeline, TimesEveryStageItRunsOnceInOrderWithinTheWholeWallTime)
+{
+  const StageTimings::Stopwatch whole;
+  VideoRegistrationPipeline pipeline;
+  prepare(pipeline);
+  pipeline.makeManualStart({ 8, fixtures::sequence().poses[8] });
+  pipeline.run();
+  const double wholeWallS = whole.wallS();
+  const StageTimings& t = pipeline.timings();
+  EXPECT_EQ(stageNames(t),
+    (std::vector<std::string>{
+      "model", "frames", "contours", "sfm", "scale", "data", "starts", "registration" }));
+  for (const StageTimings::Stage& s : t.stages())
+  {
+    EXPECT_GE(s.wallS, 0.0) << s.name;
+    EXPECT_GE(s.cpuS, 0.0) << s.name;
+  }
+  EXPECT_LE(t.totalWallS(), wholeWallS);
+  // The registration is the long stage: it cannot have taken no time.
+  EXPECT_GT(t.find("registration")->wallS, 0.0);
+}
+
+TEST(VideoRegistrationPipeline, AMultiStartTimesItsPhasesAndNotTheStartsItWasGiven)
+{
+  const fixtures::Sequence& s = fixtures::sequence();
+  VideoRegistrationPipeline pipeline;
+  prepare(pipeline);
+  const VideoFrame& middle = pipeline.data().frames[pipeline.data().frames.size() / 2];
+  const SimilarityTransform good =
+    startFromCameraPose(s.poses[middle.frameId], middle.cameraToSfm, pipeline.initialScale());
+  // More starts than finalists (3): a screening, then the final phase.
+  pipeline.setStarts({ good, good, good, good }, StartMode::Canonical);
+  pipeline.run();
+  EXPECT_EQ(stageNames(pipeline.timings()),
+    (std::vector<std::string>{
+      "model", "frames", "contours", "sfm", "scale", "data", "screening", "final" }));
+  // Run again from one start: the single registration replaces the phases.
+  pipeline.setStarts({ good }, StartMode::Manual);
+  pipeline.run();
+  EXPECT_EQ(stageNames(pipeline.timings()),
+    (std::vector<std::string>{
+      "model", "frames", "contours", "sfm", "scale", "data", "registration" }));
+}
+
 } // namespace
 } // namespace vimlop

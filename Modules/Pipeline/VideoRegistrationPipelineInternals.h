@@ -1,0 +1,108 @@
+#ifndef vimlop_VideoRegistrationPipelineInternals_h
+#define vimlop_VideoRegistrationPipelineInternals_h
+
+// Private to VIMLOP::Pipeline (not installed): the state of a
+// VideoRegistrationPipeline, shared by the files that implement it so that
+// each stays under the project's 600 lines.
+
+#include <vimlop/Core/Error.h>
+#include <vimlop/Pipeline/StageTimings.h>
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
+#include <vimlop/Video/FieldOfView.h>
+
+#include <opencv2/core/mat.hpp>
+
+#include <iostream>
+#include <ostream>
+#include <sstream>
+
+namespace vimlop
+{
+
+struct VideoRegistrationPipeline::Internals
+{
+  VideoRegistrationOptions Opts;
+  std::ostream* Log = nullptr;
+  std::function<void(const std::string&)> Warn = [](const std::string& text)
+  { std::cerr << "vimlop: warning: " << text << "\n"; };
+  Progress Report;
+
+  std::optional<TriangleMesh> Mesh;
+  std::unique_ptr<RegistrationModel> Model;
+  PinholeCamera Intrinsics;
+  bool FramesLoaded = false;
+  std::vector<cv::Mat> Frames;
+  std::vector<std::string> Names;
+  /// The frames' field of view (field stop), found with the frames.
+  std::optional<FieldOfView> View;
+  bool ContoursDetected = false;
+  std::vector<std::vector<ContourPoint>> Contours;
+  std::optional<SfmReconstruction> Sfm;
+  double Scale = 0.0;
+  bool DataMade = false;
+  RegistrationData Data;
+  std::vector<int> FrameOf;
+  std::vector<SimilarityTransform> Starts;
+  StartMode Mode = StartMode::Canonical;
+  int Anchor = -1;
+  std::optional<MultiStartResult> Outcome;
+  // prepare(): the inputs and the small files read from them.
+  std::optional<VideoRegistrationInputs> Inputs;
+  std::optional<TrackerTrajectory> Tracker;
+  std::vector<FramePose> StartPoses;
+  /// The time of each stage run, in order (timings()).
+  StageTimings Timings;
+
+  void say(const std::string& text) const
+  {
+    if (this->Log)
+    {
+      *this->Log << "vimlop register: " << text << "\n";
+    }
+  }
+
+  /// Cancels (PipelineCancelled) when the progress callback says so.
+  void progress(const std::string& stage, double fraction) const
+  {
+    if (this->Report && !this->Report(stage, fraction))
+    {
+      throw PipelineCancelled{};
+    }
+  }
+
+  /// A registration that ends at its scale bound was probably held there: the
+  /// initial scale (the tracker's) is likely wrong.
+  void warnAtScaleBound() const
+  {
+    const double scale = this->Outcome->best.sfmToCT.scale;
+    const double change = scale / this->Scale;
+    if (change > 0.98 * this->Opts.scaleBoundFactor || change < 1.02 / this->Opts.scaleBoundFactor)
+    {
+      std::ostringstream text;
+      text << "the registration ended at its scale bound (scale " << scale << ", initial "
+           << this->Scale << "): the tracker's scale may be wrong";
+      this->Warn(text.str());
+    }
+  }
+
+  template <typename T>
+  const T& need(const std::optional<T>& value, const char* what) const
+  {
+    if (!value)
+    {
+      throw Error(std::string("video registration: ") + what + " first");
+    }
+    return *value;
+  }
+  void need(bool done, const char* what) const
+  {
+    if (!done)
+    {
+      throw Error(std::string("video registration: ") + what + " first");
+    }
+  }
+};
+
+} // namespace vimlop
+
+#endif
