@@ -110,6 +110,11 @@ void addEvaluateSpeedCommand(CLI::App& evaluate)
   speed->add_option("--step-mm", c->benchmark.stepMm,
     "the simulated endoscope's advance per frame, mm (default: simulate's, 0.5; long sequences "
     "need less to fit in the airway, e.g. 0.2 for 100 frames)");
+  speed
+    ->add_option("--upright-deg", c->benchmark.uprightRollDeg,
+      "the scope held upright within this many degrees, as in the demo (negative: any roll, "
+      "which fails from canonical poses)")
+    ->capture_default_str();
   speed->add_option("--keep", c->keep,
     "keep the sequences, results and the children's logs in this folder (default: a "
     "temporary folder, removed)");

@@ -101,6 +101,12 @@ void SpeedBenchmarkOptions::validate() const
                            "positive, got %g",
       this->stepMm));
   }
+  if (!(this->uprightRollDeg <= 180.0))
+  {
+    throw Error(formatText("speed benchmark: --upright-deg: must be at most 180 (negative: any "
+                           "roll), got %g",
+      this->uprightRollDeg));
+  }
 }
 
 std::vector<int> SpeedBenchmarkOptions::parseCounts(
@@ -159,6 +165,7 @@ SpeedBenchmarkReport runSpeedBenchmark(const SpeedBenchmarkOptions& o, std::ostr
   report.ctPath = o.ctPath;
   report.seed = o.seed;
   report.stepMm = o.stepMm;
+  report.uprightRollDeg = o.uprightRollDeg;
   report.machine = MachineDescription::ofThisMachine();
   auto sequenceOf = [&](int frames) { return work / formatText("sequence-%d", frames); };
   for (int frames : o.frameCounts)
@@ -173,6 +180,7 @@ SpeedBenchmarkReport runSpeedBenchmark(const SpeedBenchmarkOptions& o, std::ostr
     {
       simulate.insert(simulate.end(), { "--step-mm", formatText("%.17g", o.stepMm) });
     }
+    simulate.insert(simulate.end(), { "--upright-deg", formatText("%.17g", o.uprightRollDeg) });
     ChildProcessResult simulated;
     try
     {

@@ -35,6 +35,10 @@ struct SpeedBenchmarkOptions
   /// 0.5 mm and 60 do not (37.5 mm), so longer sequences need a shorter step
   /// (0.2 mm: 100 frames in 23 mm). Zero or positive, finite.
   double stepMm = 0.0;
+  /// The scope is held upright within this many degrees (default 10, the
+  /// demo's): a freely rolled scope (negative) fails from canonical poses
+  /// (issue 15), and the job to time is the one that succeeds. At most 180.
+  double uprightRollDeg = 10.0;
   /// Where the sequences and results go (required; the caller makes and removes it).
   std::string workFolder;
   /// The `vimlop` program run as a child (default: empty, this program:

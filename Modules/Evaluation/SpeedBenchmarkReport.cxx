@@ -256,8 +256,8 @@ nlohmann::json SpeedBenchmarkReport::toJson() const
     { "commit", this->commit.empty() ? nlohmann::json(nullptr) : nlohmann::json(this->commit) },
     { "program", this->program }, { "ct", this->ctPath }, { "seed", this->seed },
     { "step_mm", this->stepMm > 0.0 ? nlohmann::json(this->stepMm) : nlohmann::json(nullptr) },
-    { "machine", machineJson }, { "sequences", sequences }, { "runs", runsJson },
-    { "scaling", scalingJson }, { "warnings", this->warnings() } };
+    { "upright_deg", this->uprightRollDeg }, { "machine", machineJson }, { "sequences", sequences },
+    { "runs", runsJson }, { "scaling", scalingJson }, { "warnings", this->warnings() } };
 }
 
 } // namespace vimlop

@@ -79,6 +79,8 @@ public:
   std::uint64_t seed = 1;
   /// The simulation's step per frame, mm (0: simulate's default).
   double stepMm = 0.0;
+  /// The scope's largest roll from upright, deg (negative: any).
+  double uprightRollDeg = 10.0;
   /// The machine when the benchmark started, and its load average at the end.
   MachineDescription machine;
   std::array<double, 3> loadAverageEnd{ -1.0, -1.0, -1.0 };

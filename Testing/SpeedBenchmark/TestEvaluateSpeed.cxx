@@ -48,6 +48,7 @@ TEST(EvaluateSpeed, TimesEachStageOfASixFrameRunAndTheirSumStaysWithinItsWallTim
   const nlohmann::json j = nlohmann::json::parse(readText(dir / "speed.json"));
   EXPECT_EQ(j.at("benchmark"), "vimlop evaluate speed");
   EXPECT_EQ(j.at("seed"), 1);
+  EXPECT_EQ(j.at("upright_deg"), 10.0);
   EXPECT_TRUE(j.at("version").is_string());
   EXPECT_EQ(j.at("program"), VIMLOP_PROGRAM);
   EXPECT_TRUE(j.at("commit").is_string() || j.at("commit").is_null());

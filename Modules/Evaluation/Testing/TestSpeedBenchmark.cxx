@@ -80,6 +80,17 @@ TEST(SpeedBenchmarkOptions, RefusesANegativeStep)
     "speed benchmark: --step-mm: must be zero (simulate's default) or positive, got -0.5");
 }
 
+TEST(SpeedBenchmarkOptions, HoldsTheScopeUprightLikeTheDemoAndRefusesARollOver180Degrees)
+{
+  SpeedBenchmarkOptions o = validOptions();
+  EXPECT_EQ(o.uprightRollDeg, 10.0);
+  o.uprightRollDeg = -1.0; // any roll
+  EXPECT_EQ(validationMessage(o), "no error");
+  o.uprightRollDeg = 200.0;
+  EXPECT_EQ(validationMessage(o),
+    "speed benchmark: --upright-deg: must be at most 180 (negative: any roll), got 200");
+}
+
 TEST(SpeedBenchmarkOptions, RefusesACountListedTwice)
 {
   SpeedBenchmarkOptions o = validOptions();
