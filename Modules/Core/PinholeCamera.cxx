@@ -32,6 +32,15 @@ PinholeCamera PinholeCamera::fromMatrix(const Eigen::Matrix3d& k, int widthPx, i
   return camera;
 }
 
+bool PinholeCamera::hasDistortion() const
+{
+  if (this->lensModel == LensModel::Fisheye)
+  {
+    return this->distortion.size() > 0;
+  }
+  return this->distortion.size() > 0 && (this->distortion.array() != 0.0).any();
+}
+
 void PinholeCamera::validate() const
 {
   std::ostringstream problem;

@@ -58,6 +58,14 @@ struct PinholeCamera
       pixel.y() >= -0.5 + marginPx && pixel.y() <= heightPx - 0.5 - marginPx;
   }
 
+  /**
+   * @brief True when the lens distorts: a non-zero coefficient of OpenCV's
+   * radial-tangential model (k1, k2, p1, p2[, k3, ...]), or a fisheye with
+   * coefficients (it bends lines even with k1..k4 = 0: its radius is
+   * f theta, not f tan(theta)).
+   */
+  bool hasDistortion() const;
+
   /// @brief Makes the camera an ideal pinhole: no coefficients, the default lens model.
   void removeDistortion()
   {

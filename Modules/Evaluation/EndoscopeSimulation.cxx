@@ -48,7 +48,7 @@ double SimulatedVideo::leastWallDistanceMm(const RegistrationModel& model) const
 
 bool EndoscopeSimulationOptions::isIdealWorld() const
 {
-  return !hasLensDistortion(this->intrinsics) && this->fieldStop.isOff() &&
+  return !this->intrinsics.hasDistortion() && this->fieldStop.isOff() &&
     this->calibrationFocalErrorRelative == 0.0 && this->calibrationDistortionErrorRelative == 0.0 &&
     this->calibrationPrincipalPointErrorPx.isZero(0.0) && this->trackerLatencyS == 0.0 &&
     this->trackerClockOffsetS == 0.0 && this->artifacts.isOff() &&
@@ -143,7 +143,7 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
   // picture the optics form, before the sensor adds its noise; without them
   // the renderer's own noise is kept, so that the ideal world stays as it was.
   const VideoArtifactOptions& artifacts = o.artifacts;
-  const bool distorted = hasLensDistortion(o.intrinsics);
+  const bool distorted = o.intrinsics.hasDistortion();
   const bool optics = distorted || !o.fieldStop.isOff() || artifacts.actsOnLight();
   const std::vector<bool> occluded =
     occludedFrames(o.frames, artifacts.occludedFrameFraction, o.seed * 31337ull + 5ull);

@@ -107,7 +107,7 @@ std::vector<cv::Point2d> undistortedPixels(
       pixels.emplace_back(u, v);
     }
   }
-  if (!hasLensDistortion(distorted))
+  if (!distorted.hasDistortion())
   {
     for (cv::Point2d& p : pixels)
     {
@@ -131,17 +131,6 @@ std::vector<cv::Point2d> undistortedPixels(
 }
 
 } // namespace
-
-bool hasLensDistortion(const PinholeCamera& camera)
-{
-  // The fisheye's projection is not the pinhole's even with zero coefficients
-  // (the radius is f theta, not f tan(theta)).
-  if (camera.lensModel == LensModel::Fisheye)
-  {
-    return camera.distortion.size() > 0;
-  }
-  return camera.distortion.size() > 0 && (camera.distortion.array() != 0.0).any();
-}
 
 cv::Mat distortedToPinholeMap(
   const PinholeCamera& distortedCamera, const PinholeCamera& pinholeCamera)

@@ -10,13 +10,6 @@ namespace vimlop
 {
 
 /**
- * @brief True when `camera` has a non-zero lens distortion coefficient
- * (OpenCV's radial-tangential model: k1, k2, p1, p2[, k3, ...]) or is a
- * fisheye with coefficients (the fisheye bends lines even with k1..k4 = 0).
- */
-bool hasLensDistortion(const PinholeCamera& camera);
-
-/**
  * @brief Where each pixel of a distorted picture comes from in a pinhole one.
  *
  * For each pixel (u, v) of `distortedCamera`'s image, the pixel of

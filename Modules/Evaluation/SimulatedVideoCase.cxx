@@ -96,7 +96,7 @@ SimulatedVideoCase prepareSimulatedVideoCase(
   // frames, dense and without the field stop's mask (the registration uses
   // the pipeline's, masked). Distorted frames are not scored: the true
   // contours are a pinhole camera's.
-  if (hasLensDistortion(video.intrinsics))
+  if (video.intrinsics.hasDistortion())
   {
     c.contourScores.precision = c.contourScores.recall = c.contourScores.normalErrorDegMedian =
       std::numeric_limits<double>::quiet_NaN();

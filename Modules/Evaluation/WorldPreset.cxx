@@ -117,7 +117,7 @@ const std::vector<ErrorSource>& errorSources()
         // (the one it switched on; a fisheye stays).
         w.video.calibrationDistortionErrorRelative = v;
         PinholeCamera& k = w.video.intrinsics;
-        if (v != 0.0 && !hasLensDistortion(k))
+        if (v != 0.0 && !k.hasDistortion())
         {
           k.lensModel = LensModel::RadialTangential;
           k.distortion = Eigen::Vector4d(-0.35, 0.1, 0.0, 0.0);

@@ -23,8 +23,8 @@ std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCam
       std::to_string(sequence.widthPx()) + "x" + std::to_string(sequence.heightPx()));
   }
   // SfM and contours work on ideal pinhole frames: lens distortion is removed first.
-  const bool fisheye = k.lensModel == LensModel::Fisheye && k.distortion.size() > 0;
-  const bool distorted = fisheye || (k.distortion.size() > 0 && !k.distortion.isZero());
+  const bool distorted = k.hasDistortion();
+  const bool fisheye = distorted && k.lensModel == LensModel::Fisheye;
   cv::Mat matrix;
   cv::Mat coefficients;
   cv::Mat fisheyeMapU;

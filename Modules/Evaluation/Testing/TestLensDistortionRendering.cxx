@@ -94,10 +94,10 @@ double largestDeviationFromTheChordPx(const std::vector<cv::Point2d>& points)
 TEST(LensDistortionRendering, WithoutDistortionTheMapIsTheIdentity)
 {
   const PinholeCamera k = PinholeCamera::simulatedEndoscope();
-  EXPECT_FALSE(hasLensDistortion(k));
+  EXPECT_FALSE(k.hasDistortion());
   PinholeCamera zeros = k;
   zeros.distortion = Eigen::Vector4d::Zero();
-  EXPECT_FALSE(hasLensDistortion(zeros));
+  EXPECT_FALSE(zeros.hasDistortion());
   const cv::Mat map = distortedToPinholeMap(zeros, k);
   EXPECT_EQ(map.at<cv::Vec2f>(17, 101), cv::Vec2f(101.0f, 17.0f));
   const PinholeCamera covering = pinholeCameraCovering(zeros);
@@ -108,7 +108,7 @@ TEST(LensDistortionRendering, WithoutDistortionTheMapIsTheIdentity)
 TEST(LensDistortionRendering, DistortionBendsStraightLinesAndTheWrittenCoefficientsStraightenThem)
 {
   const PinholeCamera distorted = barrelCamera();
-  ASSERT_TRUE(hasLensDistortion(distorted));
+  ASSERT_TRUE(distorted.hasDistortion());
   PinholeCamera pinhole = distorted;
   pinhole.removeDistortion();
   const double rowPx = distorted.cy + 80.0;
@@ -155,7 +155,7 @@ TEST(LensDistortionRendering, BarrelDistortionNeedsAWiderPinholeViewAndBlacksOut
   distorted.distortion = Eigen::Vector4d(-0.4, 0.0, 0.0, 0.0);
   const PinholeCamera pinhole = pinholeCameraCovering(distorted);
   EXPECT_GT(pinhole.widthPx, distorted.widthPx);
-  EXPECT_FALSE(hasLensDistortion(pinhole));
+  EXPECT_FALSE(pinhole.hasDistortion());
   EXPECT_EQ(pinhole.cx - distorted.cx, std::round(pinhole.cx - distorted.cx));
   const cv::Mat map = distortedToPinholeMap(distorted, pinhole);
   EXPECT_LT(map.at<cv::Vec2f>(0, 0)[0], -1000.0f);
@@ -193,13 +193,13 @@ TEST(LensDistortionRendering, AFisheyeIsADistortionEvenWithZeroCoefficients)
   PinholeCamera equidistant = PinholeCamera::simulatedEndoscope();
   equidistant.lensModel = LensModel::Fisheye;
   equidistant.distortion = Eigen::Vector4d::Zero();
-  EXPECT_TRUE(hasLensDistortion(equidistant));
+  EXPECT_TRUE(equidistant.hasDistortion());
   // Pixel (260, 120), (100.5, 0.5) px from the principal point, sees the ray
   // at theta = its distance / f from the axis (equidistant), which the
   // pinhole puts tan(theta) / theta times as far out.
   PinholeCamera pinhole = equidistant;
   pinhole.removeDistortion();
-  EXPECT_FALSE(hasLensDistortion(pinhole));
+  EXPECT_FALSE(pinhole.hasDistortion());
   const cv::Vec2f seen = distortedToPinholeMap(equidistant, pinhole).at<cv::Vec2f>(120, 260);
   const double theta = std::hypot(100.5, 0.5) / 200.0;
   const double outwards = std::tan(theta) / theta;
@@ -215,7 +215,7 @@ TEST(LensDistortionRendering, AFisheyeNeedsAWiderPinholeViewAndBlacksOutRaysAtNi
   PinholeCamera fisheye = fisheyeCamera();
   fisheye.fx = fisheye.fy = 100.0;
   const PinholeCamera pinhole = pinholeCameraCovering(fisheye);
-  EXPECT_FALSE(hasLensDistortion(pinhole));
+  EXPECT_FALSE(pinhole.hasDistortion());
   EXPECT_GT(pinhole.widthPx, 2 * fisheye.widthPx);
   EXPECT_LE(pinhole.widthPx, 4 * fisheye.widthPx + 4);
   const cv::Mat map = distortedToPinholeMap(fisheye, pinhole);
