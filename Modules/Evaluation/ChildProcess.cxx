@@ -64,7 +64,13 @@ ChildProcessResult runChildProcess(const std::vector<std::string>& arguments,
     posix_spawn_file_actions_addopen(
       &files.actions, 1, stdoutPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   }
-  if (!stderrPath.empty())
+  if (!stderrPath.empty() && stderrPath == stdoutPath)
+  {
+    // One file for both, as the shell's "> log 2>&1": one open file, so that
+    // neither stream overwrites the other.
+    posix_spawn_file_actions_adddup2(&files.actions, 1, 2);
+  }
+  else if (!stderrPath.empty())
   {
     posix_spawn_file_actions_addopen(
       &files.actions, 2, stderrPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);

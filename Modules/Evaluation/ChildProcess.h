@@ -33,8 +33,9 @@ struct ChildProcessResult
  * then its arguments) as a child process with posix_spawn and waits for it
  * with wait4(), which gives its own peak memory and CPU time (not the
  * parent's, nor those of its earlier siblings). Its stdout and stderr go to
- * the files `stdoutPath` and `stderrPath` (replaced), or to the parent's own
- * when empty; its stdin is /dev/null.
+ * the files `stdoutPath` and `stderrPath` (replaced; both into one file when
+ * they are the same path), or to the parent's own when empty; its stdin is
+ * /dev/null.
  * @throws vimlop::Error when there is no program, it cannot be started, or
  * an output file cannot be opened.
  */

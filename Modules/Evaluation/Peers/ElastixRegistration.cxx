@@ -1,11 +1,10 @@
 #include <vimlop/Evaluation/Peers/ElastixRegistration.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Evaluation/ChildProcess.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
 
-#include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,24 +15,13 @@ namespace vimlop
 namespace
 {
 
-/// Single quotes for /bin/sh (the paths may hold spaces).
-std::string quoted(const std::string& text)
+/// Runs a program with its stdout and stderr into `log`; returns its exit
+/// code (-1 when a signal ended it) and the wall time.
+int run(const std::vector<std::string>& arguments, const std::string& log, double& seconds)
 {
-  std::string out = "'";
-  for (char c : text)
-  {
-    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  }
-  return out + "'";
-}
-
-/// Runs a shell command with its output into `log`; returns the exit status and the wall time.
-int run(const std::string& command, const std::string& log, double& seconds)
-{
-  const auto start = std::chrono::steady_clock::now();
-  const int status = std::system((command + " > " + quoted(log) + " 2>&1").c_str());
-  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return status;
+  const ChildProcessResult result = runChildProcess(arguments, log, log);
+  seconds = result.wallS;
+  return result.exitCode;
 }
 
 /// The "OutputPoint = [ x y z ]" of each line of transformix's outputpoints.txt.
@@ -68,9 +56,21 @@ std::vector<std::array<double, 3>> readOutputPoints(const std::string& path)
 
 bool ElastixRegistration::available(const ElastixRegistrationOptions& options)
 {
-  const std::string quiet = " > /dev/null 2>&1";
-  return std::system((quoted(options.elastix) + " --version" + quiet).c_str()) == 0 &&
-    std::system((quoted(options.transformix) + " --version" + quiet).c_str()) == 0;
+  for (const std::string& program : { options.elastix, options.transformix })
+  {
+    try
+    {
+      if (runChildProcess({ program, "--version" }, "/dev/null", "/dev/null").exitCode != 0)
+      {
+        return false;
+      }
+    }
+    catch (const Error&)
+    {
+      return false; // not installed, or not a program
+    }
+  }
+  return true;
 }
 
 ElastixRegistration ElastixRegistration::compute(const CTVolume& fixed, const CTVolume& moving,
@@ -96,15 +96,15 @@ ElastixRegistration ElastixRegistration::compute(const CTVolume& fixed, const CT
   writeCTVolume(moving, movingPath);
 
   ElastixRegistration result;
-  std::string command = quoted(options.elastix) + " -f " + quoted(fixedPath) + " -m " +
-    quoted(movingPath) + " -out " + quoted(dir.string());
+  std::vector<std::string> command = { options.elastix, "-f", fixedPath, "-m", movingPath, "-out",
+    dir.string() };
   for (const std::string& file : options.parameterFiles)
   {
-    command += " -p " + quoted(file);
+    command.insert(command.end(), { "-p", file });
   }
   if (options.threads > 0)
   {
-    command += " -threads " + std::to_string(options.threads);
+    command.insert(command.end(), { "-threads", std::to_string(options.threads) });
   }
   const std::string elastixLog = (dir / "elastix-console.txt").string();
   if (run(command, elastixLog, result.registrationSeconds) != 0)
@@ -127,8 +127,7 @@ ElastixRegistration ElastixRegistration::compute(const CTVolume& fixed, const CT
     (dir / ("TransformParameters." + std::to_string(options.parameterFiles.size() - 1) + ".txt"))
       .string();
   const std::string transformixLog = (dir / "transformix-console.txt").string();
-  if (run(quoted(options.transformix) + " -def " + quoted(pointsPath) + " -tp " +
-          quoted(transform) + " -out " + quoted(dir.string()),
+  if (run({ options.transformix, "-def", pointsPath, "-tp", transform, "-out", dir.string() },
         transformixLog, result.transformSeconds) != 0)
   {
     throw Error("transformix failed (see '" + transformixLog + "')");
