@@ -176,6 +176,10 @@ CLI::App* addEvaluateCommand(CLI::App& app)
   p1->add_option(
       "--misalign-deg", synthetic->misalignDeg, "range of the initial rotation error, degrees")
     ->capture_default_str();
+  p1->add_option("--points", p1Options.synthetic.points,
+      "SfM points per trial (the paper's 900; more compares the methods' speed at scale)")
+    ->capture_default_str()
+    ->check(CLI::Range(3, 10000000));
   p1->add_option("--contour-noise-px", p1Options.synthetic.contourNoisePx,
       "noise added to the video contour points, std per axis, px (the paper's Σ2d = 9 px²: 3)")
     ->capture_default_str()

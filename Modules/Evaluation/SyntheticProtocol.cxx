@@ -68,7 +68,7 @@ std::vector<std::string> SyntheticProtocolReport::summaryLines() const
   for (const SyntheticProtocolMethodReport& m : this->methods)
   {
     lines.push_back(
-      formatText("P1 %-12s TRE median %.3f mm (mean %.3f, p95 %.3f), success %.0f %%, "
+      formatText("P1 %-20s TRE median %.3f mm (mean %.3f, p95 %.3f), success %.0f %%, "
                  "camera %.3f mm / %.3f deg, runtime median %.3f s",
         m.method.c_str(), m.treMedianMm, m.treMeanMm, m.treP95Mm, 100.0 * m.successRate,
         m.cameraPositionMedianMm, m.cameraAngleMedianDeg, m.runtimeMedianS));
@@ -104,7 +104,8 @@ nlohmann::json SyntheticProtocolReport::toJson() const
 
 const char* syntheticProtocolMethodNames()
 {
-  return "vimlop, imlp, trimmed-icp, open3d-icp, open3d-gicp";
+  return "vimlop, imlp, trimmed-icp, open3d-icp, open3d-gicp, open3d-icp-prebuilt, "
+         "open3d-gicp-prebuilt";
 }
 
 void checkSyntheticProtocolMethods(const std::vector<std::string>& methods)
@@ -112,7 +113,8 @@ void checkSyntheticProtocolMethods(const std::vector<std::string>& methods)
   for (auto method = methods.begin(); method != methods.end(); ++method)
   {
     const bool known = *method == "vimlop" || *method == "imlp" || *method == "trimmed-icp" ||
-      *method == "open3d-icp" || *method == "open3d-gicp";
+      *method == "open3d-icp" || *method == "open3d-gicp" || *method == "open3d-icp-prebuilt" ||
+      *method == "open3d-gicp-prebuilt";
     if (!known)
     {
       throw Error(
@@ -191,13 +193,17 @@ SyntheticProtocolReport runSyntheticProtocol(const TriangleMesh& mesh,
       const auto start = std::chrono::steady_clock::now();
       SimilarityTransform estimate;
       std::function<void()> save;
-      if (method == "open3d-icp")
+      const Open3DPeers::TargetTree tree =
+        method.size() > 9 && method.compare(method.size() - 9, 9, "-prebuilt") == 0
+        ? Open3DPeers::TargetTree::Prebuilt
+        : Open3DPeers::TargetTree::PerCall;
+      if (method.rfind("open3d-icp", 0) == 0)
       {
-        estimate = peers->icpWithScale(trial.data.points, trial.initialSfmToCT);
+        estimate = peers->icpWithScale(trial.data.points, trial.initialSfmToCT, tree);
       }
-      else if (method == "open3d-gicp")
+      else if (method.rfind("open3d-gicp", 0) == 0)
       {
-        estimate = peers->generalizedIcp(trial.data.points, trial.initialSfmToCT);
+        estimate = peers->generalizedIcp(trial.data.points, trial.initialSfmToCT, tree);
       }
       else
       {

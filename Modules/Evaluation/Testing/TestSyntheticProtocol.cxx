@@ -1,5 +1,7 @@
 #include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/RegistrationModel.h>
+#include <vimlop/Core/SyntheticExperiment.h>
 #include <vimlop/Evaluation/Peers/Open3DPeers.h>
 #include <vimlop/Evaluation/SyntheticProtocol.h>
 
@@ -106,7 +108,8 @@ TEST(SyntheticProtocol, RefusesUnknownRepeatedOrMissingMethodsAndNoTrials)
   SyntheticProtocolOptions o = smallRun();
   o.methods = { "vimlop", "magic" };
   EXPECT_EQ(errorOf(mesh, o),
-    "unknown method 'magic' (expected vimlop, imlp, trimmed-icp, open3d-icp, open3d-gicp)");
+    "unknown method 'magic' (expected vimlop, imlp, trimmed-icp, open3d-icp, open3d-gicp, "
+    "open3d-icp-prebuilt, open3d-gicp-prebuilt)");
   o.methods = { "imlp", "vimlop", "imlp" };
   EXPECT_EQ(errorOf(mesh, o), "method 'imlp' is listed twice");
   o = smallRun();
@@ -119,6 +122,37 @@ TEST(SyntheticProtocol, RefusesUnknownRepeatedOrMissingMethodsAndNoTrials)
     Open3DPeers::available()
       ? "--save-trial needs one of the methods vimlop, imlp, trimmed-icp"
       : "method 'open3d-icp' needs Open3D, which this build of VIMLOP lacks");
+}
+
+TEST(SyntheticProtocol, OpenThreeDWithItsTargetTreeBuiltOnceGivesTheEstimateOfItsOwnCall)
+{
+  const TriangleMesh mesh = fixtures::makeCavityWithBlobs();
+  if (!Open3DPeers::available())
+  {
+    EXPECT_THROW(Open3DPeers peers(mesh), Error);
+    return;
+  }
+  const RegistrationModel model(mesh);
+  SyntheticOptions synthetic;
+  synthetic.points = 400;
+  const SyntheticTrial trial = makeSyntheticTrial(model, synthetic, 3);
+  const Open3DPeers peers(mesh);
+  using Tree = Open3DPeers::TargetTree;
+  const SimilarityTransform icp =
+    peers.icpWithScale(trial.data.points, trial.initialSfmToCT, Tree::PerCall);
+  const SimilarityTransform icpPrebuilt =
+    peers.icpWithScale(trial.data.points, trial.initialSfmToCT, Tree::Prebuilt);
+  const SimilarityTransform gicp =
+    peers.generalizedIcp(trial.data.points, trial.initialSfmToCT, Tree::PerCall);
+  const SimilarityTransform gicpPrebuilt =
+    peers.generalizedIcp(trial.data.points, trial.initialSfmToCT, Tree::Prebuilt);
+  // The same iterations; only the order of Open3D's parallel sums differs.
+  EXPECT_LT((icp.matrix() - icpPrebuilt.matrix()).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_LT((gicp.matrix() - gicpPrebuilt.matrix()).cwiseAbs().maxCoeff(), 1e-6);
+  // And they did register: nearer the truth than the start.
+  const double before =
+    (trial.initialSfmToCT.matrix() - trial.truthSfmToCT.matrix()).cwiseAbs().maxCoeff();
+  EXPECT_LT((icpPrebuilt.matrix() - trial.truthSfmToCT.matrix()).cwiseAbs().maxCoeff(), before);
 }
 
 TEST(SyntheticProtocol, StopsWhenTheProgressCallbackCancels)
