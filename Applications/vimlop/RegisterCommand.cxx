@@ -2,6 +2,7 @@
 #include "Commands.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/ProcessMemory.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Pipeline/RegistrationOutputs.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
@@ -13,10 +14,12 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 namespace vimlop
 {
@@ -37,6 +40,61 @@ struct InterruptGuard
     std::signal(SIGINT, this->previousInt);
     std::signal(SIGTERM, this->previousTerm);
   }
+};
+
+/// --serve from the moment the result is usable, beside the slow outputs: the
+/// poses are served in a thread of their own until Ctrl-C or --duration-s;
+/// leaving early (an output failed) stops it.
+class EarlyServing
+{
+public:
+  EarlyServing() = default;
+  EarlyServing(const EarlyServing&) = delete;
+  EarlyServing& operator=(const EarlyServing&) = delete;
+  ~EarlyServing()
+  {
+    this->Stop = true;
+    if (this->Thread.joinable())
+    {
+      this->Thread.join();
+    }
+  }
+
+  /// @brief Starts serving `poses` (once).
+  void start(PoseServingOptions options, ServedPoses poses)
+  {
+    options.keepServing = [this] { return !this->Stop; };
+    this->Thread = std::thread(
+      [this, options = std::move(options), poses = std::move(poses)]
+      {
+        try
+        {
+          servePoses(options, poses);
+        }
+        catch (...)
+        {
+          this->Failure = std::current_exception();
+        }
+      });
+  }
+
+  /// @brief Waits until serving ends (Ctrl-C or the duration); rethrows its error.
+  void wait()
+  {
+    if (this->Thread.joinable())
+    {
+      this->Thread.join();
+    }
+    if (this->Failure)
+    {
+      std::rethrow_exception(this->Failure);
+    }
+  }
+
+private:
+  std::atomic<bool> Stop{ false };
+  std::exception_ptr Failure;
+  std::thread Thread;
 };
 
 /// The command's flags: the pipeline's inputs and settings, and what to do with the result.
@@ -112,6 +170,24 @@ void runRegister(RegisterCommand c)
   {
     log << "vimlop register: result folder\n";
   }
+  EarlyServing serving;
+  // The poses are written first: from then on the result is usable (and --json's
+  // "result_usable_s" says when); the pictures, video, report and result.json follow.
+  c.outputs.onResultUsable = [&](const std::string& posesPath)
+  {
+    const double usableS =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    timings.mark("result_usable", usableS);
+    log << formatText("vimlop register: result usable after %.1f s: '%s' (the folder is complete "
+                      "when result.json is written)\n",
+      usableS, posesPath.c_str());
+    log.flush();
+    if (c.serve && !pipeline.outcome().failure)
+    {
+      c.serving.label = "vimlop register";
+      serving.start(c.serving, servedPosesOf(pipeline.result()));
+    }
+  };
   writeRegistrationOutputs(
     pipeline, record, c.out, inputs.framesPerSecond, c.outputs, &log, &timings);
   const double seconds =
@@ -134,7 +210,9 @@ void runRegister(RegisterCommand c)
     {
       std::cout << "timings: " << timings.summaryLine() << "\n";
     }
-    std::cout << "wrote '" << c.out << "' (result.json, VTK files, registered video, report)\n";
+    std::cout << "wrote '" << c.out << "' (registered-poses.json, result.json, VTK files"
+              << (c.outputs.video ? ", registered video" : "")
+              << (c.outputs.report ? ", report" : "") << ")\n";
   }
   if (pipeline.outcome().failure)
   {
@@ -144,11 +222,7 @@ void runRegister(RegisterCommand c)
     }
     throw ExitRequest{ 3 };
   }
-  if (c.serve)
-  {
-    c.serving.label = "vimlop register";
-    servePoses(c.serving, servedPosesOf(pipeline.result()));
-  }
+  serving.wait();
 }
 
 } // namespace
@@ -206,7 +280,8 @@ void addRegisterCommand(CLI::App& app)
   r->add_flag(
     "--no-report", [c](std::int64_t) { c->outputs.report = false; }, "skip the report");
   r->add_flag("--serve", c->serve,
-    "then serve the poses over OpenIGTLink (CTFromSfM and VideoCamera_<frame>, RAS) until Ctrl-C; "
+    "serve the poses over OpenIGTLink (CTFromSfM and VideoCamera_<frame>, RAS) from the moment "
+    "they are written (while the video and report are written) until Ctrl-C; "
     "never a result flagged as a failure");
   addPoseServingOptions(*r, c->serving);
   r->callback(

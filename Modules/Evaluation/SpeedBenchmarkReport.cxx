@@ -45,7 +45,7 @@ nlohmann::json loadJson(const std::array<double, 3>& load)
 bool SpeedBenchmarkRun::isOutputStage(const std::string& name)
 {
   for (const char* output :
-    { "record", "pictures", "video", "camera_path", "result_json", "report" })
+    { "record", "poses", "pictures", "video", "camera_path", "result_json", "report" })
   {
     if (name == output)
     {
@@ -57,6 +57,10 @@ bool SpeedBenchmarkRun::isOutputStage(const std::string& name)
 
 double SpeedBenchmarkRun::resultS() const
 {
+  if (const StageTimings::Mark* usable = this->stages.findMark("result_usable"))
+  {
+    return usable->atWallS;
+  }
   double sum = 0.0;
   for (const StageTimings::Stage& s : this->stages.stages())
   {
@@ -67,7 +71,12 @@ double SpeedBenchmarkRun::resultS() const
 
 double SpeedBenchmarkRun::outputsS() const
 {
-  return this->stages.totalWallS() - this->resultS();
+  double sum = 0.0;
+  for (const StageTimings::Stage& s : this->stages.stages())
+  {
+    sum += isOutputStage(s.name) ? s.wallS : 0.0;
+  }
+  return sum;
 }
 
 double SpeedBenchmarkRun::cpuPerWall() const

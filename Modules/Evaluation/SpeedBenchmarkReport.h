@@ -37,11 +37,13 @@ struct SpeedBenchmarkRun
   bool flaggedAsFailure = false;
 
   /// @brief True for the stages that write the result down (the record and
-  /// the files: pictures, video, camera path, result.json, report).
+  /// the files: poses, pictures, video, camera path, result.json, report).
   static bool isOutputStage(const std::string& name);
-  /// @brief Time until the result is usable: every stage before the outputs, s.
+  /// @brief Time until the result is usable, s: the run's "result_usable"
+  /// mark (the registered poses on disk, since the child started) when it
+  /// has one, else (runs of builds before the mark) every stage before the outputs.
   double resultS() const;
-  /// @brief The output stages' time, s.
+  /// @brief The output stages' time (record, poses, pictures, ..., report), s.
   double outputsS() const;
   /// @brief (user + system CPU) / wall: about the thread count when the run
   /// had its processors to itself and kept them busy, less when it waited.

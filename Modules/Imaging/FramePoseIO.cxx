@@ -1,5 +1,6 @@
 #include <vimlop/Imaging/FramePoseIO.h>
 
+#include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
 
 #include <nlohmann/json.hpp>
@@ -84,7 +85,7 @@ std::vector<FramePose> readFramePoses(const std::string& path)
   return poses;
 }
 
-void writeFramePoses(const std::vector<FramePose>& poses, const std::string& path)
+nlohmann::json framePosesJson(const std::vector<FramePose>& poses)
 {
   nlohmann::json document;
   document["frame"] = "CT (LPS, mm); camera x right, y down, z forward";
@@ -99,12 +100,12 @@ void writeFramePoses(const std::vector<FramePose>& poses, const std::string& pat
     }
     document["poses"].push_back({ { "frame_id", pose.frameId }, { "camera_to_ct", values } });
   }
-  std::ofstream out(path);
-  out << document.dump(2) << "\n";
-  if (!out)
-  {
-    fail(path, "could not write the pose file");
-  }
+  return document;
+}
+
+void writeFramePoses(const std::vector<FramePose>& poses, const std::string& path)
+{
+  writeFileAtomically(path, framePosesJson(poses).dump(2) + "\n");
 }
 
 } // namespace vimlop

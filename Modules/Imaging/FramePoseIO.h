@@ -5,6 +5,8 @@
 
 #include "VIMLOPImagingModule.h"
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 
@@ -39,7 +41,17 @@ namespace vimlop
  */
 VIMLOPIMAGING_EXPORT std::vector<FramePose> readFramePoses(const std::string& path);
 
-/// @brief Writes poses in the format above. @throws vimlop::Error if the file cannot be written.
+/**
+ * @brief The poses in the format above, as JSON ("frame" and "poses"), for
+ * writers that add keys of their own (readers ignore them).
+ */
+VIMLOPIMAGING_EXPORT nlohmann::json framePosesJson(const std::vector<FramePose>& poses);
+
+/**
+ * @brief Writes poses in the format above (framePosesJson()), atomically: the
+ * file is the old one or the complete new one, never half written.
+ * @throws vimlop::Error if the file cannot be written.
+ */
 VIMLOPIMAGING_EXPORT void writeFramePoses(
   const std::vector<FramePose>& poses, const std::string& path);
 

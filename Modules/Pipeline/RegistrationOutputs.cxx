@@ -1,9 +1,11 @@
 #include <vimlop/Pipeline/RegistrationOutputs.h>
 
+#include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TextFormat.h>
+#include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Pipeline/SimilarityFromCameras.h>
 #include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
 #include <vimlop/Report/RegisteredVideo.h>
@@ -34,7 +36,50 @@ std::string frameImageName(int frameId)
   return name;
 }
 
+/// Runs one slow output; its error names it and says that the poses are there all the same.
+template <typename Write>
+void writeAfterThePoses(const char* what, const std::string& posesPath, Write write)
+{
+  try
+  {
+    write();
+  }
+  catch (const Error& e)
+  {
+    throw Error(std::string(what) + ": " + e.what() + " (the registered poses are in '" +
+      posesPath + "'; the folder is incomplete: no result.json)");
+  }
+}
+
 } // namespace
+
+const char* registeredPosesFileName()
+{
+  return "registered-poses.json";
+}
+
+std::string writeRegisteredPoses(
+  const VideoRegistrationPipeline& pipeline, const std::string& folder)
+{
+  const MultiStartResult& outcome = pipeline.outcome();
+  const RegistrationResult& result = outcome.best;
+  std::vector<FramePose> poses;
+  for (const FrameResult& frame : result.frames)
+  {
+    poses.push_back({ frame.frameId, frame.cameraToCT });
+  }
+  nlohmann::json document = framePosesJson(poses);
+  document["format"] = "vimlop-registered-poses";
+  document["version"] = 1;
+  document["sfm_to_ct"] = recordjson::transformJson(result.sfmToCT);
+  document["failure"] = outcome.failure;
+  document["failure_threshold_px"] = outcome.failureThresholdPx;
+  document["contour_error_px"] = result.contourErrorPx;
+  document["residual_error_mm"] = result.residualErrorMm;
+  const std::string path = (fs::path(folder) / registeredPosesFileName()).string();
+  writeFileAtomically(path, document.dump(2) + "\n");
+  return path;
+}
 
 RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipeline,
   const std::string& source, const std::vector<FramePose>& truthPoses,
@@ -99,12 +144,24 @@ void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
   {
     throw Error("'" + folder + "': cannot create the folder (" + ec.message() + ")");
   }
+  // The usable result first: everything after it only shows it.
+  const std::string posesPath = writeRegisteredPoses(pipeline, folder);
+  t.set("poses", watch);
+  if (options.onResultUsable)
+  {
+    options.onResultUsable(posesPath);
+  }
+
+  watch = StageTimings::Stopwatch();
   const std::vector<int>& frameOf = pipeline.frameOf();
   for (size_t j = 0; j < record.data.frames.size(); ++j)
   {
     pipeline.writeFrame(frameOf[j], (fs::path(folder) / record.frameImages[j]).string());
   }
   t.set("pictures", watch);
+  watch = StageTimings::Stopwatch();
+  writeCameraPath(record.result, (fs::path(folder) / "camera-path.vtp").string());
+  t.set("camera_path", watch);
   if (options.video)
   {
     if (log)
@@ -112,15 +169,10 @@ void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
       *log << "vimlop register: registered video\n";
     }
     watch = StageTimings::Stopwatch();
-    writeRegisteredVideo(record, folder, fps);
+    writeAfterThePoses(
+      "registered video", posesPath, [&] { writeRegisteredVideo(record, folder, fps); });
     t.set("video", watch);
   }
-  watch = StageTimings::Stopwatch();
-  writeCameraPath(record.result, (fs::path(folder) / "camera-path.vtp").string());
-  t.set("camera_path", watch);
-  watch = StageTimings::Stopwatch();
-  writeRegistrationRecord(record, folder);
-  t.set("result_json", watch);
   if (options.report)
   {
     if (log)
@@ -128,10 +180,19 @@ void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
       *log << "vimlop register: report\n";
     }
     watch = StageTimings::Stopwatch();
-    RegistrationReport::write(
-      &record, folder, {}, (fs::path(folder) / "report").string(), RegistrationReportOptions());
+    writeAfterThePoses("report", posesPath,
+      [&]
+      {
+        // The registration's own model: its search structures are built already.
+        RegistrationReport::write(&record, folder, {}, (fs::path(folder) / "report").string(),
+          RegistrationReportOptions(), &pipeline.model());
+      });
     t.set("report", watch);
   }
+  // Last: a folder with a result.json is complete.
+  watch = StageTimings::Stopwatch();
+  writeRegistrationRecord(record, folder);
+  t.set("result_json", watch);
 }
 
 nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline,
@@ -150,6 +211,10 @@ nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline
   if (timings)
   {
     summary["timings"] = timings->toJson();
+    if (const StageTimings::Mark* usable = timings->findMark("result_usable"))
+    {
+      summary["result_usable_s"] = usable->atWallS;
+    }
   }
   if (record.truth)
   {

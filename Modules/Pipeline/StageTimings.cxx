@@ -79,6 +79,44 @@ void StageTimings::append(const StageTimings& other)
   {
     this->set(s.name, s.wallS, s.cpuS);
   }
+  for (const Mark& m : other.Marks)
+  {
+    this->mark(m.name, m.atWallS);
+  }
+}
+
+void StageTimings::mark(const std::string& name, double atWallS)
+{
+  if (name.empty())
+  {
+    throw Error("stage timings: a mark needs a name");
+  }
+  if (!std::isfinite(atWallS) || atWallS < 0.0)
+  {
+    throw Error(formatText(
+      "stage timings: mark '%s' has a negative or non-finite time (%g s)", name.c_str(), atWallS));
+  }
+  for (Mark& m : this->Marks)
+  {
+    if (m.name == name)
+    {
+      m.atWallS = atWallS;
+      return;
+    }
+  }
+  this->Marks.push_back({ name, atWallS });
+}
+
+const StageTimings::Mark* StageTimings::findMark(const std::string& name) const
+{
+  for (const Mark& m : this->Marks)
+  {
+    if (m.name == name)
+    {
+      return &m;
+    }
+  }
+  return nullptr;
 }
 
 const StageTimings::Stage* StageTimings::find(const std::string& name) const
@@ -120,8 +158,18 @@ nlohmann::json StageTimings::toJson() const
   {
     stages.push_back({ { "name", s.name }, { "wall_s", s.wallS }, { "cpu_s", s.cpuS } });
   }
-  return { { "stages", stages }, { "total_wall_s", this->totalWallS() },
+  nlohmann::json json = { { "stages", stages }, { "total_wall_s", this->totalWallS() },
     { "total_cpu_s", this->totalCpuS() } };
+  if (!this->Marks.empty())
+  {
+    nlohmann::json marks = nlohmann::json::array();
+    for (const Mark& m : this->Marks)
+    {
+      marks.push_back({ { "name", m.name }, { "at_wall_s", m.atWallS } });
+    }
+    json["marks"] = marks;
+  }
+  return json;
 }
 
 StageTimings StageTimings::fromJson(const nlohmann::json& json, const std::string& source)
@@ -150,6 +198,30 @@ StageTimings StageTimings::fromJson(const nlohmann::json& json, const std::strin
       throw Error("'" + source + "': " + e.what());
     }
   }
+  if (!json.contains("marks"))
+  {
+    return timings;
+  }
+  if (!json.at("marks").is_array())
+  {
+    throw Error(where + "\"marks\" must be a list");
+  }
+  for (const nlohmann::json& m : json.at("marks"))
+  {
+    if (!m.is_object() || !m.contains("name") || !m.at("name").is_string() ||
+      !m.contains("at_wall_s") || !m.at("at_wall_s").is_number())
+    {
+      throw Error(where + "each mark needs a \"name\" and \"at_wall_s\"");
+    }
+    try
+    {
+      timings.mark(m.at("name").get<std::string>(), m.at("at_wall_s").get<double>());
+    }
+    catch (const Error& e)
+    {
+      throw Error("'" + source + "': " + e.what());
+    }
+  }
   return timings;
 }
 
@@ -160,9 +232,13 @@ std::string StageTimings::summaryLine() const
   {
     line += formatText("%s%s %.2f s", line.empty() ? "" : ", ", s.name.c_str(), s.wallS);
   }
-  return line +
-    formatText("%s(total %.2f s, CPU %.2f s)", line.empty() ? "" : " ", this->totalWallS(),
-      this->totalCpuS());
+  line += formatText(
+    "%s(total %.2f s, CPU %.2f s)", line.empty() ? "" : " ", this->totalWallS(), this->totalCpuS());
+  for (const Mark& m : this->Marks)
+  {
+    line += formatText("; %s at %.2f s", m.name.c_str(), m.atWallS);
+  }
+  return line;
 }
 
 } // namespace vimlop

@@ -32,6 +32,17 @@ public:
     double cpuS = 0.0;
   };
 
+  /**
+   * @brief One moment of the job, e.g. "result_usable" (the registered poses
+   * are on disk): its name and when it came, wall seconds on the caller's
+   * clock (`vimlop register`: since it started, the clock of its runtime_s).
+   */
+  struct Mark
+  {
+    std::string name;
+    double atWallS = 0.0;
+  };
+
   /// @brief Measures one stage: wall (steady clock) and process CPU time since its creation.
   class Stopwatch
   {
@@ -58,6 +69,16 @@ public:
   /// @brief Records every stage of `other` after (or in place of) these.
   void append(const StageTimings& other);
 
+  /**
+   * @brief Records moment `name` at `atWallS`: appended, or in place of the
+   * mark of that name already recorded. append() carries marks too.
+   * @throws vimlop::Error for an empty name or a negative or non-finite time.
+   */
+  void mark(const std::string& name, double atWallS);
+  /// @brief The mark named `name`, or nullptr when it was not recorded.
+  const Mark* findMark(const std::string& name) const;
+  const std::vector<Mark>& marks() const { return this->Marks; }
+
   const std::vector<Stage>& stages() const { return this->Stages; }
   bool empty() const { return this->Stages.empty(); }
   /// @brief The stage named `name`, or nullptr when it was not recorded.
@@ -68,7 +89,8 @@ public:
 
   /**
    * @brief As JSON: {"stages": [{"name", "wall_s", "cpu_s"}, ...],
-   * "total_wall_s", "total_cpu_s"} (the order kept).
+   * "total_wall_s", "total_cpu_s"} (the order kept), and when there are
+   * marks "marks": [{"name", "at_wall_s"}, ...].
    */
   nlohmann::json toJson() const;
   /**
@@ -76,11 +98,15 @@ public:
    * @throws vimlop::Error when a field is missing or of the wrong type, or a time is negative.
    */
   static StageTimings fromJson(const nlohmann::json& json, const std::string& source);
-  /// @brief One line: "stage 1.23 s, ... (total 4.56 s, CPU 7.89 s)".
+  /**
+   * @brief One line: "stage 1.23 s, ... (total 4.56 s, CPU 7.89 s)", then
+   * each mark as "; result_usable at 3.21 s".
+   */
   std::string summaryLine() const;
 
 private:
   std::vector<Stage> Stages;
+  std::vector<Mark> Marks;
 };
 
 } // namespace vimlop

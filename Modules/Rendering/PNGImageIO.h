@@ -20,7 +20,8 @@ namespace vimlop
 {
 
 /**
- * @brief Writes an unsigned char image (1, 3 or 4 components) as a PNG file.
+ * @brief Writes an unsigned char image (1, 3 or 4 components) as a PNG file
+ * (zlib compression level 1: fast, lossless like every level).
  * @throws vimlop::Error naming the file if it cannot be written.
  */
 VIMLOPRENDERING_EXPORT void writePNG(vtkImageData* image, const std::string& path);

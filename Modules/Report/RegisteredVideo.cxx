@@ -15,7 +15,6 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
 #include <cstdio>
@@ -23,6 +22,38 @@
 
 namespace vimlop
 {
+
+namespace
+{
+
+/// An RGB unsigned char VTK image (row 0 at the bottom) as OpenCV's BGR picture (top row first).
+cv::Mat toBgrTopDown(vtkImageData* rgb)
+{
+  if (rgb->GetScalarType() != VTK_UNSIGNED_CHAR || rgb->GetNumberOfScalarComponents() != 3)
+  {
+    throw Error("registered video: a picture is not RGB unsigned char");
+  }
+  int dims[3];
+  rgb->GetDimensions(dims);
+  const int w = dims[0];
+  const int h = dims[1];
+  const auto* in = static_cast<const unsigned char*>(rgb->GetScalarPointer());
+  cv::Mat bgr(h, w, CV_8UC3);
+  for (int row = 0; row < h; ++row)
+  {
+    const unsigned char* src = in + static_cast<size_t>(h - 1 - row) * w * 3;
+    unsigned char* dst = bgr.ptr<unsigned char>(row);
+    for (int u = 0; u < w; ++u)
+    {
+      dst[3 * u + 0] = src[3 * u + 2];
+      dst[3 * u + 1] = src[3 * u + 1];
+      dst[3 * u + 2] = src[3 * u + 0];
+    }
+  }
+  return bgr;
+}
+
+} // namespace
 
 std::vector<std::string> writeRegisteredVideo(
   const RegistrationRecord& record, const std::string& folder, double fps)
@@ -34,8 +65,10 @@ std::vector<std::string> writeRegisteredVideo(
   {
     throw Error("'" + folder + "/registered': cannot create the folder (" + ec.message() + ")");
   }
+  // One window each for the contours and the views, kept for every frame.
   vtkNew<vtkVIMLOPSilhouetteRenderer> silhouettes;
   silhouettes->SetMesh(record.model);
+  SurfaceView views(record.model);
   std::vector<std::string> written;
   cv::VideoWriter video;
   const std::string videoName = "registered-video.avi";
@@ -53,15 +86,16 @@ std::vector<std::string> writeRegisteredVideo(
     }
     const auto overlay = composeContourOverlay(
       w, h, picture, silhouettes->RenderContours(frame.intrinsics, pose), frame.contour);
-    const auto view = renderSurfaceView(record.model, frame.intrinsics, pose);
+    const auto view = views.render(frame.intrinsics, pose);
     char name[64];
     std::snprintf(name, sizeof name, "registered/frame-%04d.png", frame.frameId);
     const std::string path = (fs::path(folder) / name).string();
-    writePNG(placeSideBySide({ overlay, view }, 4), path);
+    const vtkSmartPointer<vtkImageData> sideBySide = placeSideBySide({ overlay, view }, 4);
+    writePNG(sideBySide, path);
     written.push_back(name);
 
-    // The video takes the picture just written (BGR, top row first).
-    const cv::Mat side = cv::imread(path, cv::IMREAD_COLOR);
+    // The video takes the same picture, converted in memory (not read back from its file).
+    const cv::Mat side = toBgrTopDown(sideBySide);
     if (!video.isOpened())
     {
       video.open((fs::path(folder) / videoName).string(),

@@ -13,6 +13,8 @@
 namespace vimlop
 {
 
+class RegistrationModel;
+
 /// @brief Picture sizes, pixels.
 struct RegistrationReportOptions
 {
@@ -69,12 +71,15 @@ public:
    * @brief Writes the report of `record` (null when only a perturbation study
    * is reported) whose frame pictures are relative to `resultFolder`, and of
    * `runs` (may be empty), into `outFolder` (created if needed).
+   * `model` is the record's model made ready for queries with Embree
+   * visibility (makeEmbreeRegistrationModel(), e.g. the one the registration
+   * used), or null to build it here.
    * @throws vimlop::Error for nothing to report, a frame picture that cannot
    * be read or does not fit its intrinsics, or a file that cannot be written.
    */
   static RegistrationReport write(const RegistrationRecord* record, const std::string& resultFolder,
     const std::vector<PerturbationRun>& runs, const std::string& outFolder,
-    const RegistrationReportOptions& options);
+    const RegistrationReportOptions& options, const RegistrationModel* model = nullptr);
 
   std::vector<Frame> frames;
   /// Mean over frames of the contour errors, pixels (0 without frames).

@@ -27,6 +27,11 @@
  * | `targets.vtp`         | ground-truth target points, CT frame (optional)       |
  * | `frames/frame-<id>.png` | the frames' pictures (optional)                     |
  *
+ * `vimlop register` (writeRegistrationOutputs() in Pipeline) also writes
+ * `registered-poses.json` first, as soon as the registration ends, and this
+ * module's files, result.json last, after its video and report: there too a
+ * folder with a result.json is complete.
+ *
  * `result.json` (format "vimlop-result", version 1) holds: "source",
  * "vimlop_version", "method", "parameters" (every RegistrationOptions field,
  * in its units: mm, px, degrees where named so), "initial_transform" and

@@ -51,7 +51,8 @@ void servePoses(const PoseServingOptions& options, const ServedPoses& poses)
       {
         const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        return !stopRequested && (options.durationS <= 0.0 || elapsed < options.durationS);
+        return !stopRequested && (options.durationS <= 0.0 || elapsed < options.durationS) &&
+          (!options.keepServing || options.keepServing());
       });
   }
   catch (...)

@@ -5,6 +5,7 @@
 #include <vimlop/Core/SimilarityTransform.h>
 #include <vimlop/Server/PoseStreamServer.h>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,8 @@ struct PoseServingOptions
   double durationS = 0.0;
   /// What the announcement and the closing line start with (default "vimlop serve").
   std::string label = "vimlop serve";
+  /// Also stop when this returns false (asked about every 100 ms); empty: never asked.
+  std::function<bool()> keepServing;
 };
 
 /// @brief What is served.
@@ -46,7 +49,8 @@ ServedPoses servedPosesOf(const RegistrationResult& result);
 /**
  * @brief Listens, announces on stdout one line with the address (`<label>:
  * ... on <host>:<port> ...`), sends `poses` to every client that connects and
- * returns when Ctrl-C or SIGTERM arrives or the duration has passed, after a
+ * returns when Ctrl-C or SIGTERM arrives, the duration has passed or
+ * `options.keepServing` says to stop, after a
  * closing line. The signal handlers are restored on return.
  * @throws vimlop::Error when the server cannot listen (see PoseStreamServer).
  */

@@ -149,6 +149,18 @@ TEST(SpeedBenchmarkRun, TheResultIsUsableAfterEveryStageBeforeTheOutputs)
   EXPECT_FALSE(SpeedBenchmarkRun::isOutputStage("screening"));
 }
 
+TEST(SpeedBenchmarkRun, TheResultIsUsableAtTheRunsOwnMarkWhenItHasOne)
+{
+  SpeedBenchmarkRun run = runOf(30, 1, 20.0,
+    { { "frames", 1.0 }, { "sfm", 4.0 }, { "final", 8.0 }, { "record", 0.5 }, { "poses", 0.25 },
+      { "pictures", 0.25 }, { "video", 2.0 }, { "report", 1.5 }, { "result_json", 0.5 } });
+  // The start-up before the first stage counts: the user waited for it too.
+  run.stages.mark("result_usable", 14.0);
+  EXPECT_DOUBLE_EQ(run.resultS(), 14.0);
+  EXPECT_DOUBLE_EQ(run.outputsS(), 5.0);
+  EXPECT_TRUE(SpeedBenchmarkRun::isOutputStage("poses"));
+}
+
 TEST(SpeedBenchmarkReport, ScalingIsTheWallRatioToTheFewestThreadsAndItsEfficiency)
 {
   const SpeedBenchmarkReport report = twoThreadReport();

@@ -117,6 +117,47 @@ TEST(StageTimings, TheSummaryLineNamesEachStageInOrderWithTheTotals)
   EXPECT_EQ(t.summaryLine(), "frames 0.50 s, model 2.00 s (total 2.50 s, CPU 4.25 s)");
 }
 
+TEST(StageTimings, AMarkSaysWhenTheResultBecameUsableAndReadsBackFromJson)
+{
+  StageTimings t;
+  t.set("final", 4.0, 7.5);
+  EXPECT_FALSE(t.toJson().contains("marks")); // the layout of the runs before marks
+  t.mark("result_usable", 4.25);
+  t.set("video", 1.0, 1.0);
+  EXPECT_EQ(t.summaryLine(),
+    "final 4.00 s, video 1.00 s (total 5.00 s, CPU 8.50 s); result_usable at 4.25 s");
+  // A mark set again moves; marks are not stages and add nothing to the totals.
+  t.mark("result_usable", 4.5);
+  ASSERT_EQ(t.marks().size(), 1u);
+  EXPECT_DOUBLE_EQ(t.totalWallS(), 5.0);
+  const nlohmann::json j = t.toJson();
+  ASSERT_EQ(j.at("marks").size(), 1u);
+  EXPECT_EQ(j.at("marks")[0].at("name"), "result_usable");
+  const StageTimings back = StageTimings::fromJson(j, "summary");
+  ASSERT_NE(back.findMark("result_usable"), nullptr);
+  EXPECT_DOUBLE_EQ(back.findMark("result_usable")->atWallS, 4.5);
+  EXPECT_EQ(back.findMark("never"), nullptr);
+  StageTimings appended;
+  appended.append(back);
+  EXPECT_DOUBLE_EQ(appended.findMark("result_usable")->atWallS, 4.5);
+}
+
+TEST(StageTimings, RefusesANamelessOrNegativeMarkAndAMalformedListOfMarks)
+{
+  StageTimings t;
+  EXPECT_EQ(
+    fixtures::errorMessageOf([&] { t.mark("", 1.0); }), "stage timings: a mark needs a name");
+  EXPECT_EQ(fixtures::errorMessageOf([&] { t.mark("result_usable", -1.0); }),
+    "stage timings: mark 'result_usable' has a negative or non-finite time (-1 s)");
+  const nlohmann::json notAList = { { "stages", nlohmann::json::array() }, { "marks", 3 } };
+  EXPECT_EQ(fixtures::errorMessageOf([&] { StageTimings::fromJson(notAList, "out.json"); }),
+    "'out.json': stage timings: \"marks\" must be a list");
+  const nlohmann::json noTime = { { "stages", nlohmann::json::array() },
+    { "marks", { { { "name", "result_usable" } } } } };
+  EXPECT_EQ(fixtures::errorMessageOf([&] { StageTimings::fromJson(noTime, "out.json"); }),
+    "'out.json': stage timings: each mark needs a \"name\" and \"at_wall_s\"");
+}
+
 TEST(StageTimings, AStopwatchCountsTheCpuTimeOfABusyLoop)
 {
   const StageTimings::Stopwatch watch;

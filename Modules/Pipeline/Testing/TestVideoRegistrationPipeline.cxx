@@ -1,8 +1,12 @@
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
+#include "ErrorMessage.h"
 #include "RenderedSequence.h"
 #include "TestFolders.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Imaging/FramePoseIO.h>
+#include <vimlop/Pipeline/RegistrationOutputs.h>
 #include <vimlop/Pipeline/SimilarityFromCameras.h>
 
 #include <gtest/gtest.h>
@@ -12,6 +16,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace vimlop
 {
@@ -172,6 +178,117 @@ TEST(VideoRegistrationPipeline, AMultiStartTimesItsPhasesAndNotTheStartsItWasGiv
   EXPECT_EQ(stageNames(pipeline.timings()),
     (std::vector<std::string>{
       "model", "frames", "contours", "sfm", "scale", "data", "registration" }));
+}
+
+/// A pipeline registered once from the middle frame's true pose (for the tests of its outputs).
+const VideoRegistrationPipeline& registeredPipeline()
+{
+  static const std::unique_ptr<VideoRegistrationPipeline> pipeline = []
+  {
+    auto p = std::make_unique<VideoRegistrationPipeline>();
+    prepare(*p);
+    p->makeManualStart({ 8, fixtures::sequence().poses[8] });
+    p->run();
+    return p;
+  }();
+  return *pipeline;
+}
+
+bool exists(const fs::path& folder, const std::string& name)
+{
+  return fs::exists(folder / name);
+}
+
+TEST(RegistrationOutputs, ThePosesAreOnDiskAndCompleteBeforeThePicturesTheVideoAndTheReport)
+{
+  const VideoRegistrationPipeline& pipeline = registeredPipeline();
+  const RegistrationRecord record = makeRegistrationRecord(pipeline, "test");
+  const fs::path folder = fixtures::freshTestFolder("outputs-order");
+  // A result.json of an earlier run into the same folder does not make it look complete.
+  std::ofstream(folder / "result.json") << "{}\n";
+  RegistrationOutputOptions options;
+  int calls = 0;
+  options.onResultUsable = [&](const std::string& posesPath)
+  {
+    ++calls;
+    EXPECT_EQ(posesPath, (folder / registeredPosesFileName()).string());
+    EXPECT_FALSE(exists(folder, "result.json"));
+    EXPECT_FALSE(exists(folder, "registered-video.avi"));
+    EXPECT_FALSE(exists(folder, "report"));
+    EXPECT_FALSE(exists(folder, "camera-path.vtp"));
+    const std::vector<FramePose> poses = readFramePoses(posesPath);
+    const RegistrationResult& result = pipeline.result();
+    ASSERT_EQ(poses.size(), result.frames.size());
+    for (size_t j = 0; j < poses.size(); ++j)
+    {
+      EXPECT_EQ(poses[j].frameId, result.frames[j].frameId);
+      EXPECT_LT(cameraPositionError(poses[j].cameraToWorld, result.frames[j].cameraToCT), 1e-9);
+    }
+  };
+  std::ostringstream log;
+  StageTimings timings;
+  writeRegistrationOutputs(pipeline, record, folder.string(), 30.0, options, &log, &timings);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(stageNames(timings),
+    (std::vector<std::string>{
+      "poses", "pictures", "camera_path", "video", "report", "result_json" }));
+  for (const char* name : { "result.json", "registered-video.avi", "report/index.html",
+         "camera-path.vtp", "frames", "registered-poses.json" })
+  {
+    EXPECT_TRUE(exists(folder, name)) << name;
+  }
+  std::ifstream in(folder / registeredPosesFileName());
+  const nlohmann::json poses = nlohmann::json::parse(in);
+  EXPECT_EQ(poses.at("format"), "vimlop-registered-poses");
+  EXPECT_EQ(poses.at("failure").get<bool>(), pipeline.outcome().failure);
+  EXPECT_NEAR(
+    poses.at("sfm_to_ct").at("scale").get<double>(), pipeline.result().sfmToCT.scale, 1e-12);
+}
+
+TEST(RegistrationOutputs, AVideoThatCannotBeWrittenLeavesTheUsablePosesAndAnIncompleteFolder)
+{
+  const VideoRegistrationPipeline& pipeline = registeredPipeline();
+  const RegistrationRecord record = makeRegistrationRecord(pipeline, "test");
+  const fs::path folder = fixtures::freshTestFolder("outputs-video-fails");
+  // A file where the video's folder of pictures goes.
+  std::ofstream(folder / "registered") << "in the way\n";
+  const std::string message = fixtures::errorMessageOf(
+    [&]
+    {
+      writeRegistrationOutputs(
+        pipeline, record, folder.string(), 30.0, RegistrationOutputOptions(), nullptr);
+    });
+  EXPECT_EQ(message.rfind("registered video: '" + folder.string() +
+                "/registered': cannot create "
+                "the folder",
+              0),
+    0u)
+    << message;
+  EXPECT_NE(
+    message.find("(the registered poses are in '" + (folder / registeredPosesFileName()).string() +
+      "'; the folder is incomplete: no result.json)"),
+    std::string::npos)
+    << message;
+  EXPECT_EQ(readFramePoses((folder / registeredPosesFileName()).string()).size(),
+    pipeline.result().frames.size());
+  EXPECT_FALSE(exists(folder, "result.json"));
+  EXPECT_FALSE(exists(folder, "report"));
+}
+
+TEST(RegistrationOutputs, AFolderThatCannotBeCreatedIsRefusedBeforeAnythingIsWritten)
+{
+  const VideoRegistrationPipeline& pipeline = registeredPipeline();
+  const RegistrationRecord record = makeRegistrationRecord(pipeline, "test");
+  const fs::path parent = fixtures::freshTestFolder("outputs-no-folder");
+  std::ofstream(parent / "file") << "a file, not a folder\n";
+  const std::string folder = (parent / "file" / "result").string();
+  bool usable = false;
+  RegistrationOutputOptions options;
+  options.onResultUsable = [&](const std::string&) { usable = true; };
+  const std::string message = fixtures::errorMessageOf(
+    [&] { writeRegistrationOutputs(pipeline, record, folder, 30.0, options, nullptr); });
+  EXPECT_EQ(message.rfind("'" + folder + "': cannot create the folder (", 0), 0u) << message;
+  EXPECT_FALSE(usable);
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 
 #include "ReportFixture.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Rendering/ContourOverlay.h>
 #include <vimlop/Rendering/PNGImageIO.h>
 #include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
@@ -199,6 +200,27 @@ TEST(RegistrationReport, WritesEveryPictureAsInTheBaselines)
     EXPECT_TRUE(c.passed) << file << " differs from " << baseline << " (error " << c.error << "):\n"
                           << c.log;
   }
+}
+
+TEST(RegistrationReport, AReportOnTheCallersModelHasTheNumbersOfOneThatBuildsItsOwn)
+{
+  const std::string result = fixtures::freshTestFolder("report-model-result").string();
+  const RegistrationRecord record = fixtures::makeReportRecord(result);
+  RegistrationReportOptions options = smallPictures();
+  options.maxOverlayFrames = 1;
+  const RegistrationReport own = RegistrationReport::write(
+    &record, result, {}, fixtures::freshTestFolder("report-own-model").string(), options);
+  const RegistrationModel model = makeEmbreeRegistrationModel(record.model);
+  const RegistrationReport given = RegistrationReport::write(
+    &record, result, {}, fixtures::freshTestFolder("report-given-model").string(), options, &model);
+  ASSERT_EQ(given.frames.size(), own.frames.size());
+  for (size_t j = 0; j < own.frames.size(); ++j)
+  {
+    EXPECT_DOUBLE_EQ(given.frames[j].contourErrorBeforePx, own.frames[j].contourErrorBeforePx);
+    EXPECT_DOUBLE_EQ(given.frames[j].contourErrorAfterPx, own.frames[j].contourErrorAfterPx);
+    EXPECT_EQ(given.frames[j].matchedAfter, own.frames[j].matchedAfter);
+  }
+  EXPECT_GT(given.frames.front().matchedAfter, 0);
 }
 
 TEST(RegistrationReport, TheBaselineComparisonFailsOnAShiftedOverlay)
