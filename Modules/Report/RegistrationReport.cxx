@@ -1,5 +1,7 @@
 #include <vimlop/Report/RegistrationReport.h>
 
+#include "RegistrationCharts.h"
+
 #include <vimlop/Core/ContourMatcher.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/KdTree2D.h>
@@ -12,7 +14,6 @@
 #include <vimlop/Rendering/ContourOverlay.h>
 #include <vimlop/Rendering/PNGImageIO.h>
 #include <vimlop/Rendering/RegistrationScene.h>
-#include <vimlop/Rendering/ReportCharts.h>
 #include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
 #include <vimlop/Results/RecordJson.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
@@ -39,12 +40,6 @@ namespace
 
 using json = nlohmann::json;
 namespace fs = std::filesystem;
-
-const std::array<unsigned char, 3> blue = { 31, 119, 180 };
-const std::array<unsigned char, 3> orange = { 255, 127, 14 };
-const std::array<unsigned char, 3> green = { 44, 160, 44 };
-const std::array<unsigned char, 3> red = { 214, 39, 40 };
-const std::array<unsigned char, 3> purple = { 148, 103, 189 };
 
 struct ContourMeasure
 {
@@ -145,138 +140,6 @@ std::vector<size_t> chooseFrames(size_t count, int limit)
     }
   }
   return chosen;
-}
-
-std::vector<double> positive(std::vector<double> values, std::vector<double>& x)
-{
-  std::vector<double> keptX;
-  std::vector<double> keptY;
-  for (size_t i = 0; i < values.size(); ++i)
-  {
-    if (values[i] > 0.0 && std::isfinite(values[i]))
-    {
-      keptX.push_back(x[i]);
-      keptY.push_back(values[i]);
-    }
-  }
-  x = keptX;
-  return keptY;
-}
-
-ChartSpec::Series series(const std::string& name, std::vector<double> x, std::vector<double> y,
-  const std::array<unsigned char, 3>& colour, bool points = false)
-{
-  ChartSpec::Series s;
-  s.name = name;
-  s.x = std::move(x);
-  s.y = std::move(y);
-  s.colour = colour;
-  s.points = points;
-  return s;
-}
-
-vtkSmartPointer<vtkImageData> iterationCharts(
-  const RegistrationRecord& record, const RegistrationReportOptions& options)
-{
-  const std::vector<IterationRecord>& history = record.result.history;
-  std::vector<double> iteration;
-  std::vector<double> cost;
-  std::vector<double> residual;
-  std::vector<double> contourIteration;
-  std::vector<double> contour;
-  std::vector<double> tre;
-  std::vector<double> camera;
-  for (const IterationRecord& r : history)
-  {
-    iteration.push_back(r.iteration);
-    cost.push_back(r.cost);
-    residual.push_back(r.residualErrorMm);
-    if (r.withContours)
-    {
-      contourIteration.push_back(r.iteration);
-      contour.push_back(r.contourErrorPx);
-    }
-    if (record.truth)
-    {
-      if (!record.truth->targetsCT.empty())
-      {
-        tre.push_back(
-          targetRegistrationError(r.transform, record.truth->sfmToCT, record.truth->targetsCT));
-      }
-      double sum = 0.0;
-      const size_t n = std::min(record.truth->camerasCT.size(), record.data.frames.size());
-      for (size_t j = 0; j < n; ++j)
-      {
-        sum += cameraPositionError(
-          r.transform.apply(record.data.frames[j].cameraToSfm), record.truth->camerasCT[j]);
-      }
-      if (n > 0)
-      {
-        camera.push_back(sum / n);
-      }
-    }
-  }
-  ChartSpec costChart;
-  costChart.title = "Cost per iteration";
-  costChart.xTitle = "iteration";
-  costChart.yTitle = "cost (sum of C3d and C2d over inliers)";
-  costChart.logY = true;
-  std::vector<double> costX = iteration;
-  std::vector<double> costY = positive(cost, costX);
-  costChart.series.push_back(series("cost", costX, costY, blue));
-
-  ChartSpec errorChart;
-  errorChart.title = "Errors per iteration";
-  errorChart.xTitle = "iteration";
-  errorChart.yTitle = "error (mm; contour error in px)";
-  errorChart.series.push_back(series("residual (mm)", iteration, residual, blue));
-  if (!contour.empty())
-  {
-    errorChart.series.push_back(series("contour (px)", contourIteration, contour, orange));
-  }
-  if (!tre.empty())
-  {
-    errorChart.series.push_back(series("TRE (mm)", iteration, tre, green));
-  }
-  if (!camera.empty())
-  {
-    errorChart.series.push_back(series("camera position (mm)", iteration, camera, purple));
-  }
-  return renderCharts({ costChart, errorChart }, options.chartWidthPx, options.chartHeightPx);
-}
-
-vtkSmartPointer<vtkImageData> perturbationCharts(
-  const std::vector<PerturbationRun>& runs, const RegistrationReportOptions& options)
-{
-  std::vector<double> okOffset, okError, okContour, badOffset, badError, badContour;
-  for (const PerturbationRun& run : runs)
-  {
-    (run.success ? okOffset : badOffset).push_back(run.offsetMm);
-    (run.success ? okError : badError).push_back(run.finalErrorMm);
-    (run.success ? okContour : badContour).push_back(run.contourErrorPx);
-  }
-  ChartSpec error;
-  error.title = "Final error against initial offset";
-  error.xTitle = "initial offset (mm)";
-  error.yTitle = "final error (mm)";
-  ChartSpec contour;
-  contour.title = "Contour error against initial offset";
-  contour.xTitle = "initial offset (mm)";
-  contour.yTitle = "contour error (px)";
-  // Failures gather at large offsets and errors: the top left stays free.
-  error.legendLeft = true;
-  contour.legendLeft = true;
-  if (!okOffset.empty())
-  {
-    error.series.push_back(series("success", okOffset, okError, blue, true));
-    contour.series.push_back(series("success", okOffset, okContour, blue, true));
-  }
-  if (!badOffset.empty())
-  {
-    error.series.push_back(series("failure", badOffset, badError, red, true));
-    contour.series.push_back(series("failure", badOffset, badContour, red, true));
-  }
-  return renderCharts({ error, contour }, options.chartWidthPx, options.chartHeightPx);
 }
 
 json perturbationSummary(const std::vector<PerturbationRun>& runs)
@@ -472,7 +335,8 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
     report.pictures.push_back("scene.png");
     if (!result.history.empty())
     {
-      writePNG(iterationCharts(*record, options), (out / "iterations.png").string());
+      writePNG(iterationCharts(*record, options.chartWidthPx, options.chartHeightPx),
+        (out / "iterations.png").string());
       report.pictures.push_back("iterations.png");
     }
 
@@ -562,7 +426,8 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
 
   if (!runs.empty())
   {
-    writePNG(perturbationCharts(runs, options), (out / "perturbation.png").string());
+    writePNG(perturbationCharts(runs, options.chartWidthPx, options.chartHeightPx),
+      (out / "perturbation.png").string());
     report.pictures.push_back("perturbation.png");
     const json summary = perturbationSummary(runs);
     reportJson["perturbation"] = summary;
