@@ -27,6 +27,7 @@ struct SfmOptions
   std::string tracker;
   double fps = 30.0;
   double timeOffset = 0.0;
+  int threads = 0;
 };
 
 void runSfm(const SfmOptions& o)
@@ -47,7 +48,7 @@ void runSfm(const SfmOptions& o)
   {
     const std::vector<std::string> names =
       o.frames.empty() ? std::vector<std::string>() : FrameSequence::load(o.frames).names();
-    sfm = reconstructFrames({}, names, PinholeCamera(), o.colmap, &std::cerr);
+    sfm = reconstructFrames({}, names, PinholeCamera(), o.colmap, 0, &std::cerr);
   }
   else
   {
@@ -66,7 +67,7 @@ void runSfm(const SfmOptions& o)
       idealFrames(sequence, k, o.frames, o.intrinsics, &std::cerr);
     PinholeCamera ideal = k;
     ideal.removeDistortion();
-    sfm = reconstructFrames(frames, sequence.names(), ideal, "", &std::cerr);
+    sfm = reconstructFrames(frames, sequence.names(), ideal, "", o.threads, &std::cerr);
   }
   if (tracker)
   {
@@ -105,6 +106,9 @@ void addSfmCommand(CLI::App& app)
     ->add_option(
       "--time-offset", o->timeOffset, "time of the first frame on the tracker's clock, s")
     ->capture_default_str();
+  sfm->add_option("--threads", o->threads, "threads, 0 for all cores (results do not depend on it)")
+    ->capture_default_str()
+    ->check(CLI::Range(0, 1024));
   sfm->callback([o] { runSfm(*o); });
 }
 

@@ -122,7 +122,8 @@ void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
   PinholeCamera ideal = d.Intrinsics;
   ideal.removeDistortion();
   const cv::Mat mask = d.View && !d.View->isEverything() ? d.View->mask() : cv::Mat();
-  SfmReconstruction sfm = reconstructFrames(d.Frames, d.Names, ideal, colmapFolder, d.Log, mask);
+  SfmReconstruction sfm = reconstructFrames(
+    d.Frames, d.Names, ideal, colmapFolder, d.Opts.registration.threads, d.Log, mask);
   if (sfm.numberOfRegisteredFrames() < 2 || sfm.points.size() < 10)
   {
     throw Error("SfM registered " + std::to_string(sfm.numberOfRegisteredFrames()) +

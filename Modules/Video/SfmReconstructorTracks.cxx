@@ -2,6 +2,8 @@
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Statistics.h>
+#include <vimlop/Core/TaskPool.h>
+#include <vimlop/Video/FeatureMatching.h>
 #include <vimlop/Video/SfmGeometry.h>
 
 #include <opencv2/calib3d.hpp>
@@ -11,6 +13,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 
 namespace vimlop::detail
 {
@@ -49,79 +52,53 @@ private:
   std::vector<int> Parent;
 };
 
-/// Mutual nearest neighbours that pass the ratio test both ways.
-std::vector<std::pair<int, int>> matchDescriptors(const cv::Mat& a, const cv::Mat& b, double ratio)
-{
-  std::vector<std::pair<int, int>> result;
-  if (a.rows < 2 || b.rows < 2)
-  {
-    return result;
-  }
-  cv::BFMatcher matcher(cv::NORM_L2);
-  std::vector<std::vector<cv::DMatch>> forward;
-  std::vector<std::vector<cv::DMatch>> backward;
-  matcher.knnMatch(a, b, forward, 2);
-  matcher.knnMatch(b, a, backward, 2);
-  std::vector<int> bestBackward(static_cast<size_t>(b.rows), -1);
-  for (const std::vector<cv::DMatch>& m : backward)
-  {
-    if (m.size() == 2 && m[0].distance < ratio * m[1].distance)
-    {
-      bestBackward[static_cast<size_t>(m[0].queryIdx)] = m[0].trainIdx;
-    }
-  }
-  for (const std::vector<cv::DMatch>& m : forward)
-  {
-    if (m.size() == 2 && m[0].distance < ratio * m[1].distance &&
-      bestBackward[static_cast<size_t>(m[0].trainIdx)] == m[0].queryIdx)
-    {
-      result.emplace_back(m[0].queryIdx, m[0].trainIdx);
-    }
-  }
-  return result;
-}
-
 } // namespace
 
 void SfmReconstructor::detect()
 {
-  const cv::Ptr<cv::SIFT> sift =
-    cv::SIFT::create(this->O.maxFeatures, 3, this->O.contrastThreshold, 10.0, 1.6);
-  std::vector<double> counts;
-  for (const cv::Mat& frame : this->Frames)
-  {
-    cv::Mat grey;
-    if (frame.channels() == 3 && this->O.channel == StructureFromMotionChannel::Green)
-    {
-      cv::extractChannel(frame, grey, 1);
-    }
-    else if (frame.channels() == 3)
-    {
-      cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
-    }
-    else
-    {
-      grey = frame;
-    }
-    FrameFeatures f;
-    // Outside the mask (the field stop's border and edge) there is no
-    // texture of the anatomy, only the edge's corners, which do not move with it.
-    if (this->FeatureMask.empty())
-    {
-      sift->detectAndCompute(grey, cv::noArray(), f.keypoints, f.descriptors);
-    }
-    else
-    {
-      sift->detectAndCompute(grey, this->FeatureMask, f.keypoints, f.descriptors);
-    }
-    counts.push_back(static_cast<double>(f.keypoints.size()));
-    if (static_cast<int>(f.keypoints.size()) < this->O.minFeatures)
-    {
-      f.keypoints.clear();
-      f.descriptors = cv::Mat();
-    }
-    this->Features.push_back(std::move(f));
-  }
+  const int n = static_cast<int>(this->Frames.size());
+  std::vector<double> counts(static_cast<size_t>(n), 0.0);
+  this->Features.assign(static_cast<size_t>(n), FrameFeatures());
+  // One frame per task, each with its own detector: the features of a frame
+  // do not depend on the thread that found them.
+  TaskPool(this->O.threads)
+    .run(n,
+      [&](int i)
+      {
+        const cv::Mat& frame = this->Frames[static_cast<size_t>(i)];
+        cv::Mat grey;
+        if (frame.channels() == 3 && this->O.channel == StructureFromMotionChannel::Green)
+        {
+          cv::extractChannel(frame, grey, 1);
+        }
+        else if (frame.channels() == 3)
+        {
+          cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
+        }
+        else
+        {
+          grey = frame;
+        }
+        const cv::Ptr<cv::SIFT> sift =
+          cv::SIFT::create(this->O.maxFeatures, 3, this->O.contrastThreshold, 10.0, 1.6);
+        FrameFeatures& f = this->Features[static_cast<size_t>(i)];
+        // Outside the mask (the field stop's border and edge) there is no
+        // texture of the anatomy, only the edge's corners, which do not move with it.
+        if (this->FeatureMask.empty())
+        {
+          sift->detectAndCompute(grey, cv::noArray(), f.keypoints, f.descriptors);
+        }
+        else
+        {
+          sift->detectAndCompute(grey, this->FeatureMask, f.keypoints, f.descriptors);
+        }
+        counts[static_cast<size_t>(i)] = static_cast<double>(f.keypoints.size());
+        if (static_cast<int>(f.keypoints.size()) < this->O.minFeatures)
+        {
+          f.keypoints.clear();
+          f.descriptors = cv::Mat();
+        }
+      });
   const Summary s = summarize(counts);
   this->say("SIFT features per frame: median " + std::to_string(static_cast<int>(s.median)));
   int usable = 0;
@@ -139,58 +116,86 @@ void SfmReconstructor::detect()
 
 void SfmReconstructor::match()
 {
+  /// What one pair of frames gave: verified matches, or why not.
+  struct PairOutcome
+  {
+    std::optional<PairMatches> pair;
+    double medianMotionPx = 0.0; ///< 0 when too few candidates to tell
+    bool isStatic = false;
+  };
   const cv::Mat k = cameraMatrix(this->K);
   const int n = static_cast<int>(this->Frames.size());
+  std::vector<std::pair<int, int>> frames;
   for (int i = 0; i < n; ++i)
   {
     for (int j = i + 1; j < n && j <= i + this->O.matchWindow; ++j)
     {
-      const std::vector<std::pair<int, int>> candidates = matchDescriptors(
-        this->Features[i].descriptors, this->Features[j].descriptors, this->O.ratio);
-      if (static_cast<int>(candidates.size()) < this->O.minPairMatches)
+      frames.emplace_back(i, j);
+    }
+  }
+  // Each pair is matched and verified on its own (RANSAC draws from a
+  // generator seeded per call) and the outcomes are merged in pair order,
+  // so the matches are the same for any number of threads.
+  std::vector<PairOutcome> outcomes(frames.size());
+  TaskPool(this->O.threads)
+    .run(static_cast<int>(frames.size()),
+      [&](int t)
       {
-        continue;
-      }
-      std::vector<cv::Point2d> a;
-      std::vector<cv::Point2d> b;
-      std::vector<double> motion;
-      for (const auto& [p, q] : candidates)
-      {
-        a.push_back(this->Features[i].keypoints[p].pt);
-        b.push_back(this->Features[j].keypoints[q].pt);
-        motion.push_back(cv::norm(a.back() - b.back()));
-      }
-      // Frames that hardly differ carry no epipolar geometry (any essential
-      // matrix fits them); remember that they were seen, for the message.
-      const double medianMotion = summarize(motion).median;
-      this->LargestMotionPx = std::max(this->LargestMotionPx, medianMotion);
-      if (medianMotion < this->O.minMotionPx)
-      {
-        ++this->StaticPairs;
-        continue;
-      }
-      cv::Mat mask;
-      const cv::Mat e =
-        cv::findEssentialMat(a, b, k, cv::RANSAC, 0.999, this->O.essentialThresholdPx, mask);
-      if (e.rows != 3 || e.cols != 3)
-      {
-        continue; // degenerate (several solutions or none)
-      }
-      PairMatches pair;
-      pair.first = i;
-      pair.second = j;
-      pair.essential = e;
-      for (size_t m = 0; m < candidates.size(); ++m)
-      {
-        if (mask.at<unsigned char>(static_cast<int>(m)))
+        const auto [i, j] = frames[static_cast<size_t>(t)];
+        PairOutcome& outcome = outcomes[static_cast<size_t>(t)];
+        const std::vector<std::pair<int, int>> candidates = mutualNearestMatches(
+          this->Features[i].descriptors, this->Features[j].descriptors, this->O.ratio);
+        if (static_cast<int>(candidates.size()) < this->O.minPairMatches)
         {
-          pair.matches.push_back(candidates[m]);
+          return;
         }
-      }
-      if (static_cast<int>(pair.matches.size()) >= this->O.minPairMatches)
-      {
-        this->Pairs.push_back(std::move(pair));
-      }
+        std::vector<cv::Point2d> a;
+        std::vector<cv::Point2d> b;
+        std::vector<double> motion;
+        for (const auto& [p, q] : candidates)
+        {
+          a.push_back(this->Features[i].keypoints[p].pt);
+          b.push_back(this->Features[j].keypoints[q].pt);
+          motion.push_back(cv::norm(a.back() - b.back()));
+        }
+        // Frames that hardly differ carry no epipolar geometry (any essential
+        // matrix fits them); remember that they were seen, for the message.
+        outcome.medianMotionPx = summarize(motion).median;
+        if (outcome.medianMotionPx < this->O.minMotionPx)
+        {
+          outcome.isStatic = true;
+          return;
+        }
+        cv::Mat mask;
+        const cv::Mat e =
+          cv::findEssentialMat(a, b, k, cv::RANSAC, 0.999, this->O.essentialThresholdPx, mask);
+        if (e.rows != 3 || e.cols != 3)
+        {
+          return; // degenerate (several solutions or none)
+        }
+        PairMatches pair;
+        pair.first = i;
+        pair.second = j;
+        pair.essential = e;
+        for (size_t m = 0; m < candidates.size(); ++m)
+        {
+          if (mask.at<unsigned char>(static_cast<int>(m)))
+          {
+            pair.matches.push_back(candidates[m]);
+          }
+        }
+        if (static_cast<int>(pair.matches.size()) >= this->O.minPairMatches)
+        {
+          outcome.pair = std::move(pair);
+        }
+      });
+  for (PairOutcome& outcome : outcomes)
+  {
+    this->LargestMotionPx = std::max(this->LargestMotionPx, outcome.medianMotionPx);
+    this->StaticPairs += outcome.isStatic;
+    if (outcome.pair)
+    {
+      this->Pairs.push_back(std::move(*outcome.pair));
     }
   }
   this->say(std::to_string(this->Pairs.size()) + " frame pairs with verified matches");

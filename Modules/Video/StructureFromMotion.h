@@ -57,6 +57,9 @@ struct StructureFromMotionOptions
   double maxReprojectionErrorPx = 2.5;
   /// Points seen in fewer frames are removed at the end (default 3).
   int minTrackLength = 3;
+  /// Threads of feature detection and matching, the caller included (default
+  /// 0: the hardware concurrency). The reconstruction does not depend on it.
+  int threads = 0;
 };
 
 /**

@@ -76,12 +76,14 @@ std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCam
 
 SfmReconstruction reconstructFrames(const std::vector<cv::Mat>& frames,
   const std::vector<std::string>& names, const PinholeCamera& ideal,
-  const std::string& colmapFolder, std::ostream* log, const cv::Mat& featureMask)
+  const std::string& colmapFolder, int threads, std::ostream* log, const cv::Mat& featureMask)
 {
   SfmReconstruction sfm;
   if (colmapFolder.empty())
   {
-    StructureFromMotion engine;
+    StructureFromMotionOptions options;
+    options.threads = threads;
+    StructureFromMotion engine(options);
     engine.setFeatureMask(featureMask);
     sfm = engine.reconstruct(frames, ideal, names, log);
   }

@@ -39,11 +39,13 @@ std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCam
  * `colmapFolder` is empty, else the COLMAP sparse model in that folder
  * (frames matched by name). Warnings and unregistered frames go to `log`.
  * VIMLOP's own SfM detects features only on the non-zero pixels of
- * `featureMask` when it is not empty (a COLMAP model is read as it is).
+ * `featureMask` when it is not empty (a COLMAP model is read as it is), on
+ * `threads` threads (0: the hardware concurrency; the result is the same).
  */
 SfmReconstruction reconstructFrames(const std::vector<cv::Mat>& frames,
   const std::vector<std::string>& names, const PinholeCamera& ideal,
-  const std::string& colmapFolder, std::ostream* log, const cv::Mat& featureMask = cv::Mat());
+  const std::string& colmapFolder, int threads, std::ostream* log,
+  const cv::Mat& featureMask = cv::Mat());
 
 /// @brief Time of each frame on the tracker's clock: offset + index / fps.
 std::vector<double> frameTimesS(size_t count, double fps, double offsetS);

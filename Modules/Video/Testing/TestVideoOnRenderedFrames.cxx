@@ -90,3 +90,29 @@ TEST(VideoOnRenderedFrames, StructureFromMotionRecoversTheCamerasAndTheSurface)
   std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
   EXPECT_LT(distances[distances.size() / 2], 0.1);
 }
+
+TEST(VideoOnRenderedFrames, StructureFromMotionIsTheSameOnOneThreadAsOnTwo)
+{
+  const fixtures::Sequence& s = fixtures::sequence();
+  StructureFromMotionOptions one;
+  one.threads = 1;
+  StructureFromMotionOptions two;
+  two.threads = 2;
+  const SfmReconstruction a = StructureFromMotion(one).reconstruct(s.frames, s.intrinsics, s.names);
+  const SfmReconstruction b = StructureFromMotion(two).reconstruct(s.frames, s.intrinsics, s.names);
+  ASSERT_GT(a.points.size(), 200u);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (size_t p = 0; p < a.points.size(); ++p)
+  {
+    EXPECT_EQ(a.points[p].position, b.points[p].position) << p;
+    EXPECT_EQ(a.points[p].covariance, b.points[p].covariance) << p;
+    EXPECT_EQ(a.points[p].observations.size(), b.points[p].observations.size()) << p;
+  }
+  ASSERT_EQ(a.frames.size(), b.frames.size());
+  for (size_t f = 0; f < a.frames.size(); ++f)
+  {
+    EXPECT_EQ(a.frames[f].registered, b.frames[f].registered) << f;
+    EXPECT_EQ(a.frames[f].cameraToSfm.centre, b.frames[f].cameraToSfm.centre) << f;
+    EXPECT_EQ(a.frames[f].cameraToSfm.rotation, b.frames[f].cameraToSfm.rotation) << f;
+  }
+}
