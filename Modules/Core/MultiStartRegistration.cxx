@@ -4,6 +4,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/MethodDescriptor.h>
 #include <vimlop/Core/TaskPool.h>
+#include <vimlop/Core/TextFormat.h>
 
 #include <algorithm>
 #include <atomic>
@@ -57,10 +58,33 @@ double matchedContourFraction(const RegistrationResult& result)
   return points > 0 ? static_cast<double>(matched) / static_cast<double>(points) : 0.0;
 }
 
+std::string failureReason(const RegistrationResult& result, const MultiStartOptions& options)
+{
+  const double matched = matchedContourFraction(result);
+  if (!(matched >= options.minMatchedFraction))
+  {
+    return formatText("only %.0f %% of the video contour points matched a model contour (at "
+                      "least %.0f %% needed)",
+      100.0 * matched, 100.0 * options.minMatchedFraction);
+  }
+  if (!(result.contourErrorPx <= options.failureContourErrorPx))
+  {
+    return formatText("the contour error %.2f px is above the threshold of %.2f px",
+      result.contourErrorPx, options.failureContourErrorPx);
+  }
+  return std::string();
+}
+
 bool isFlaggedAsFailure(const RegistrationResult& result, const MultiStartOptions& options)
 {
-  return !(matchedContourFraction(result) >= options.minMatchedFraction &&
-    result.contourErrorPx <= options.failureContourErrorPx);
+  return !failureReason(result, options).empty();
+}
+
+void MultiStartResult::flagFailure(const MultiStartOptions& options)
+{
+  this->failureThresholdPx = options.failureContourErrorPx;
+  this->failureReason = vimlop::failureReason(this->best, options);
+  this->failure = !this->failureReason.empty();
 }
 
 SimilarityTransform startFromCameraPose(
@@ -86,7 +110,6 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
 
   // The candidates, in a fixed order: start-major, then scale factor.
   MultiStartResult out;
-  out.failureThresholdPx = options.failureContourErrorPx;
   const RegistrationOptions& base = options.registration;
   for (size_t s = 0; s < starts.size(); ++s)
   {
@@ -256,7 +279,7 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
 
   out.bestCandidate = *std::min_element(finalists.begin(), finalists.end(), byContourError);
   out.best = std::move(results[out.bestCandidate]);
-  out.failure = isFlaggedAsFailure(out.best, options);
+  out.flagFailure(options);
   return out;
 }
 

@@ -77,9 +77,14 @@ struct MultiStartResult
   RegistrationResult best; ///< the winner's full result
   int bestCandidate = -1;  ///< index into `candidates`
   std::vector<MultiStartCandidate> candidates;
-  /// True when the winner's contour error exceeds the failure threshold.
+  /// True when the winner is flagged as a failure (see failureReason()).
   bool failure = false;
   double failureThresholdPx = 0.0;
+  /// Why the winner is flagged, empty when it is not.
+  std::string failureReason;
+
+  /// @brief Sets the failure flag, its reason and threshold from `best` (V13).
+  void flagFailure(const MultiStartOptions& options);
 };
 
 /// @brief Progress: candidates finished of the phase's total ("screening" or
@@ -101,6 +106,14 @@ double matchedContourFraction(const RegistrationResult& result);
  * the options' threshold, or too few video contour points matched.
  */
 bool isFlaggedAsFailure(const RegistrationResult& result, const MultiStartOptions& options);
+
+/**
+ * @brief Why isFlaggedAsFailure() flags a result, in words for the user (e.g.
+ * "only 12 % of the video contour points matched a model contour (at least
+ * 50 % needed)"); empty when it does not. Too few matches come first: the
+ * mean error over them then says nothing.
+ */
+std::string failureReason(const RegistrationResult& result, const MultiStartOptions& options);
 
 /**
  * @brief Registers from every start in `startsSfmToCT` (times each scale

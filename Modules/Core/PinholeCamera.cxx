@@ -68,6 +68,15 @@ void PinholeCamera::validate() const
                "not "
             << distortion.size();
   }
+  else if (const Eigen::Index n = distortion.size(); lensModel == LensModel::RadialTangential &&
+           n != 0 && n != 4 && n != 5 && n != 8 && n != 12 && n != 14)
+  {
+    // OpenCV's models, which undistort the frames, take no other count.
+    problem << "the radial-tangential lens model needs 4, 5, 8, 12 or 14 distortion "
+               "coefficients (OpenCV's k1, k2, p1, p2[, k3[, k4, k5, k6[, s1, s2, s3, s4[, tx, "
+               "ty]]]]), not "
+            << n;
+  }
   if (!problem.str().empty())
   {
     throw Error(problem.str());

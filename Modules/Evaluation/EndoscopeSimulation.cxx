@@ -66,7 +66,8 @@ void EndoscopeSimulationOptions::validate() const
   this->artifacts.validate();
   this->trajectory.validate();
   const Eigen::Index coefficients = this->intrinsics.distortion.size();
-  // PinholeCamera::validate() above refuses a fisheye without its 4.
+  // PinholeCamera::validate() above refuses a fisheye without its 4 and
+  // counts OpenCV does not know; the simulated lens implements fewer.
   if (this->intrinsics.lensModel == LensModel::RadialTangential && coefficients != 0 &&
     coefficients != 4 && coefficients != 5 && coefficients != 8)
   {

@@ -73,6 +73,7 @@ std::string writeRegisteredPoses(
   document["version"] = 1;
   document["sfm_to_ct"] = recordjson::transformJson(result.sfmToCT);
   document["failure"] = outcome.failure;
+  document["failure_reason"] = outcome.failureReason;
   document["failure_threshold_px"] = outcome.failureThresholdPx;
   document["contour_error_px"] = result.contourErrorPx;
   document["residual_error_mm"] = result.residualErrorMm;
@@ -206,8 +207,8 @@ nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline
     { "init", record.confidence ? record.confidence->init : std::string() },
     { "candidates", outcome.candidates.size() }, { "termination", toString(result.termination) },
     { "residual_error_mm", result.residualErrorMm }, { "contour_error_px", result.contourErrorPx },
-    { "failure", outcome.failure }, { "failure_threshold_px", outcome.failureThresholdPx },
-    { "runtime_s", seconds } };
+    { "failure", outcome.failure }, { "failure_reason", outcome.failureReason },
+    { "failure_threshold_px", outcome.failureThresholdPx }, { "runtime_s", seconds } };
   if (timings)
   {
     summary["timings"] = timings->toJson();
@@ -243,7 +244,9 @@ std::vector<std::string> registrationSummaryLines(const nlohmann::json& summary)
     summary.at("init").get<std::string>().c_str(), summary.at("candidates").get<int>(),
     summary.at("runtime_s").get<double>(), summary.at("scale").get<double>(),
     summary.at("residual_error_mm").get<double>(), summary.at("contour_error_px").get<double>(),
-    summary.at("failure").get<bool>() ? " -- FLAGGED AS A FAILURE (above the threshold)" : "") };
+    summary.at("failure").get<bool>()
+      ? (" -- FLAGGED AS A FAILURE: " + summary.at("failure_reason").get<std::string>()).c_str()
+      : "") };
   if (summary.contains("camera_position_error_mm"))
   {
     const nlohmann::json& p = summary.at("camera_position_error_mm");

@@ -340,8 +340,7 @@ void VideoRegistrationPipeline::run()
     throw PipelineCancelled{};
   }
   outcome.bestCandidate = 0;
-  outcome.failureThresholdPx = multi.failureContourErrorPx;
-  outcome.failure = isFlaggedAsFailure(outcome.best, multi);
+  outcome.flagFailure(multi);
   d.Outcome = std::move(outcome);
   d.Timings.set("registration", watch);
   d.warnAtScaleBound();

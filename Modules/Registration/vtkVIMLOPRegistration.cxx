@@ -352,9 +352,8 @@ int vtkVIMLOPRegistration::RequestData(
       this->Outcome.candidates.resize(1);
       this->Outcome.candidates[0].initialSfmToCT = starts.front();
       this->Outcome.bestCandidate = 0;
-      this->Outcome.failureThresholdPx = this->MultiStart.failureContourErrorPx;
-      this->Outcome.failure = vimlop::isFlaggedAsFailure(this->Result, this->MultiStart);
       this->Outcome.best = this->Result;
+      this->Outcome.flagFailure(this->MultiStart);
     }
     else
     {

@@ -120,6 +120,8 @@ TEST(MultiStartRegistration, FlagsFailureSkipsOutsideStartsAndCancels)
   EXPECT_EQ(r.bestCandidate, 1);
   EXPECT_TRUE(r.failure);
   EXPECT_EQ(r.failureThresholdPx, 1e-6);
+  EXPECT_NE(r.failureReason.find("is above the threshold of 0.00 px"), std::string::npos)
+    << r.failureReason;
 
   try
   {
@@ -170,4 +172,31 @@ TEST(MultiStartRegistration, APoseThatMatchesNoContourIsAFailureNotAPerfectFit)
   good.contourErrorPx = 7.0; // above the 6 px threshold
   EXPECT_TRUE(isFlaggedAsFailure(good, MultiStartOptions()));
   EXPECT_DOUBLE_EQ(matchedContourFraction(RegistrationResult()), 0.0);
+}
+
+TEST(MultiStartRegistration, TheFailureFlagSaysWhyInWords)
+{
+  // A triangle soup matches few contour points with a small error over them:
+  // the reason must be the matches, not "above the threshold".
+  RegistrationResult r;
+  r.frames.resize(1);
+  r.frames[0].contourPoints = 200;
+  r.frames[0].matched = 24;
+  r.contourErrorPx = 0.4;
+  EXPECT_EQ(failureReason(r, MultiStartOptions()),
+    "only 12 % of the video contour points matched a model contour (at least 50 % needed)");
+  r.frames[0].matched = 190;
+  r.contourErrorPx = 7.25;
+  EXPECT_EQ(failureReason(r, MultiStartOptions()),
+    "the contour error 7.25 px is above the threshold of 6.00 px");
+  r.contourErrorPx = 1.0;
+  EXPECT_EQ(failureReason(r, MultiStartOptions()), "");
+
+  MultiStartResult outcome;
+  outcome.best = r;
+  outcome.best.contourErrorPx = 7.25;
+  outcome.flagFailure(MultiStartOptions());
+  EXPECT_TRUE(outcome.failure);
+  EXPECT_EQ(outcome.failureThresholdPx, 6.0);
+  EXPECT_EQ(outcome.failureReason, "the contour error 7.25 px is above the threshold of 6.00 px");
 }

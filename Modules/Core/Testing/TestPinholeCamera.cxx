@@ -117,3 +117,17 @@ TEST(PinholeCamera, AFisheyeLensNeedsExactlyFourCoefficientsAndRemovingTheLensMa
   EXPECT_EQ(k.lensModel, LensModel::RadialTangential);
   EXPECT_NO_THROW(k.validate());
 }
+
+TEST(PinholeCamera, ARadialTangentialLensTakesOnlyTheCoefficientCountsOpenCVKnows)
+{
+  PinholeCamera k = makeCamera();
+  for (int n : { 0, 4, 5, 8, 12, 14 })
+  {
+    k.distortion = Eigen::VectorXd::Constant(n, 0.01);
+    EXPECT_NO_THROW(k.validate()) << n;
+  }
+  k.distortion = Eigen::VectorXd::Constant(7, 0.01);
+  EXPECT_EQ(fixtures::errorMessageOf([&] { k.validate(); }),
+    "the radial-tangential lens model needs 4, 5, 8, 12 or 14 distortion coefficients (OpenCV's "
+    "k1, k2, p1, p2[, k3[, k4, k5, k6[, s1, s2, s3, s4[, tx, ty]]]]), not 7");
+}

@@ -153,8 +153,13 @@ TEST(SimulatedVideo, RefusesANegativeLatencyAWildFocalErrorAndAnOddNumberOfCoeff
   o = EndoscopeSimulationOptions();
   o.intrinsics.distortion = Eigen::Vector3d(-0.3, 0.1, 0.0);
   EXPECT_EQ(validationMessage(o),
+    "the radial-tangential lens model needs 4, 5, 8, 12 or 14 distortion coefficients (OpenCV's "
+    "k1, k2, p1, p2[, k3[, k4, k5, k6[, s1, s2, s3, s4[, tx, ty]]]]), not 3");
+  // OpenCV's thin-prism model is a camera, but not one the simulation renders.
+  o.intrinsics.distortion = Eigen::VectorXd::Zero(12);
+  EXPECT_EQ(validationMessage(o),
     "the lens distortion needs 4, 5 or 8 coefficients (OpenCV's k1, k2, p1, p2[, k3[, k4, k5, "
-    "k6]]), not 3");
+    "k6]]), not 12");
   o = EndoscopeSimulationOptions();
   o.fieldStop.vignettingStrength = 2.0;
   EXPECT_EQ(validationMessage(o), "the vignetting strength must lie in [0, 1], not 2");

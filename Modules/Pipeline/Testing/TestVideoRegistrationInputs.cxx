@@ -53,13 +53,14 @@ TEST(RegistrationSummaryLines, SayTheFlagAndTheTruthErrorsWhenThereAreSome)
 {
   nlohmann::json summary = { { "frames", 8 }, { "points", 900 }, { "init", "manual" },
     { "candidates", 1 }, { "runtime_s", 2.5 }, { "scale", 0.5 }, { "residual_error_mm", 0.2 },
-    { "contour_error_px", 7.5 }, { "failure", true } };
+    { "contour_error_px", 7.5 }, { "failure", true },
+    { "failure_reason", "the contour error 7.50 px is above the threshold of 6.00 px" } };
   std::vector<std::string> lines = registrationSummaryLines(summary);
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_EQ(lines[0],
     "registered 8 frames (900 SfM points) from manual (1 candidates) in 2.5 s: scale 0.5000 "
-    "mm/unit, residual 0.200 mm, contour error 7.50 px -- FLAGGED AS A FAILURE (above the "
-    "threshold)");
+    "mm/unit, residual 0.200 mm, contour error 7.50 px -- FLAGGED AS A FAILURE: the contour "
+    "error 7.50 px is above the threshold of 6.00 px");
   summary["failure"] = false;
   summary["camera_position_error_mm"] = { { "mean", 0.1 }, { "max", 0.3 } };
   summary["camera_angle_error_deg"] = { { "mean", 0.2 }, { "max", 0.4 } };

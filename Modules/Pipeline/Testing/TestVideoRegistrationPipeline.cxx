@@ -241,6 +241,7 @@ TEST(RegistrationOutputs, ThePosesAreOnDiskAndCompleteBeforeThePicturesTheVideoA
   const nlohmann::json poses = nlohmann::json::parse(in);
   EXPECT_EQ(poses.at("format"), "vimlop-registered-poses");
   EXPECT_EQ(poses.at("failure").get<bool>(), pipeline.outcome().failure);
+  EXPECT_EQ(poses.at("failure_reason").get<std::string>(), pipeline.outcome().failureReason);
   EXPECT_NEAR(
     poses.at("sfm_to_ct").at("scale").get<double>(), pipeline.result().sfmToCT.scale, 1e-12);
 }
