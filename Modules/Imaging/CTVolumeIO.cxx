@@ -315,9 +315,20 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
     fail(path, "cannot read the " + format + " header (" + itkMessage(e) + ")");
   }
   const unsigned dimensions = io->GetNumberOfDimensions();
-  if (dimensions < 3 || io->GetDimensions(2) < 2)
+  std::string size;
+  for (unsigned axis = 0; axis < std::min(dimensions, 3u); ++axis)
   {
-    fail(path, "the image is 2-D; a 3-D CT volume is needed");
+    size += (axis ? " x " : "") + std::to_string(io->GetDimensions(axis));
+  }
+  if (dimensions < 3)
+  {
+    fail(path, "the image is 2-D (" + size + " pixels); a 3-D CT volume is needed");
+  }
+  if (io->GetDimensions(0) < 2 || io->GetDimensions(1) < 2 || io->GetDimensions(2) < 2)
+  {
+    // One voxel thick along an axis is a slice (or a point), not a volume.
+    fail(
+      path, "the image is " + size + " voxels; a 3-D CT volume needs at least 2 along each axis");
   }
   if (dimensions > 3 && io->GetDimensions(3) > 1)
   {

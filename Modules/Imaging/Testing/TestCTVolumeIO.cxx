@@ -136,13 +136,31 @@ TEST(CTVolumeIO, ErrorsNameTheFileAndTheProblem)
   EXPECT_EQ(messageOf(truncated),
     "'" + truncated + "': the file is truncated (1376 bytes, the header promises 4448)");
 
-  // A 2-D image.
+  // One slice, and a single voxel: one voxel thick is not a volume.
   CTVolume flat = makeVolume();
   flat.dims = { 7, 5, 1 };
   flat.intensities.resize(35);
   writeCTVolume(flat, out + "/flat.nrrd");
   EXPECT_EQ(messageOf(out + "/flat.nrrd"),
-    "'" + out + "/flat.nrrd': the image is 2-D; a 3-D CT volume is needed");
+    "'" + out +
+      "/flat.nrrd': the image is 7 x 5 x 1 voxels; a 3-D CT volume needs at least 2 "
+      "along each axis");
+  CTVolume voxel = makeVolume();
+  voxel.dims = { 1, 1, 1 };
+  voxel.intensities.resize(1);
+  writeCTVolume(voxel, out + "/voxel.nrrd");
+  EXPECT_EQ(messageOf(out + "/voxel.nrrd"),
+    "'" + out +
+      "/voxel.nrrd': the image is 1 x 1 x 1 voxels; a 3-D CT volume needs at least 2 "
+      "along each axis");
+  CTVolume column = makeVolume();
+  column.dims = { 1, 6, 9 };
+  column.intensities.resize(54);
+  writeCTVolume(column, out + "/column.nrrd");
+  EXPECT_EQ(messageOf(out + "/column.nrrd"),
+    "'" + out +
+      "/column.nrrd': the image is 1 x 6 x 9 voxels; a 3-D CT volume needs at least 2 "
+      "along each axis");
 
   // Garbage with a NIfTI name.
   std::ofstream(out + "/garbage.nii") << "garbage";
