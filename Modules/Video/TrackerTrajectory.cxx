@@ -57,6 +57,51 @@ bool parseNumber(const std::string& text, double& value)
   return end == text.c_str() + text.size() && std::isfinite(value);
 }
 
+/// A tracker glitch (metal nearby, a loose sensor) is a sample far from the
+/// samples around it. The tip of a hand-held endoscope moves at most about
+/// 100 mm/s, so within a window of samples every clean position lies within
+/// that speed times the window's span of the others, and of their median;
+/// the 10 mm floor covers tracker noise. A glitch of a metre otherwise
+/// made the scale 14 times too large.
+constexpr int GlitchWindowHalfWidth = 3;
+constexpr double GlitchMaxSpeedMmPerS = 100.0;
+constexpr double GlitchFloorMm = 10.0;
+
+/// Indices of samples (sorted by time) far from the median of their window.
+std::vector<size_t> findGlitches(const std::vector<TrackerTrajectory::Sample>& samples)
+{
+  std::vector<size_t> glitches;
+  const size_t n = samples.size();
+  std::vector<double> values;
+  for (size_t i = 0; i < n; ++i)
+  {
+    const size_t first = i >= GlitchWindowHalfWidth ? i - GlitchWindowHalfWidth : 0;
+    const size_t last = std::min(n - 1, i + GlitchWindowHalfWidth);
+    if (last - first < 3)
+    {
+      continue; // too few samples for a median to outvote one
+    }
+    Eigen::Vector3d median;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      values.clear();
+      for (size_t j = first; j <= last; ++j)
+      {
+        values.push_back(samples[j].positionMm[axis]);
+      }
+      std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+      median[axis] = values[values.size() / 2];
+    }
+    const double spanS = samples[last].timeS - samples[first].timeS;
+    const double limitMm = GlitchFloorMm + std::sqrt(3.0) * GlitchMaxSpeedMmPerS * spanS;
+    if ((samples[i].positionMm - median).norm() > limitMm)
+    {
+      glitches.push_back(i);
+    }
+  }
+  return glitches;
+}
+
 } // namespace
 
 TrackerTrajectory::TrackerTrajectory(
@@ -85,6 +130,27 @@ TrackerTrajectory::TrackerTrajectory(
   {
     warnings->push_back(
       "dropped " + std::to_string(duplicates) + " tracker sample(s) with a timestamp already seen");
+  }
+  const std::vector<size_t> glitches = findGlitches(this->Samples);
+  if (!glitches.empty())
+  {
+    std::ostringstream message;
+    message << "dropped " << glitches.size()
+            << " tracker sample(s) far from the samples around them, a glitch of the tracker? (at ";
+    for (size_t k = 0; k < std::min<size_t>(glitches.size(), 3); ++k)
+    {
+      message << (k ? ", " : "") << std::fixed << std::setprecision(3)
+              << this->Samples[glitches[k]].timeS << " s";
+    }
+    message << (glitches.size() > 3 ? ", ...)" : ")");
+    for (auto g = glitches.rbegin(); g != glitches.rend(); ++g)
+    {
+      this->Samples.erase(this->Samples.begin() + static_cast<std::ptrdiff_t>(*g));
+    }
+    if (warnings)
+    {
+      warnings->push_back(message.str());
+    }
   }
   if (this->Samples.size() < 2)
   {

@@ -32,7 +32,9 @@ public:
 
   /**
    * @brief A trajectory from samples in any order; samples with the same time
-   * as an earlier one are dropped (with a warning in `warnings`).
+   * as an earlier one are dropped, and so are glitches: samples farther from
+   * the median of the 3 before and after them than a tip moving 100 mm/s
+   * could be, plus 10 mm (each with a warning in `warnings`).
    * @throws vimlop::Error for fewer than 2 samples or a non-finite value.
    */
   explicit TrackerTrajectory(

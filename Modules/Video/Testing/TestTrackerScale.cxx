@@ -93,6 +93,29 @@ TEST(TrackerScale, ScalesSfMToTheTrackedLength)
     estimateTrackerScale(tracker(-0.3, 1.3, 40.0, 0.2, 1), times, centres, everyFrame).scale, 0.55);
 }
 
+TEST(TrackerScale, ATrackerGlitchIsDroppedWithAWarningAndLeavesTheScale)
+{
+  std::vector<double> times;
+  std::vector<Eigen::Vector3d> centres;
+  frames(0.5, times, centres);
+  std::vector<TrackerTrajectory::Sample> samples = tracker(-0.3, 1.3, 40.0, 0.2, 1).samples();
+  const TrackerTrajectory clean(samples);
+  EXPECT_EQ(clean.samples().size(), samples.size()); // no clean sample is taken for a glitch
+  // One sample a metre off, and two neighbours 300 mm off.
+  samples[20].positionMm.x() += 1000.0;
+  samples[30].positionMm.y() -= 300.0;
+  samples[31].positionMm.y() -= 300.0;
+  std::vector<std::string> warnings;
+  const TrackerTrajectory glitchy(samples, &warnings);
+  EXPECT_EQ(glitchy.samples().size(), samples.size() - 3);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0],
+    "dropped 3 tracker sample(s) far from the samples around them, a glitch of the tracker? (at "
+    "0.200 s, 0.450 s, 0.475 s)");
+  EXPECT_NEAR(estimateTrackerScale(glitchy, times, centres).scale,
+    estimateTrackerScale(clean, times, centres).scale, 0.5 * 0.01);
+}
+
 TEST(TrackerScale, DropsFramesOutsideTheRecordingAndUnregisteredOnes)
 {
   std::vector<double> times;
