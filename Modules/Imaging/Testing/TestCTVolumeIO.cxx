@@ -5,9 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
+#include <array>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
 using namespace vimlop;
 
@@ -136,31 +137,21 @@ TEST(CTVolumeIO, ErrorsNameTheFileAndTheProblem)
   EXPECT_EQ(messageOf(truncated),
     "'" + truncated + "': the file is truncated (1376 bytes, the header promises 4448)");
 
-  // One slice, and a single voxel: one voxel thick is not a volume.
-  CTVolume flat = makeVolume();
-  flat.dims = { 7, 5, 1 };
-  flat.intensities.resize(35);
-  writeCTVolume(flat, out + "/flat.nrrd");
-  EXPECT_EQ(messageOf(out + "/flat.nrrd"),
-    "'" + out +
-      "/flat.nrrd': the image is 7 x 5 x 1 voxels; a 3-D CT volume needs at least 2 "
-      "along each axis");
-  CTVolume voxel = makeVolume();
-  voxel.dims = { 1, 1, 1 };
-  voxel.intensities.resize(1);
-  writeCTVolume(voxel, out + "/voxel.nrrd");
-  EXPECT_EQ(messageOf(out + "/voxel.nrrd"),
-    "'" + out +
-      "/voxel.nrrd': the image is 1 x 1 x 1 voxels; a 3-D CT volume needs at least 2 "
-      "along each axis");
-  CTVolume column = makeVolume();
-  column.dims = { 1, 6, 9 };
-  column.intensities.resize(54);
-  writeCTVolume(column, out + "/column.nrrd");
-  EXPECT_EQ(messageOf(out + "/column.nrrd"),
-    "'" + out +
-      "/column.nrrd': the image is 1 x 6 x 9 voxels; a 3-D CT volume needs at least 2 "
-      "along each axis");
+  // A slice, a single voxel, a column: one voxel thick is not a volume.
+  for (const auto& [name, dims, size] :
+    { std::make_tuple("flat", std::array<int, 3>{ 7, 5, 1 }, "7 x 5 x 1"),
+      std::make_tuple("voxel", std::array<int, 3>{ 1, 1, 1 }, "1 x 1 x 1"),
+      std::make_tuple("column", std::array<int, 3>{ 1, 6, 9 }, "1 x 6 x 9") })
+  {
+    CTVolume thin = makeVolume();
+    thin.dims = dims;
+    thin.intensities.resize(thin.numberOfVoxels());
+    const std::string path = out + "/" + name + ".nrrd";
+    writeCTVolume(thin, path);
+    EXPECT_EQ(messageOf(path),
+      "'" + path + "': the image is " + size +
+        " voxels; a 3-D CT volume needs at least 2 along each axis");
+  }
 
   // Garbage with a NIfTI name.
   std::ofstream(out + "/garbage.nii") << "garbage";
