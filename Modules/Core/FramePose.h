@@ -3,6 +3,8 @@
 
 #include <vimlop/Core/CameraPose.h>
 
+#include <vector>
+
 namespace vimlop
 {
 
@@ -15,6 +17,19 @@ struct FramePose
   int frameId = 0;
   CameraPose cameraToWorld;
 };
+
+/// @brief Farthest a camera may lie from the origin of its world (the CT), mm:
+/// 1 km, far beyond any scanner, and far inside the float range that the
+/// OpenIGTLink messages carry (a translation above 3.4e38 became -inf).
+constexpr double maxFramePoseDistanceMm = 1e6;
+
+/**
+ * @brief Checks poses before they are used or sent: every frame id once, and
+ * every camera finite and within maxFramePoseDistanceMm of the origin.
+ * @throws vimlop::Error naming the first bad pose by its index, e.g. "pose 3:
+ * frame id 7 repeats pose 1's".
+ */
+void checkFramePoses(const std::vector<FramePose>& poses);
 
 } // namespace vimlop
 

@@ -8,8 +8,10 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 namespace vimlop
 {
@@ -69,8 +71,16 @@ std::vector<FramePose> readFramePoses(const std::string& path)
     {
       m(i / 4, i % 4) = matrix[static_cast<std::size_t>(i)].get<double>();
     }
+    // Read wide: a 64-bit id read as int wraps, and 2^40 became frame 0.
+    const std::int64_t id = entry["frame_id"].get<std::int64_t>();
+    if (id < 0 || id > std::numeric_limits<int>::max())
+    {
+      fail(path,
+        where + ": frame_id " + std::to_string(id) + " is out of range (0 to " +
+          std::to_string(std::numeric_limits<int>::max()) + ")");
+    }
     FramePose pose;
-    pose.frameId = entry["frame_id"].get<int>();
+    pose.frameId = static_cast<int>(id);
     try
     {
       pose.cameraToWorld = CameraPose::fromMatrix(m, 1e-5);
@@ -81,6 +91,14 @@ std::vector<FramePose> readFramePoses(const std::string& path)
     }
     poses.push_back(pose);
     ++index;
+  }
+  try
+  {
+    checkFramePoses(poses);
+  }
+  catch (const Error& e)
+  {
+    fail(path, e.what());
   }
   return poses;
 }

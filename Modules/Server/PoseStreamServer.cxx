@@ -104,6 +104,22 @@ PoseStreamServer::~PoseStreamServer()
 void PoseStreamServer::publish(
   const SimilarityTransform* ctFromSfm, const std::vector<FramePose>& cameraToCT)
 {
+  // Refused at the source: the float matrices of the protocol would carry an
+  // overflow as -inf, and a repeated id as two poses of one device.
+  try
+  {
+    checkFramePoses(cameraToCT);
+    if (ctFromSfm &&
+      (!ctFromSfm->isValid() || ctFromSfm->translation.norm() > maxFramePoseDistanceMm ||
+        !(ctFromSfm->scale < maxFramePoseDistanceMm)))
+    {
+      throw Error("CTFromSfM is not a finite similarity within 1 km of the CT origin");
+    }
+  }
+  catch (const Error& e)
+  {
+    throw Error(std::string("pose server: refusing to publish: ") + e.what());
+  }
   std::string messages =
     ctFromSfm ? packTransform("CTFromSfM", intoRas(ctFromSfm->matrix())) : std::string();
   for (const FramePose& pose : cameraToCT)

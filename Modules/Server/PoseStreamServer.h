@@ -67,6 +67,9 @@ public:
   /**
    * @brief Sets the poses sent to new clients and sends them to connected
    * ones; `ctFromSfm` may be null when only camera poses are known.
+   * @throws vimlop::Error, publishing nothing, for poses checkFramePoses()
+   * refuses or a CTFromSfM that is not a finite similarity within 1 km of
+   * the CT origin.
    */
   void publish(const SimilarityTransform* ctFromSfm, const std::vector<FramePose>& cameraToCT);
 
