@@ -22,10 +22,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <mutex>
 #include <sstream>
 
@@ -391,7 +393,57 @@ bool isWritableCTVolumePath(const std::string& path)
   return !format.empty() && format != "DICOM";
 }
 
-CTVolume readCTVolume(const std::string& path, const std::string& dicomSeriesUID)
+namespace
+{
+
+/// Geometry no CT has, refused whatever the format: ITK reads a spacing of
+/// 1e300 mm or an origin of 1e308 mm as given, and they overflow later.
+void checkGeometry(const std::string& path, const CTVolume& volume)
+{
+  constexpr double maxSpacingMm = 100.0;
+  constexpr double maxOriginMm = 1e6;
+  std::ostringstream problem;
+  problem << std::setprecision(6);
+  const auto& s = volume.spacingMm;
+  const auto& o = volume.originMm;
+  if (!std::all_of(s.begin(), s.end(),
+        [](double v) { return std::isfinite(v) && v > 0.0 && v <= maxSpacingMm; }))
+  {
+    problem << "the voxel spacing " << s[0] << " x " << s[1] << " x " << s[2]
+            << " mm is not a CT's: each must be finite, positive and at most " << maxSpacingMm
+            << " mm";
+  }
+  else if (!std::all_of(o.begin(), o.end(),
+             [](double v) { return std::isfinite(v) && std::abs(v) <= maxOriginMm; }))
+  {
+    problem << "the origin (" << o[0] << ", " << o[1] << ", " << o[2]
+            << ") mm is not finite or lies farther than 1 km from the scanner's";
+  }
+  else
+  {
+    // The columns (the voxel axes in LPS) unit and perpendicular.
+    const auto& d = volume.direction;
+    for (int a = 0; a < 3 && problem.str().empty(); ++a)
+    {
+      for (int b = a; b < 3; ++b)
+      {
+        const double dot = d[a] * d[b] + d[3 + a] * d[3 + b] + d[6 + a] * d[6 + b];
+        if (!(std::abs(dot - (a == b ? 1.0 : 0.0)) <= 1e-3))
+        {
+          problem << "the direction matrix is not orthonormal (its columns, the voxel axes, must "
+                     "be unit vectors at right angles)";
+          break;
+        }
+      }
+    }
+  }
+  if (!problem.str().empty())
+  {
+    fail(path, problem.str());
+  }
+}
+
+CTVolume readAnyFormat(const std::string& path, const std::string& dicomSeriesUID)
 {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
@@ -416,6 +468,15 @@ CTVolume readCTVolume(const std::string& path, const std::string& dicomSeriesUID
       ".inv3 or a DICOM folder)");
   }
   return readImageFile(path, format);
+}
+
+} // namespace
+
+CTVolume readCTVolume(const std::string& path, const std::string& dicomSeriesUID)
+{
+  CTVolume volume = readAnyFormat(path, dicomSeriesUID);
+  checkGeometry(path, volume);
+  return volume;
 }
 
 void writeCTVolume(const CTVolume& volume, const std::string& path)

@@ -164,3 +164,34 @@ TEST(CTVolumeIO, ErrorsNameTheFileAndTheProblem)
 
   EXPECT_THROW(writeCTVolume(makeVolume(), out + "/volume.png"), Error);
 }
+
+TEST(CTVolumeIO, GeometryNoCTHasIsRefused)
+{
+  // MetaImage headers written by hand: ITK reads each of them as given.
+  std::ofstream(out + "/cube.raw", std::ios::binary) << std::string(2 * 4 * 4 * 4, '\0');
+  auto header = [](const std::string& name, const std::string& geometry)
+  {
+    const std::string path = out + "/" + name + ".mhd";
+    std::ofstream(path) << "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\n"
+                        << geometry << "ElementType = MET_SHORT\nElementDataFile = cube.raw\n";
+    return path;
+  };
+  const std::string fine = header("fine", "ElementSpacing = 0.5 0.5 1.25\n");
+  EXPECT_EQ(messageOf(fine), "no error");
+  const std::string huge = header("huge-spacing", "ElementSpacing = 1e300 1 1\n");
+  EXPECT_EQ(messageOf(huge),
+    "'" + huge +
+      "': the voxel spacing 1e+300 x 1 x 1 mm is not a CT's: each must be finite, positive and "
+      "at most 100 mm");
+  const std::string far = header("far-origin", "ElementSpacing = 1 1 1\nOffset = 1e308 0 0\n");
+  EXPECT_EQ(messageOf(far),
+    "'" + far +
+      "': the origin (1e+308, 0, 0) mm is not finite or lies farther than 1 km from the "
+      "scanner's");
+  const std::string sheared =
+    header("sheared", "ElementSpacing = 1 1 1\nTransformMatrix = 1 0 0 0.5 1 0 0 0 1\n");
+  EXPECT_EQ(messageOf(sheared),
+    "'" + sheared +
+      "': the direction matrix is not orthonormal (its columns, the voxel axes, must be unit "
+      "vectors at right angles)");
+}
