@@ -46,6 +46,7 @@ find_package(ITK 5.2 REQUIRED COMPONENTS
   ITKImageGrid
   ITKImageIntensity
   ITKIOImageBase
+  ITKGDCM
   ITKIOGDCM
   ITKIOMeta
   ITKIONIFTI

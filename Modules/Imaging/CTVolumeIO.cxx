@@ -5,6 +5,7 @@
 #include <vimlop/Imaging/CTVolumeIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/DicomSeriesGeometry.h>
 #include <vimlop/Imaging/ITKImageIOFactories.h>
 #include <vimlop/Imaging/InVesaliusProjectReader.h>
 
@@ -24,6 +25,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -181,10 +183,24 @@ CTVolume readDicomSeries(const std::string& folder, const std::string& seriesUID
         << " slices); choose another by its series UID";
     warnings.push_back(msg.str());
   }
-  const std::vector<std::string> files = names->GetFileNames(chosen);
-  if (files.size() < 2)
+  // Judge every slice's header before ITK makes a volume of them: its series
+  // reader assumes one orientation and even steps, and fills what is missing.
+  std::vector<DicomSliceHeader> headers;
+  std::vector<std::string> files;
+  try
   {
-    fail(folder, "the DICOM series has a single slice; a 3-D CT is needed");
+    for (const std::string& file : names->GetFileNames(chosen))
+    {
+      headers.push_back(readDicomSliceHeader(file));
+    }
+    for (std::size_t index : checkDicomSeriesGeometry(headers).order)
+    {
+      files.push_back(headers[index].file);
+    }
+  }
+  catch (const Error& e)
+  {
+    fail(folder, e.what());
   }
   auto reader = itk::ImageSeriesReader<ImageType>::New();
   reader->SetImageIO(itk::GDCMImageIO::New());
@@ -265,31 +281,65 @@ void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
   }
 }
 
-/// A MetaImage header names its data file; MetaIO prints to stderr when it
-/// is missing, so look first and say it in one line.
-void checkMetaImageDataFile(const std::string& path)
+/// A MetaImage header names its data file (or LOCAL: the data follow the
+/// header). MetaIO prints to stderr when the file is missing and reads a
+/// short one as zeros (0 HU), so look first and say it in one line.
+void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
 {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   std::string line;
+  bool compressed = false;
+  long long headerBytes = 0; // HeaderSize: bytes to skip in the data file; -1 reads the tail
   for (int lines = 0; lines < 200 && std::getline(in, line); ++lines)
   {
     const auto equals = line.find('=');
-    if (equals == std::string::npos || line.compare(0, 15, "ElementDataFile") != 0)
+    if (equals == std::string::npos)
     {
       continue;
     }
-    std::string file = line.substr(equals + 1);
-    file.erase(0, file.find_first_not_of(" \t"));
-    file.erase(file.find_last_not_of(" \t\r") + 1);
-    if (file == "LOCAL" || file == "LIST" || file.find('%') != std::string::npos)
+    std::string key = line.substr(0, equals);
+    key.erase(key.find_last_not_of(" \t") + 1);
+    std::string value = line.substr(equals + 1);
+    value.erase(0, value.find_first_not_of(" \t"));
+    value.erase(value.find_last_not_of(" \t\r") + 1);
+    if (key == "CompressedData")
     {
-      return;
+      compressed = lowerCase(value) == "true";
     }
-    const std::filesystem::path data = std::filesystem::path(path).parent_path() / file;
-    std::error_code ec;
-    if (!std::filesystem::exists(data, ec))
+    else if (key == "HeaderSize")
     {
-      fail(path, "the data file '" + file + "' named by the header does not exist");
+      headerBytes = std::atoll(value.c_str());
+    }
+    if (key != "ElementDataFile")
+    {
+      continue;
+    }
+    if (value == "LIST" || value.find('%') != std::string::npos)
+    {
+      return; // one file per slice: left to MetaIO
+    }
+    std::error_code ec;
+    std::uint64_t available = 0;
+    if (value == "LOCAL")
+    {
+      const std::uint64_t size = std::filesystem::file_size(path, ec);
+      available = size - std::min(size, static_cast<std::uint64_t>(in.tellg()));
+    }
+    else
+    {
+      const std::filesystem::path data = std::filesystem::path(path).parent_path() / value;
+      if (!std::filesystem::exists(data, ec))
+      {
+        fail(path, "the data file '" + value + "' named by the header does not exist");
+      }
+      available = std::filesystem::file_size(data, ec);
+      available -= std::min<std::uint64_t>(available, std::max(headerBytes, 0LL));
+    }
+    if (!compressed && !ec && available < voxelBytes)
+    {
+      fail(path,
+        "the image data are cut short (" + std::to_string(available) +
+          " bytes, the header promises " + std::to_string(voxelBytes) + ")");
     }
     return;
   }
@@ -297,10 +347,6 @@ void checkMetaImageDataFile(const std::string& path)
 
 CTVolume readImageFile(const std::string& path, const std::string& format)
 {
-  if (endsWith(lowerCase(path), ".mhd"))
-  {
-    checkMetaImageDataFile(path);
-  }
   itk::ImageIOBase::Pointer io =
     itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
   if (!io)
@@ -361,6 +407,10 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
   if (endsWith(lowerCase(path), ".nii"))
   {
     checkNiftiLength(path, io->GetImageSizeInBytes());
+  }
+  if (format == "MetaImage")
+  {
+    checkMetaImageData(path, io->GetImageSizeInBytes());
   }
   auto reader = itk::ImageFileReader<ImageType>::New();
   reader->SetFileName(path);

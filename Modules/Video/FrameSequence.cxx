@@ -2,6 +2,8 @@
 
 #include <vimlop/Core/Error.h>
 
+#include "ImageFileHeader.h"
+
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -90,6 +92,30 @@ cv::Mat toBGR8(const cv::Mat& image)
   return out;
 }
 
+/// Refuses a frame of `width` x `height` pixels before it is decoded when it
+/// is larger than any endoscope's, or when it would take the sequence past
+/// its memory budget; `decodedBytes` counts the frames so far.
+void checkFrameSize(const std::string& path, const std::string& name, std::uint64_t width,
+  std::uint64_t height, int framesSoFar, std::uint64_t& decodedBytes)
+{
+  if (width * height > FrameSequence::MaxFramePixels || width > 65535 || height > 65535)
+  {
+    fail(path,
+      "frame '" + name + "' is " + std::to_string(width) + " x " + std::to_string(height) +
+        " pixels; frames of at most " + std::to_string(FrameSequence::MaxFramePixels) +
+        " pixels (8192 x 8192) are read");
+  }
+  decodedBytes += width * height * 3;
+  if (decodedBytes > FrameSequence::MaxDecodedBytes)
+  {
+    fail(path,
+      "the first " + std::to_string(framesSoFar + 1) + " frames of " + std::to_string(width) +
+        " x " + std::to_string(height) + " pixels would take more than " +
+        std::to_string(FrameSequence::MaxDecodedBytes >> 30) +
+        " GiB decoded; read fewer (--max-frames)");
+  }
+}
+
 } // namespace
 
 bool FrameSequence::isImageFileName(const std::string& name)
@@ -130,16 +156,33 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
     }
     std::sort(names.begin(), names.end(), naturalLess);
     names.resize(std::min(names.size(), static_cast<size_t>(maxFrames)));
-    for (const std::string& name : names)
+    // Every header first: a sequence too large is refused before any decoding.
+    std::uint64_t decodedBytes = 0;
+    std::vector<bool> judged(names.size());
+    for (std::size_t i = 0; i < names.size(); ++i)
     {
-      const std::string file = (fs::path(path) / name).string();
+      const ImageFileHeader header = readImageFileHeader((fs::path(path) / names[i]).string());
+      if ((judged[i] = header.known))
+      {
+        checkFrameSize(
+          path, names[i], header.widthPx, header.heightPx, static_cast<int>(i), decodedBytes);
+      }
+    }
+    for (std::size_t i = 0; i < names.size(); ++i)
+    {
+      const std::string file = (fs::path(path) / names[i]).string();
       const cv::Mat image = cv::imread(file, cv::IMREAD_UNCHANGED);
       if (image.empty())
       {
         fail(file, "not a readable image");
       }
+      if (!judged[i])
+      {
+        checkFrameSize(path, names[i], static_cast<std::uint64_t>(image.cols),
+          static_cast<std::uint64_t>(image.rows), static_cast<int>(i), decodedBytes);
+      }
       sequence.Frames.push_back(toBGR8(image));
-      sequence.Names.push_back(name);
+      sequence.Names.push_back(names[i]);
     }
   }
   else
@@ -149,11 +192,22 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
     {
       fail(path, "not a readable video file or image folder");
     }
+    // The container's frame size is known before the first frame is decoded;
+    // the memory budget is counted on the frames as they come.
+    std::uint64_t containerBytes = 0;
+    checkFrameSize(path, "frame0",
+      static_cast<std::uint64_t>(std::max(0.0, capture.get(cv::CAP_PROP_FRAME_WIDTH))),
+      static_cast<std::uint64_t>(std::max(0.0, capture.get(cv::CAP_PROP_FRAME_HEIGHT))), 0,
+      containerBytes);
+    std::uint64_t decodedBytes = 0;
     cv::Mat image;
     while (sequence.size() < maxFrames && capture.read(image) && !image.empty())
     {
+      const std::string name = "frame" + std::to_string(sequence.size());
+      checkFrameSize(path, name, static_cast<std::uint64_t>(image.cols),
+        static_cast<std::uint64_t>(image.rows), sequence.size(), decodedBytes);
       sequence.Frames.push_back(toBGR8(image).clone());
-      sequence.Names.push_back("frame" + std::to_string(sequence.size() - 1));
+      sequence.Names.push_back(name);
     }
     if (sequence.empty())
     {

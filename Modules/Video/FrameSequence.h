@@ -3,6 +3,7 @@
 
 #include <opencv2/core/mat.hpp>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,9 @@ public:
   /**
    * @brief Loads at most `maxFrames` frames from a folder or a video file.
    * @throws vimlop::Error naming the path and the problem: missing, empty
-   * folder, unreadable image or video, frames of different sizes.
+   * folder, unreadable image or video, frames of different sizes, a frame
+   * larger than MaxFramePixels or frames beyond MaxDecodedBytes (both judged
+   * from the file headers of PNG, JPEG and BMP frames before decoding).
    */
   static FrameSequence load(const std::string& path, int maxFrames = 10000);
 
@@ -37,6 +40,13 @@ public:
   const std::vector<std::string>& names() const { return this->Names; }
   int widthPx() const { return this->Frames.empty() ? 0 : this->Frames.front().cols; }
   int heightPx() const { return this->Frames.empty() ? 0 : this->Frames.front().rows; }
+
+  /// @brief The largest frame load() decodes: 8192 x 8192 pixels (a 4K
+  /// endoscope frame is 3840 x 2160); checked on the file's header first.
+  static constexpr std::uint64_t MaxFramePixels = std::uint64_t(8192) * 8192;
+  /// @brief The most memory the decoded frames of one sequence may take
+  /// (8 GiB: 340 frames of 4K video; a registration uses about 30).
+  static constexpr std::uint64_t MaxDecodedBytes = std::uint64_t(8) << 30;
 
   /// @brief True when the name looks like an image file this class reads.
   static bool isImageFileName(const std::string& name);

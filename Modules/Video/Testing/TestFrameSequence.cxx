@@ -1,5 +1,6 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Video/FrameSequence.h>
+#include <vimlop/Video/ImageFileHeader.h>
 
 #include <gtest/gtest.h>
 
@@ -115,4 +116,66 @@ TEST(FrameSequence, ErrorsNameThePathAndTheProblem)
   std::ofstream(out + "/movie.mp4") << "not a movie";
   EXPECT_EQ(messageOf(out + "/movie.mp4"),
     "'" + out + "/movie.mp4': not a readable video file or image folder");
+}
+
+namespace
+{
+
+/// A copy of a real PNG whose IHDR claims another size: its pixels are never
+/// decoded when the claim is refused (the CRC no longer matches either).
+void writePngClaiming(const std::string& path, std::uint32_t width, std::uint32_t height)
+{
+  std::vector<uchar> bytes;
+  cv::imencode(".png", numberedFrame(0, 8, 8), bytes);
+  for (int i = 0; i < 4; ++i)
+  {
+    bytes[16 + i] = static_cast<uchar>(width >> (24 - 8 * i));
+    bytes[20 + i] = static_cast<uchar>(height >> (24 - 8 * i));
+  }
+  std::ofstream(path, std::ios::binary)
+    .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+} // namespace
+
+TEST(FrameSequence, HeadersGiveTheSizeOfPngJpegAndBmpFramesWithoutDecoding)
+{
+  const std::string folder = freshFolder("headers");
+  for (const char* extension : { ".png", ".jpg", ".bmp" })
+  {
+    const std::string file = folder + "/frame" + extension;
+    cv::imwrite(file, numberedFrame(1, 75, 33));
+    const ImageFileHeader header = readImageFileHeader(file);
+    EXPECT_TRUE(header.known) << extension;
+    EXPECT_EQ(header.widthPx, 75u) << extension;
+    EXPECT_EQ(header.heightPx, 33u) << extension;
+  }
+  cv::imwrite(folder + "/frame.tif", numberedFrame(1, 75, 33));
+  EXPECT_FALSE(readImageFileHeader(folder + "/frame.tif").known);
+  std::ofstream(folder + "/short.png") << "\x89PNG";
+  EXPECT_FALSE(readImageFileHeader(folder + "/short.png").known);
+}
+
+TEST(FrameSequence, AFrameThatWouldDecodeToGigabytesIsRefusedBeforeDecoding)
+{
+  // The 380 KB PNG of 2 GB: a header is all it takes.
+  const std::string bomb = freshFolder("bomb");
+  cv::imwrite(bomb + "/0.png", numberedFrame(0));
+  writePngClaiming(bomb + "/1.png", 40000, 40000);
+  EXPECT_EQ(messageOf(bomb),
+    "'" + bomb +
+      "': frame '1.png' is 40000 x 40000 pixels; frames of at most 67108864 pixels (8192 x "
+      "8192) are read");
+  // 45 frames of 8000 x 8000 take 45 x 192 MB, past the 8 GiB budget: the
+  // 45th header stops it before any decoding (the pixel data are an 8 x 8
+  // frame's, so decoding the first file would have failed with another message).
+  const std::string many = freshFolder("manylarge");
+  for (int i = 0; i < 46; ++i)
+  {
+    writePngClaiming(many + "/" + std::to_string(i) + ".png", 8000, 8000);
+  }
+  EXPECT_EQ(messageOf(many),
+    "'" + many +
+      "': the first 45 frames of 8000 x 8000 pixels would take more than 8 GiB decoded; read "
+      "fewer (--max-frames)");
 }

@@ -1,0 +1,264 @@
+#include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Imaging/DicomSeriesGeometry.h>
+
+#include "DicomSliceWriter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+using namespace vimlop;
+
+namespace
+{
+
+/// An axial 8 x 8 slice of 0.5 mm pixels at height z (mm), named s<index>.
+DicomSliceHeader axialSlice(int index, double z)
+{
+  DicomSliceHeader s;
+  s.file = "s" + std::to_string(index);
+  s.positionMm = { -2.0, 3.0, z };
+  s.hasPosition = true;
+  s.orientation = { 1, 0, 0, 0, 1, 0 };
+  s.hasOrientation = true;
+  s.pixelSpacingMm = { 0.5, 0.5 };
+  s.hasPixelSpacing = true;
+  s.rows = 8;
+  s.columns = 8;
+  s.pixelBytes = s.expectedPixelBytes = 8 * 8 * 2;
+  return s;
+}
+
+std::vector<DicomSliceHeader> stackAt(const std::vector<double>& heights)
+{
+  std::vector<DicomSliceHeader> slices;
+  for (std::size_t k = 0; k < heights.size(); ++k)
+  {
+    slices.push_back(axialSlice(static_cast<int>(k), heights[k]));
+  }
+  return slices;
+}
+
+std::string refusal(const std::vector<DicomSliceHeader>& slices)
+{
+  try
+  {
+    checkDicomSeriesGeometry(slices);
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "accepted";
+}
+
+/// The 20-degree gantry tilt of the issue: slices tilted about the row
+/// direction while their positions climb straight up z, 2 mm a slice.
+void tilt(std::vector<DicomSliceHeader>& slices, double degrees)
+{
+  const double a = degrees * M_PI / 180.0;
+  for (DicomSliceHeader& s : slices)
+  {
+    s.orientation = { 1, 0, 0, 0, std::cos(a), std::sin(a) };
+  }
+}
+
+} // namespace
+
+TEST(DicomSeriesGeometry, AnEvenStackIsOrderedAlongItsNormalWhateverTheFileOrder)
+{
+  const DicomSeriesLayout layout = checkDicomSeriesGeometry(stackAt({ 15, 10, 20, 12.5, 17.5 }));
+  EXPECT_EQ(layout.order, (std::vector<std::size_t>{ 1, 3, 0, 4, 2 }));
+  EXPECT_DOUBLE_EQ(layout.sliceStepMm, 2.5);
+}
+
+TEST(DicomSeriesGeometry, AGantryTiltIsRefusedWithItsAngle)
+{
+  std::vector<DicomSliceHeader> slices = stackAt({ 0, 2, 4, 6 });
+  tilt(slices, 20.0);
+  // Slice 1 lies 2 sin 20 = 0.68 mm beside the normal, 2 cos 20 = 1.88 mm up it.
+  EXPECT_EQ(refusal(slices),
+    "the slices are not stacked along their normal: 's1' lies 0.68 mm beside the normal through "
+    "'s0', 1.88 mm from it (a gantry tilt or shear of 20.00 degrees); a regular volume of it "
+    "would misplace the anatomy, so resample the series onto a regular grid first");
+  // The same orientation with positions that follow the normal is a plain oblique stack.
+  for (int k = 0; k < 4; ++k)
+  {
+    const double a = 20.0 * M_PI / 180.0;
+    slices[k].positionMm = { 0.0, -2.0 * k * std::sin(a), 2.0 * k * std::cos(a) };
+  }
+  EXPECT_EQ(refusal(slices), "accepted");
+}
+
+TEST(DicomSeriesGeometry, MissingSlicesAreRefusedNamingTheGapAndHowManyAreMissing)
+{
+  EXPECT_EQ(refusal(stackAt({ 0, 1, 2, 3, 9, 10, 11 })),
+    "the slices are not evenly spaced: 's3' and 's4' are 6.00 mm apart where the series steps "
+    "1.00 mm (5 slices are missing); a volume with one spacing would misplace the slices beyond "
+    "them");
+  EXPECT_EQ(refusal(stackAt({ 0, 1, 2, 3.5, 4.5, 5.5 })),
+    "the slices are not evenly spaced: 's2' and 's3' are 1.50 mm apart where the series steps "
+    "1.00 mm; a volume with one spacing would misplace the slices beyond them");
+  // Rounding in the decimal strings (a hundredth of the step) is not a gap.
+  EXPECT_EQ(refusal(stackAt({ 0, 1.004, 2, 2.997 })), "accepted");
+}
+
+TEST(DicomSeriesGeometry, TwoSlicesAtOnePositionAreRefused)
+{
+  EXPECT_EQ(refusal(stackAt({ 0, 1, 1, 2 })),
+    "slices 's1' and 's2' lie at the same position (1.00 mm along the slice normal); a series "
+    "holds each slice once");
+}
+
+TEST(DicomSeriesGeometry, MixedOrientationsAreRefused)
+{
+  std::vector<DicomSliceHeader> slices = stackAt({ 0, 1, 2, 3 });
+  const double a = 12.0 * M_PI / 180.0;
+  slices[2].orientation = { std::cos(a), std::sin(a), 0, -std::sin(a), std::cos(a), 0 };
+  EXPECT_EQ(refusal(slices),
+    "the slices do not share one orientation: 's2' is turned 12.00 degrees from 's0'; one volume "
+    "needs one orientation");
+}
+
+TEST(DicomSeriesGeometry, OrientationVectorsThatAreNotOrthonormalAreRefused)
+{
+  std::vector<DicomSliceHeader> slices = stackAt({ 0, 1, 2 });
+  slices[1].orientation = { 0, 0, 0, 0, 0, 0 };
+  EXPECT_EQ(refusal(slices),
+    "slice 's1': its Image Orientation (Patient) (0020,0037) is not two unit vectors at right "
+    "angles (row length 0.000, column length 0.000, row . column 0.000)");
+  slices[1].orientation = { 1, 0, 0, 0.6, 0.8, 0 };
+  EXPECT_EQ(refusal(slices),
+    "slice 's1': its Image Orientation (Patient) (0020,0037) is not two unit vectors at right "
+    "angles (row length 1.000, column length 1.000, row . column 0.600)");
+}
+
+TEST(DicomSeriesGeometry, EachSliceNeedsAPositionASpacingAndAllItsPixels)
+{
+  std::vector<DicomSliceHeader> slices = stackAt({ 0, 1, 2 });
+  slices[0].hasPosition = false;
+  EXPECT_EQ(refusal(slices),
+    "slice 's0': no Image Position (Patient) (0020,0032); without it the slice cannot be placed");
+  slices = stackAt({ 0, 1, 2 });
+  slices[2].positionMm[1] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(refusal(slices),
+    "slice 's2': its Image Position (Patient) (0020,0032) is not three finite numbers");
+  slices = stackAt({ 0, 1, 2 });
+  slices[1].pixelSpacingMm[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(refusal(slices),
+    "slice 's1': its Pixel Spacing (0028,0030) is not two finite positive numbers of at most "
+    "100 mm");
+  slices[1].hasPixelSpacing = false;
+  EXPECT_EQ(refusal(slices), "slice 's1': no Pixel Spacing (0028,0030)");
+  slices = stackAt({ 0, 1, 2 });
+  slices[2].pixelBytes = 100;
+  EXPECT_EQ(refusal(slices),
+    "slice 's2': the file is truncated: it holds 100 bytes of pixel data where its header "
+    "promises 128 (8 x 8 pixels)");
+  slices = stackAt({ 0, 1, 2 });
+  slices[1].columns = 9;
+  EXPECT_EQ(refusal(slices), "the slices differ in size: 's1' is 8 x 9 pixels, 's0' 8 x 8");
+  EXPECT_EQ(refusal(stackAt({ 4 })), "the DICOM series has a single slice; a 3-D CT is needed");
+}
+
+// The same checks on files, through readCTVolume(): a regular series reads
+// back as written, and each flaw is refused with the folder's name first.
+
+namespace
+{
+
+const std::string out = VIMLOP_TEST_OUTPUT_DIR;
+
+std::string writeSeries(const std::string& name, std::vector<fixtures::DicomSliceSpec> slices)
+{
+  const std::string folder = out + "/dicom-" + name;
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  fixtures::writeDicomSeries(folder, slices);
+  return folder;
+}
+
+std::vector<fixtures::DicomSliceSpec> axialSeries(int count, double stepMm)
+{
+  std::vector<fixtures::DicomSliceSpec> slices(count);
+  for (int k = 0; k < count; ++k)
+  {
+    slices[k].instance = k + 1;
+    slices[k].position = "-2\\3\\" + std::to_string(5.0 + stepMm * k);
+    slices[k].value = static_cast<std::int16_t>(100 * k - 1000);
+  }
+  return slices;
+}
+
+std::string readError(const std::string& folder)
+{
+  try
+  {
+    readCTVolume(folder);
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "no error";
+}
+
+} // namespace
+
+TEST(DicomSeriesFiles, ARegularSeriesReadsBackAsWritten)
+{
+  std::vector<fixtures::DicomSliceSpec> slices = axialSeries(4, 2.5);
+  std::swap(slices[0], slices[3]); // file order is not slice order
+  const CTVolume volume = readCTVolume(writeSeries("regular", slices));
+  EXPECT_EQ(volume.dims, (std::array<int, 3>{ 8, 8, 4 }));
+  EXPECT_NEAR(volume.spacingMm[2], 2.5, 1e-6);
+  EXPECT_NEAR(volume.originMm[2], 5.0, 1e-6);
+  for (int k = 0; k < 4; ++k)
+  {
+    EXPECT_EQ(volume.intensities[static_cast<std::size_t>(k) * 64 + 9], 100.0f * k - 1000.0f);
+  }
+}
+
+TEST(DicomSeriesFiles, ATiltedSeriesAGapAndATruncatedSliceAreRefusedBeforeAVolumeIsMade)
+{
+  std::vector<fixtures::DicomSliceSpec> tilted = axialSeries(4, 2.0);
+  for (auto& s : tilted)
+  {
+    s.orientation = "1\\0\\0\\0\\0.93969262\\0.34202014"; // 20 degrees
+  }
+  const std::string tiltedFolder = writeSeries("tilted", tilted);
+  EXPECT_EQ(readError(tiltedFolder),
+    "'" + tiltedFolder + "': the slices are not stacked along their normal: '" + tiltedFolder +
+      "/slice1.dcm' lies 0.68 mm beside the normal through '" + tiltedFolder +
+      "/slice0.dcm', 1.88 mm from it (a gantry tilt or shear of 20.00 degrees); a regular "
+      "volume of it would misplace the anatomy, so resample the series onto a regular grid "
+      "first");
+
+  std::vector<fixtures::DicomSliceSpec> gap = axialSeries(8, 1.0);
+  gap.erase(gap.begin() + 3, gap.begin() + 5);
+  const std::string gapFolder = writeSeries("gap", gap);
+  EXPECT_EQ(readError(gapFolder),
+    "'" + gapFolder + "': the slices are not evenly spaced: '" + gapFolder + "/slice2.dcm' and '" +
+      gapFolder +
+      "/slice3.dcm' are 3.00 mm apart where the series steps 1.00 mm (2 slices are missing); a "
+      "volume with one spacing would misplace the slices beyond them");
+
+  std::vector<fixtures::DicomSliceSpec> nanSpacing = axialSeries(3, 1.0);
+  nanSpacing[1].pixelSpacing = "nan\\0.5";
+  const std::string nanFolder = writeSeries("nan-spacing", nanSpacing);
+  EXPECT_EQ(readError(nanFolder),
+    "'" + nanFolder + "': slice '" + nanFolder +
+      "/slice1.dcm': its Pixel Spacing (0028,0030) is not two finite positive numbers of at "
+      "most 100 mm");
+
+  std::vector<fixtures::DicomSliceSpec> truncated = axialSeries(3, 1.0);
+  truncated[2].truncateBytes = 28;
+  const std::string truncatedFolder = writeSeries("truncated", truncated);
+  EXPECT_EQ(readError(truncatedFolder),
+    "'" + truncatedFolder + "': slice '" + truncatedFolder +
+      "/slice2.dcm': the file is truncated: it holds 100 bytes of pixel data where its header "
+      "promises 128 (8 x 8 pixels)");
+}
