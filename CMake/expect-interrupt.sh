@@ -1,10 +1,12 @@
 #!/bin/sh
 # Usage: expect-interrupt.sh OUT_DIR WAIT_REGEX COMMAND [ARGS...]
 # Starts COMMAND, sends it SIGINT once its output matches WAIT_REGEX, and
-# succeeds when it then exits with code 130 and OUT_DIR holds no result.json.
+# succeeds when it then exits with code 130 and leaves neither OUT_DIR nor
+# its staging folder OUT_DIR.partial (the run starts without them).
 out_dir=$1
 wait_re=$2
 shift 2
+rm -rf "$out_dir" "$out_dir.partial"
 log=$(mktemp)
 "$@" >"$log" 2>&1 &
 pid=$!
@@ -35,7 +37,9 @@ if [ "$rc" -ne 130 ]; then
   echo "expect-interrupt.sh: expected exit code 130, got $rc" >&2
   exit 1
 fi
-if [ -e "$out_dir/result.json" ]; then
-  echo "expect-interrupt.sh: '$out_dir/result.json' was written" >&2
-  exit 1
-fi
+for left in "$out_dir" "$out_dir.partial"; do
+  if [ -e "$left" ]; then
+    echo "expect-interrupt.sh: '$left' was left behind" >&2
+    exit 1
+  fi
+done

@@ -7,6 +7,7 @@
 #include <vimlop/Pipeline/RegistrationOutputs.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 #include <vimlop/Rendering/OffscreenRendering.h>
+#include <vimlop/Results/ResultFolderTransaction.h>
 #include <vimlop/Server/PoseServing.h>
 
 #include <CLI/CLI.hpp>
@@ -124,9 +125,17 @@ void runRegister(RegisterCommand c)
     std::cout << registrationOptionsJson(c.pipeline).dump(2) << std::endl;
     return;
   }
-  if (std::filesystem::exists(c.out) && !c.force)
+  // The result folder is checked and locked before the work: everything is
+  // written beside it and renamed into place at the end, so a failure, Ctrl-C
+  // or kill leaves the old folder or none (Documentation/UserGuide.md).
+  std::string note;
+  ResultFolderTransaction folder(c.out,
+    c.force ? ResultFolderTransaction::Existing::Replace
+            : ResultFolderTransaction::Existing::Refuse,
+    &note);
+  if (!note.empty())
   {
-    throw Error("'" + c.out + "': exists; choose another --out or add --force to replace it");
+    std::cerr << "vimlop: note: " << note << "\n";
   }
   VideoRegistrationInputs& inputs = c.inputs;
   if (inputs.framesPath.empty())
@@ -178,9 +187,9 @@ void runRegister(RegisterCommand c)
     const double usableS =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     timings.mark("result_usable", usableS);
-    log << formatText("vimlop register: result usable after %.1f s: '%s' (the folder is complete "
-                      "when result.json is written)\n",
-      usableS, posesPath.c_str());
+    log << formatText("vimlop register: result usable after %.1f s: '%s' (the folder becomes "
+                      "'%s' when complete)\n",
+      usableS, posesPath.c_str(), c.out.c_str());
     log.flush();
     if (c.serve && !pipeline.outcome().failure)
     {
@@ -188,8 +197,23 @@ void runRegister(RegisterCommand c)
       serving.start(c.serving, servedPosesOf(pipeline.result()));
     }
   };
-  writeRegistrationOutputs(
-    pipeline, record, c.out, inputs.framesPerSecond, c.outputs, &log, &timings);
+  c.outputs.keepGoing = [] { return !interrupted; };
+  try
+  {
+    writeRegistrationOutputs(
+      pipeline, record, folder.stagingFolder(), inputs.framesPerSecond, c.outputs, &log, &timings);
+  }
+  catch (const PipelineCancelled&)
+  {
+    std::cerr << "vimlop: interrupted; no result was written\n";
+    throw ExitRequest{ 130 };
+  }
+  catch (const Error&)
+  {
+    folder.keepStaging(); // the message names the registered poses in it
+    throw;
+  }
+  folder.commit();
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json summary = registrationSummaryJson(

@@ -2,12 +2,33 @@
 
 #include <vimlop/Core/Error.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace vimlop
 {
+
+void syncToDisk(const std::string& path)
+{
+  // A folder is opened read-only; fsync of its descriptor makes its entries
+  // (a rename into it) durable, as fsync of a file makes its bytes.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0 || ::fsync(fd) != 0)
+  {
+    const std::string reason = std::strerror(errno);
+    if (fd >= 0)
+    {
+      ::close(fd);
+    }
+    throw Error("'" + path + "': cannot flush it to disk (" + reason + ")");
+  }
+  ::close(fd);
+}
 
 void writeFileAtomically(const std::string& path, const std::string& contents)
 {
@@ -20,15 +41,30 @@ void writeFileAtomically(const std::string& path, const std::string& contents)
   }
   // Beside the target, so the rename stays on one file system and is atomic.
   const std::string temporary = path + ".part";
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  bool written = fd >= 0;
+  for (std::size_t done = 0; written && done < contents.size();)
   {
-    std::ofstream out(temporary, std::ios::binary);
-    out << contents;
-    out.close();
-    if (!out)
+    const ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
+    if (n < 0 && errno == EINTR)
     {
-      std::remove(temporary.c_str());
-      throw Error("'" + path + "': cannot write the file");
+      continue;
     }
+    written = n > 0;
+    done += written ? static_cast<std::size_t>(n) : 0;
+  }
+  // The bytes reach the disk before the rename publishes them: after a power
+  // cut the file is the old one or the whole new one, never an empty one.
+  written = written && ::fsync(fd) == 0;
+  const std::string reason = std::strerror(errno);
+  if (fd >= 0)
+  {
+    written = ::close(fd) == 0 && written;
+  }
+  if (!written)
+  {
+    std::remove(temporary.c_str());
+    throw Error("'" + path + "': cannot write the file (" + reason + ")");
   }
   std::error_code ec;
   std::filesystem::rename(temporary, target, ec);
@@ -37,6 +73,7 @@ void writeFileAtomically(const std::string& path, const std::string& contents)
     std::remove(temporary.c_str());
     throw Error("'" + path + "': cannot write the file (" + ec.message() + ")");
   }
+  syncToDisk(target.has_parent_path() ? target.parent_path().string() : std::string("."));
 }
 
 } // namespace vimlop

@@ -7,9 +7,16 @@ namespace vimlop
 {
 
 /**
+ * @brief Flushes a file's bytes, or a folder's entries, to disk (fsync).
+ * @throws vimlop::Error "'path': cannot flush it to disk (reason)".
+ */
+void syncToDisk(const std::string& path);
+
+/**
  * @brief Writes `contents` to `path` through a temporary file beside it
- * (`path` + ".part") and a rename, so an interrupted run leaves either the
- * old file or the complete new one, never a half-written file. A missing
+ * (`path` + ".part"), flushed to disk, and a rename, so an interrupted run
+ * or a power cut leaves either the old file or the complete new one, never a
+ * half-written file. A missing
  * parent folder is created; an existing file is replaced.
  * @throws vimlop::Error "'path': cannot write the file" when the temporary
  * file cannot be written, with the system's reason in parentheses when the

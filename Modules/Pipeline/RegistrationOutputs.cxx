@@ -137,6 +137,13 @@ void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
 {
   StageTimings local;
   StageTimings& t = timings ? *timings : local;
+  const auto goOn = [&]
+  {
+    if (options.keepGoing && !options.keepGoing())
+    {
+      throw PipelineCancelled();
+    }
+  };
   StageTimings::Stopwatch watch;
   std::error_code ec;
   fs::remove(fs::path(folder) / "result.json", ec);
@@ -157,25 +164,29 @@ void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
   const std::vector<int>& frameOf = pipeline.frameOf();
   for (size_t j = 0; j < record.data.frames.size(); ++j)
   {
+    goOn();
     pipeline.writeFrame(frameOf[j], (fs::path(folder) / record.frameImages[j]).string());
   }
   t.set("pictures", watch);
+  goOn();
   watch = StageTimings::Stopwatch();
   writeCameraPath(record.result, (fs::path(folder) / "camera-path.vtp").string());
   t.set("camera_path", watch);
   if (options.video)
   {
+    goOn();
     if (log)
     {
       *log << "vimlop register: registered video\n";
     }
     watch = StageTimings::Stopwatch();
-    writeAfterThePoses(
-      "registered video", posesPath, [&] { writeRegisteredVideo(record, folder, fps); });
+    writeAfterThePoses("registered video", posesPath,
+      [&] { writeRegisteredVideo(record, folder, fps, options.keepGoing); });
     t.set("video", watch);
   }
   if (options.report)
   {
+    goOn();
     if (log)
     {
       *log << "vimlop register: report\n";
@@ -191,6 +202,7 @@ void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
     t.set("report", watch);
   }
   // Last: a folder with a result.json is complete.
+  goOn();
   watch = StageTimings::Stopwatch();
   writeRegistrationRecord(record, folder);
   t.set("result_json", watch);

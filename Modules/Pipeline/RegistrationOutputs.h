@@ -40,6 +40,11 @@ struct RegistrationOutputOptions
    * the user that the result is usable, or to start serving it). Empty: no call.
    */
   std::function<void(const std::string& posesPath)> onResultUsable;
+  /**
+   * Asked before each part and each frame's picture; false (Ctrl-C) stops the
+   * writing with PipelineCancelled. Empty: always go on.
+   */
+  std::function<bool()> keepGoing;
 };
 
 /**
@@ -72,6 +77,8 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
  * `options` absent).
  * @throws vimlop::Error when a file cannot be written; when the video or the
  * report fails, the message says so and that the registered poses are on disk.
+ * PipelineCancelled when `options.keepGoing` says stop. `vimlop register`
+ * writes into a ResultFolderTransaction's staging folder and commits it after.
  */
 void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
   const RegistrationRecord& record, const std::string& folder, double fps,

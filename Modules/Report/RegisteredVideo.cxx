@@ -55,8 +55,8 @@ cv::Mat toBgrTopDown(vtkImageData* rgb)
 
 } // namespace
 
-std::vector<std::string> writeRegisteredVideo(
-  const RegistrationRecord& record, const std::string& folder, double fps)
+std::vector<std::string> writeRegisteredVideo(const RegistrationRecord& record,
+  const std::string& folder, double fps, const std::function<bool()>& keepGoing)
 {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -73,7 +73,7 @@ std::vector<std::string> writeRegisteredVideo(
   cv::VideoWriter video;
   const std::string videoName = "registered-video.avi";
   const size_t count = std::min(record.data.frames.size(), record.result.frames.size());
-  for (size_t j = 0; j < count; ++j)
+  for (size_t j = 0; j < count && (!keepGoing || keepGoing()); ++j)
   {
     const VideoFrame& frame = record.data.frames[j];
     const CameraPose& pose = record.result.frames[j].cameraToCT;

@@ -5,6 +5,7 @@
 
 #include "VIMLOPReportModule.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,12 +18,13 @@ namespace vimlop
  * and its video contours (white), beside the airway rendered offscreen from
  * that pose. PNG frames in `folder/registered/` and, with OpenCV's MJPEG
  * writer, `folder/registered-video.avi` at `fps`. The frame pictures named by
- * record.frameImages must be in `folder`. Needs an X display.
+ * record.frameImages must be in `folder`. Needs an X display. `keepGoing`,
+ * when given, is asked before each frame: false stops the video there.
  * @return the files written, relative to `folder`.
  * @throws vimlop::Error if a file cannot be written.
  */
-VIMLOPREPORT_EXPORT std::vector<std::string> writeRegisteredVideo(
-  const RegistrationRecord& record, const std::string& folder, double fps);
+VIMLOPREPORT_EXPORT std::vector<std::string> writeRegisteredVideo(const RegistrationRecord& record,
+  const std::string& folder, double fps, const std::function<bool()>& keepGoing = {});
 
 /**
  * @brief Writes the registered camera path (a polyline through the optical

@@ -68,7 +68,7 @@ TEST(AtomicFile, APathUnderARegularFileNamesThePath)
   const fs::path blocker = fixtures::freshTestFolder("atomic-blocked") / "not-a-folder";
   std::ofstream(blocker) << "a file where a folder would have to be\n";
   const std::string path = (blocker / "out.json").string();
-  EXPECT_EQ(messageOf(path, "{}"), "'" + path + "': cannot write the file");
+  EXPECT_EQ(messageOf(path, "{}"), "'" + path + "': cannot write the file (Not a directory)");
   EXPECT_FALSE(fs::exists(path + ".part"));
 }
 
@@ -81,4 +81,22 @@ TEST(AtomicFile, AFolderInTheWayGivesTheReasonAndKeepsTheFolder)
   EXPECT_EQ(message.back(), ')') << message;
   EXPECT_TRUE(fs::is_directory(target / "inside"));
   EXPECT_FALSE(fs::exists(target.string() + ".part"));
+}
+
+TEST(AtomicFile, SyncToDiskNamesAPathItCannotFlush)
+{
+  const fs::path folder = fixtures::freshTestFolder("atomic-sync");
+  fs::create_directories(folder);
+  EXPECT_NO_THROW(syncToDisk(folder.string()));
+  const std::string missing = (folder / "missing").string();
+  try
+  {
+    syncToDisk(missing);
+    FAIL() << "no error";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(std::string(e.what()),
+      "'" + missing + "': cannot flush it to disk (No such file or directory)");
+  }
 }
