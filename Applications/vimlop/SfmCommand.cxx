@@ -44,10 +44,17 @@ void runSfm(const SfmOptions& o)
     }
   }
   SfmReconstruction sfm;
+  // The frames' ids (their file numbers) give their times on the tracker's clock.
+  std::vector<int> ids;
   if (!o.colmap.empty())
   {
-    const std::vector<std::string> names =
-      o.frames.empty() ? std::vector<std::string>() : FrameSequence::load(o.frames).names();
+    std::vector<std::string> names;
+    if (!o.frames.empty())
+    {
+      const FrameSequence sequence = FrameSequence::load(o.frames);
+      names = sequence.names();
+      ids = sequence.ids();
+    }
     sfm = reconstructFrames({}, names, PinholeCamera(), o.colmap, 0, &std::cerr);
   }
   else
@@ -58,10 +65,15 @@ void runSfm(const SfmOptions& o)
     }
     const PinholeCamera k = readIntrinsics(o.intrinsics);
     const FrameSequence sequence = FrameSequence::load(o.frames);
+    ids = sequence.ids();
+    if (!sequence.idGaps().empty())
+    {
+      std::cerr << "vimlop: warning: missing from the frames' numbering: " << sequence.idGaps()
+                << "\n";
+    }
     if (tracker)
     {
-      checkTrackerOverlap(
-        *tracker, frameTimesS(static_cast<size_t>(sequence.size()), o.fps, o.timeOffset));
+      checkTrackerOverlap(*tracker, frameTimesS(ids, o.fps, o.timeOffset));
     }
     const std::vector<cv::Mat> frames =
       idealFrames(sequence, k, o.frames, o.intrinsics, &std::cerr);
@@ -69,10 +81,18 @@ void runSfm(const SfmOptions& o)
     ideal.removeDistortion();
     sfm = reconstructFrames(frames, sequence.names(), ideal, "", o.threads, &std::cerr);
   }
+  if (ids.size() != sfm.frames.size())
+  {
+    ids.resize(sfm.frames.size());
+    for (std::size_t f = 0; f < ids.size(); ++f)
+    {
+      ids[f] = static_cast<int>(f);
+    }
+  }
   if (tracker)
   {
-    const TrackerScaleResult scale = scaleFromTracker(
-      *tracker, sfm, frameTimesS(sfm.frames.size(), o.fps, o.timeOffset), &std::cerr);
+    const TrackerScaleResult scale =
+      scaleFromTracker(*tracker, sfm, frameTimesS(ids, o.fps, o.timeOffset), &std::cerr);
     sfm.trackerScale = scale.scale;
     std::printf("tracker scale: 1 SfM unit = %.4f mm (tracked %.2f mm over %zu frames)\n",
       scale.scale, scale.trackerLengthMm, scale.framesUsed.size());

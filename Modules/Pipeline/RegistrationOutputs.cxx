@@ -17,6 +17,7 @@
 
 #include <opencv2/core/version.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <ostream>
@@ -106,15 +107,18 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
   {
     return record;
   }
+  // The truth is keyed by frame id (a file's number), the SfM by index.
   const SfmReconstruction& sfm = pipeline.sfm();
+  const std::vector<int>& ids = pipeline.frameIds();
   std::vector<CameraPose> truthPerSfmFrame(sfm.frames.size());
   std::vector<bool> known(sfm.frames.size(), false);
   for (const FramePose& p : truthPoses)
   {
-    if (p.frameId >= 0 && p.frameId < static_cast<int>(sfm.frames.size()))
+    const auto at = std::find(ids.begin(), ids.end(), p.frameId);
+    if (at != ids.end())
     {
-      truthPerSfmFrame[p.frameId] = p.cameraToWorld;
-      known[p.frameId] = true;
+      truthPerSfmFrame[static_cast<std::size_t>(at - ids.begin())] = p.cameraToWorld;
+      known[static_cast<std::size_t>(at - ids.begin())] = true;
     }
   }
   RegistrationRecord::GroundTruth truth;
@@ -122,7 +126,8 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
   {
     if (!known[f])
     {
-      throw Error("'" + truthSource + "': has no pose for some registered frames");
+      throw Error("'" + truthSource + "': has no pose for frame " + std::to_string(ids[f]) + " ('" +
+        pipeline.frameNames()[f] + "'), which was registered");
     }
     truth.camerasCT.push_back(truthPerSfmFrame[f]);
   }

@@ -10,12 +10,17 @@ namespace vimlop
 
 RegistrationData makeVideoRegistrationData(const SfmReconstruction& sfm,
   const std::vector<std::vector<ContourPoint>>& contoursPerFrame, double initialScale,
-  double pointNoiseFloorMm, std::vector<int>* frameOf)
+  double pointNoiseFloorMm, std::vector<int>* frameOf, const std::vector<int>* frameIds)
 {
   if (contoursPerFrame.size() != sfm.frames.size())
   {
     throw Error("registration data: " + std::to_string(contoursPerFrame.size()) +
       " contour lists for " + std::to_string(sfm.frames.size()) + " SfM frames");
+  }
+  if (frameIds && frameIds->size() != sfm.frames.size())
+  {
+    throw Error("registration data: " + std::to_string(frameIds->size()) + " frame ids for " +
+      std::to_string(sfm.frames.size()) + " SfM frames");
   }
   if (!(initialScale > 0.0) || !std::isfinite(initialScale))
   {
@@ -38,7 +43,7 @@ RegistrationData makeVideoRegistrationData(const SfmReconstruction& sfm,
       continue;
     }
     VideoFrame frame;
-    frame.frameId = static_cast<int>(f);
+    frame.frameId = frameIds ? (*frameIds)[f] : static_cast<int>(f);
     frame.intrinsics = sfm.frames[f].intrinsics;
     frame.intrinsics.removeDistortion();
     frame.cameraToSfm = sfm.frames[f].cameraToSfm;

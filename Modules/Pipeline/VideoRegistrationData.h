@@ -21,12 +21,15 @@ namespace vimlop
  *
  * @param contoursPerFrame one list per SfM frame, in the order of `sfm.frames`.
  * @param frameOf when given, receives for each data frame its index in `sfm.frames`.
+ * @param frameIds when given (one per SfM frame), the frames' ids
+ * (FrameSequence::ids()); otherwise a frame's id is its index.
  * @throws vimlop::Error when the contour lists do not match the SfM frames,
  * or the scale or noise floor is not a positive (non-negative) number.
  */
 RegistrationData makeVideoRegistrationData(const SfmReconstruction& sfm,
   const std::vector<std::vector<ContourPoint>>& contoursPerFrame, double initialScale,
-  double pointNoiseFloorMm, std::vector<int>* frameOf = nullptr);
+  double pointNoiseFloorMm, std::vector<int>* frameOf = nullptr,
+  const std::vector<int>* frameIds = nullptr);
 
 } // namespace vimlop
 

@@ -56,10 +56,12 @@ void VideoRegistrationPipeline::loadFrames(const std::string& path, const Pinhol
   const FrameSequence sequence = FrameSequence::load(path, maxFrames);
   intrinsics.validate();
   d.Frames = idealFrames(sequence, intrinsics, path, intrinsicsSource, d.Log);
-  d.Names.clear();
-  for (int f = 0; f < sequence.size(); ++f)
+  d.Names = sequence.names();
+  d.Ids = sequence.ids();
+  if (const std::string gaps = sequence.idGaps(); !gaps.empty())
   {
-    d.Names.push_back(sequence.name(f));
+    d.Warn("missing from the frames' numbering: " + gaps +
+      "; every frame keeps the number of its file as its id and its time");
   }
   d.Intrinsics = intrinsics;
   d.View = FieldOfView::ofSequence(d.Frames, d.Opts.fieldOfView);
@@ -152,7 +154,7 @@ void VideoRegistrationPipeline::estimateInitialScale(
   if (tracker)
   {
     const TrackerScaleResult fromTracker =
-      scaleFromTracker(*tracker, sfm, frameTimesS(sfm.frames.size(), fps, timeOffsetS), d.Log);
+      scaleFromTracker(*tracker, sfm, frameTimesS(d.idsOf(sfm), fps, timeOffsetS), d.Log);
     if (givenScale > 0.0)
     {
       const double ratio = fromTracker.scale / givenScale;
@@ -182,8 +184,8 @@ void VideoRegistrationPipeline::makeData()
   d.need(d.ContoursDetected, "detect the contours");
   d.need(d.Scale > 0.0, "estimate the initial scale");
   const StageTimings::Stopwatch watch;
-  d.Data =
-    makeVideoRegistrationData(sfm, d.Contours, d.Scale, d.Opts.pointNoiseFloorMm, &d.FrameOf);
+  d.Data = makeVideoRegistrationData(
+    sfm, d.Contours, d.Scale, d.Opts.pointNoiseFloorMm, &d.FrameOf, &d.idsOf(sfm));
   d.DataMade = true;
   d.Timings.set("data", watch);
 }
@@ -397,7 +399,7 @@ void VideoRegistrationPipeline::process()
     in.framesPath, readIntrinsics(in.intrinsicsPath), in.maxFrames, in.intrinsicsPath);
   if (tracker)
   {
-    checkTrackerOverlap(*tracker, frameTimesS(d.Frames.size(), in.framesPerSecond, in.timeOffsetS));
+    checkTrackerOverlap(*tracker, frameTimesS(d.Ids, in.framesPerSecond, in.timeOffsetS));
   }
   this->loadModel(in.meshPath, in.meshPath.empty() ? in.ctPath : std::string());
   this->detectContours();

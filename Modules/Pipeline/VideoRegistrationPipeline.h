@@ -163,6 +163,8 @@ public:
   const PinholeCamera& intrinsics() const; ///< as loaded, with its distortion
   int numberOfFrames() const;
   const std::vector<std::string>& frameNames() const;
+  /// The loaded frames' ids (FrameSequence::ids(): their file numbers).
+  const std::vector<int>& frameIds() const;
   const std::vector<std::vector<ContourPoint>>& contours() const;
   const SfmReconstruction& sfm() const;
   double initialScale() const;

@@ -72,6 +72,11 @@ const std::vector<std::string>& VideoRegistrationPipeline::frameNames() const
   return this->Impl->Names;
 }
 
+const std::vector<int>& VideoRegistrationPipeline::frameIds() const
+{
+  return this->Impl->Ids;
+}
+
 const std::vector<std::vector<ContourPoint>>& VideoRegistrationPipeline::contours() const
 {
   return this->Impl->Contours;

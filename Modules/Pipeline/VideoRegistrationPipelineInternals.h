@@ -33,6 +33,8 @@ struct VideoRegistrationPipeline::Internals
   bool FramesLoaded = false;
   std::vector<cv::Mat> Frames;
   std::vector<std::string> Names;
+  /// The frames' ids (FrameSequence::ids(): their file numbers), one per frame.
+  std::vector<int> Ids;
   /// The frames' field of view (field stop), found with the frames.
   std::optional<FieldOfView> View;
   bool ContoursDetected = false;
@@ -83,6 +85,18 @@ struct VideoRegistrationPipeline::Internals
            << this->Scale << "): the tracker's scale may be wrong";
       this->Warn(text.str());
     }
+  }
+
+  /// The ids of the SfM frames: the loaded frames' (SfM keeps every frame,
+  /// registered or not, in their order).
+  const std::vector<int>& idsOf(const SfmReconstruction& sfm) const
+  {
+    if (this->Ids.size() != sfm.frames.size())
+    {
+      throw Error("video registration: " + std::to_string(sfm.frames.size()) + " SfM frames for " +
+        std::to_string(this->Ids.size()) + " loaded frames");
+    }
+    return this->Ids;
   }
 
   template <typename T>

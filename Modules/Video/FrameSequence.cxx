@@ -116,7 +116,72 @@ void checkFrameSize(const std::string& path, const std::string& name, std::uint6
   }
 }
 
+/// The last run of digits in a file name's stem ("frame011.png": 11), or -1
+/// when there is none or it does not fit an int.
+int numberInName(const std::string& name)
+{
+  const std::string stem = std::filesystem::path(name).stem().string();
+  const auto last = stem.find_last_of("0123456789");
+  if (last == std::string::npos)
+  {
+    return -1;
+  }
+  std::size_t first = last;
+  while (first > 0 && std::isdigit(static_cast<unsigned char>(stem[first - 1])))
+  {
+    --first;
+  }
+  const std::string digits = stem.substr(first, last + 1 - first);
+  const auto significant = digits.find_first_not_of('0');
+  if (significant != std::string::npos && digits.size() - significant > 9)
+  {
+    return -1;
+  }
+  return std::stoi(digits);
+}
+
+/// The file numbers when they identify the frames (all present, increasing),
+/// else the indices.
+std::vector<int> idsOf(const std::vector<std::string>& names)
+{
+  std::vector<int> ids;
+  for (const std::string& name : names)
+  {
+    const int number = numberInName(name);
+    if (number < 0 || (!ids.empty() && number <= ids.back()))
+    {
+      ids.resize(names.size());
+      for (std::size_t i = 0; i < ids.size(); ++i)
+      {
+        ids[i] = static_cast<int>(i);
+      }
+      return ids;
+    }
+    ids.push_back(number);
+  }
+  return ids;
+}
+
 } // namespace
+
+std::string FrameSequence::idGaps() const
+{
+  std::string gaps;
+  for (std::size_t i = 1; i < this->Ids.size(); ++i)
+  {
+    const int from = this->Ids[i - 1] + 1;
+    const int to = this->Ids[i] - 1;
+    if (to < from)
+    {
+      continue;
+    }
+    gaps += (gaps.empty() ? "" : ", ") +
+      (from == to ? "frame " + std::to_string(from)
+                  : "frames " + std::to_string(from) + " to " + std::to_string(to)) +
+      " (between '" + this->Names[i - 1] + "' and '" + this->Names[i] + "')";
+  }
+  return gaps;
+}
 
 bool FrameSequence::isImageFileName(const std::string& name)
 {
@@ -214,6 +279,7 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
       fail(path, "the video has no readable frames");
     }
   }
+  sequence.Ids = idsOf(sequence.Names);
   for (int i = 1; i < sequence.size(); ++i)
   {
     if (sequence.Frames[i].size() != sequence.Frames[0].size())

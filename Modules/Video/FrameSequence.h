@@ -38,6 +38,19 @@ public:
   const std::string& name(int i) const { return this->Names.at(static_cast<size_t>(i)); }
   /// @brief The names of all frames, in order.
   const std::vector<std::string>& names() const { return this->Names; }
+  /**
+   * @brief The id of each frame, in order: the number in its file name (the
+   * last run of digits: `frame011.png` is 11) when every name of the folder
+   * has one and they increase in the frames' order, so that a missing file is
+   * a gap in the ids and not a shift of every later frame; otherwise, and for
+   * a video file, the frame's index.
+   */
+  const std::vector<int>& ids() const { return this->Ids; }
+  /**
+   * @brief "" when the ids run without a gap; otherwise what is missing, for
+   * a warning: "frame 10 (between 'frame009.png' and 'frame011.png')".
+   */
+  std::string idGaps() const;
   int widthPx() const { return this->Frames.empty() ? 0 : this->Frames.front().cols; }
   int heightPx() const { return this->Frames.empty() ? 0 : this->Frames.front().rows; }
 
@@ -54,6 +67,7 @@ public:
 private:
   std::vector<cv::Mat> Frames;
   std::vector<std::string> Names;
+  std::vector<int> Ids;
 };
 
 } // namespace vimlop

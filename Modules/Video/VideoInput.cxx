@@ -109,12 +109,12 @@ SfmReconstruction reconstructFrames(const std::vector<cv::Mat>& frames,
   return sfm;
 }
 
-std::vector<double> frameTimesS(size_t count, double fps, double offsetS)
+std::vector<double> frameTimesS(const std::vector<int>& frameIds, double fps, double offsetS)
 {
   std::vector<double> times;
-  for (size_t f = 0; f < count; ++f)
+  for (int id : frameIds)
   {
-    times.push_back(offsetS + static_cast<double>(f) / fps);
+    times.push_back(offsetS + static_cast<double>(id - frameIds.front()) / fps);
   }
   return times;
 }

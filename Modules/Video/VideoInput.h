@@ -47,8 +47,10 @@ SfmReconstruction reconstructFrames(const std::vector<cv::Mat>& frames,
   const std::string& colmapFolder, int threads, std::ostream* log,
   const cv::Mat& featureMask = cv::Mat());
 
-/// @brief Time of each frame on the tracker's clock: offset + index / fps.
-std::vector<double> frameTimesS(size_t count, double fps, double offsetS);
+/// @brief Time of each frame on the tracker's clock: offset + (id - first
+/// id) / fps, so that the first frame is at the offset and a missing frame
+/// (a gap in FrameSequence::ids()) is a gap in time.
+std::vector<double> frameTimesS(const std::vector<int>& frameIds, double fps, double offsetS);
 
 /**
  * @brief The initial scale (SfM units to mm) from the tracked trajectory over

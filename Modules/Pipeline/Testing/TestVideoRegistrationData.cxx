@@ -66,6 +66,31 @@ TEST(VideoRegistrationData, ContourListsThatDoNotMatchTheFramesAreAnError)
   }
 }
 
+TEST(VideoRegistrationData, FramesTakeTheIdsOfTheirFilesWhenGiven)
+{
+  // frame010.png, frame011.png (not registered), frame013.png.
+  const SfmReconstruction sfm = threeFramesTheMiddleUnregistered();
+  const std::vector<int> ids = { 10, 11, 13 };
+  std::vector<int> frameOf;
+  const RegistrationData data = makeVideoRegistrationData(
+    sfm, std::vector<std::vector<ContourPoint>>(3), 1.0, 0.1, &frameOf, &ids);
+  ASSERT_EQ(data.frames.size(), 2u);
+  EXPECT_EQ(data.frames[0].frameId, 10);
+  EXPECT_EQ(data.frames[1].frameId, 13);
+  EXPECT_EQ(frameOf, (std::vector<int>{ 0, 2 })); // indices still
+  const std::vector<int> twoIds = { 10, 11 };
+  try
+  {
+    makeVideoRegistrationData(
+      sfm, std::vector<std::vector<ContourPoint>>(3), 1.0, 0.1, nullptr, &twoIds);
+    FAIL() << "expected an error";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_STREQ(e.what(), "registration data: 2 frame ids for 3 SfM frames");
+  }
+}
+
 TEST(VideoRegistrationData, ANonPositiveScaleIsAnError)
 {
   const SfmReconstruction sfm = threeFramesTheMiddleUnregistered();

@@ -96,6 +96,7 @@ TEST(FrameSequence, LoadsAVideoFile)
   const FrameSequence sequence = FrameSequence::load(path);
   EXPECT_EQ(sequence.size(), 7);
   EXPECT_EQ(sequence.name(3), "frame3");
+  EXPECT_EQ(sequence.ids(), (std::vector<int>{ 0, 1, 2, 3, 4, 5, 6 }));
   EXPECT_EQ(sequence.widthPx(), 64);
 }
 
@@ -178,4 +179,38 @@ TEST(FrameSequence, AFrameThatWouldDecodeToGigabytesIsRefusedBeforeDecoding)
     "'" + many +
       "': the first 45 frames of 8000 x 8000 pixels would take more than 8 GiB decoded; read "
       "fewer (--max-frames)");
+}
+
+TEST(FrameSequence, AFrameKeepsTheNumberOfItsFileAsItsIdSoAMissingFileIsAGap)
+{
+  const std::string folder = freshFolder("numbered");
+  for (int i : { 8, 9, 11, 12, 15 })
+  {
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame%03d.png", i);
+    cv::imwrite(folder + name, numberedFrame(i));
+  }
+  const FrameSequence sequence = FrameSequence::load(folder);
+  EXPECT_EQ(sequence.ids(), (std::vector<int>{ 8, 9, 11, 12, 15 }));
+  EXPECT_EQ(sequence.idGaps(),
+    "frame 10 (between 'frame009.png' and 'frame011.png'), frames 13 to 14 (between "
+    "'frame012.png' and 'frame015.png')");
+  EXPECT_EQ(FrameSequence::load(folder, 2).idGaps(), "");
+}
+
+TEST(FrameSequence, NamesThatDoNotNumberTheFramesGiveTheirIndices)
+{
+  // No number in one name, two names with one number, a video: indices.
+  const std::string unnumbered = freshFolder("unnumbered");
+  cv::imwrite(unnumbered + "/a1.png", numberedFrame(0));
+  cv::imwrite(unnumbered + "/b.png", numberedFrame(1));
+  EXPECT_EQ(FrameSequence::load(unnumbered).ids(), (std::vector<int>{ 0, 1 }));
+  const std::string stereo = freshFolder("stereo");
+  cv::imwrite(stereo + "/left7.png", numberedFrame(0));
+  cv::imwrite(stereo + "/right7.png", numberedFrame(1));
+  EXPECT_EQ(FrameSequence::load(stereo).ids(), (std::vector<int>{ 0, 1 }));
+  EXPECT_EQ(FrameSequence::load(stereo).idGaps(), "");
+  const std::string huge = freshFolder("hugenumber");
+  cv::imwrite(huge + "/frame99999999999.png", numberedFrame(0));
+  EXPECT_EQ(FrameSequence::load(huge).ids(), (std::vector<int>{ 0 }));
 }

@@ -1,6 +1,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Video/TrackerScale.h>
 #include <vimlop/Video/TrackerTrajectory.h>
+#include <vimlop/Video/VideoInput.h>
 
 #include <gtest/gtest.h>
 
@@ -200,4 +201,15 @@ TEST(TrackerTrajectory, BadFilesAreNamedWithTheProblem)
   const std::string empty = csv("tracker-empty.csv", "");
   EXPECT_EQ(messageOf([&] { TrackerTrajectory::readCsv(empty); }),
     "'" + empty + "': the file is empty (expected a header: time_s,x_mm,y_mm,z_mm)");
+}
+
+TEST(TrackerScale, FrameTimesFollowTheFrameIdsFromTheFirstFrame)
+{
+  // Frames 1, 2 and 4 of a 25 fps video (frame 3's file is missing): the
+  // first frame is at the offset, frame 4 three frames later, not two.
+  const std::vector<double> times = frameTimesS({ 1, 2, 4 }, 25.0, 10.0);
+  ASSERT_EQ(times.size(), 3u);
+  EXPECT_DOUBLE_EQ(times[0], 10.0);
+  EXPECT_DOUBLE_EQ(times[1], 10.04);
+  EXPECT_DOUBLE_EQ(times[2], 10.12);
 }
