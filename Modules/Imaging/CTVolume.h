@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ struct CTVolume
   std::string format;
   /// Things the user should know about how the file was read (one line each).
   std::vector<std::string> warnings;
+  /// Who and what the scan is, when the file says: for DICOM
+  /// "series_instance_uid", "study_instance_uid" and "patient_id".
+  std::map<std::string, std::string> identity;
 
   std::size_t numberOfVoxels() const
   {

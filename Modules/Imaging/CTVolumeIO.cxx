@@ -216,6 +216,16 @@ CTVolume readDicomSeries(const std::string& folder, const std::string& seriesUID
   CTVolume volume = toVolume(reader->GetOutput());
   volume.format = "DICOM series";
   volume.warnings = std::move(warnings);
+  const DicomSliceHeader& first = headers.front();
+  for (const auto& [key, value] :
+    { std::pair<const char*, std::string>{ "series_instance_uid", first.seriesInstanceUID },
+      { "study_instance_uid", first.studyInstanceUID }, { "patient_id", first.patientID } })
+  {
+    if (!value.empty())
+    {
+      volume.identity[key] = value;
+    }
+  }
   return volume;
 }
 

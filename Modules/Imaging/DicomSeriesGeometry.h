@@ -22,6 +22,10 @@ struct DicomSliceHeader
 {
   /// The file's name, for messages.
   std::string file;
+  /// Who and what: Series and Study Instance UID (0020,000E), (0020,000D), Patient ID (0010,0020).
+  std::string seriesInstanceUID;
+  std::string studyInstanceUID;
+  std::string patientID;
   /// Image Position (Patient) (0020,0032): the first pixel's centre, mm, LPS.
   std::array<double, 3> positionMm{};
   bool hasPosition = false;

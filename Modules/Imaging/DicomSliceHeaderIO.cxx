@@ -82,6 +82,18 @@ DicomSliceHeader readDicomSliceHeader(const std::string& file)
 
   DicomSliceHeader header;
   header.file = file;
+  const auto trimmed = [&](std::uint16_t group, std::uint16_t element)
+  {
+    std::string value = text(group, element);
+    while (!value.empty() && (value.back() == ' ' || value.back() == '\0'))
+    {
+      value.pop_back();
+    }
+    return value;
+  };
+  header.seriesInstanceUID = trimmed(0x0020, 0x000e);
+  header.studyInstanceUID = trimmed(0x0020, 0x000d);
+  header.patientID = trimmed(0x0010, 0x0020);
   header.hasPosition = present(0x0020, 0x0032);
   header.positionMm = decimals<3>(text(0x0020, 0x0032));
   header.hasOrientation = present(0x0020, 0x0037);

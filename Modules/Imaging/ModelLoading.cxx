@@ -36,9 +36,18 @@ TriangleMesh loadAirwayMesh(const std::string& path)
   return mesh;
 }
 
-TriangleMesh segmentAirwayMesh(const std::string& ctPath)
+TriangleMesh segmentAirwayMesh(
+  const std::string& ctPath, std::map<std::string, std::string>* identity)
 {
   const CTVolume ct = readCTVolume(ctPath);
+  for (const std::string& warning : ct.warnings)
+  {
+    std::cerr << "vimlop: warning: '" << ctPath << "': " << warning << "\n";
+  }
+  if (identity)
+  {
+    *identity = ct.identity;
+  }
   const AirwaySegmentation airway = AirwaySegmentation::compute(ct, AirwaySegmentationOptions());
   const AirwaySurface surface = AirwaySurface::compute(airway.label, AirwaySurfaceOptions());
   std::cerr << "vimlop: segmented the airway of '" << ctPath << "': " << surface.triangles
@@ -46,13 +55,14 @@ TriangleMesh segmentAirwayMesh(const std::string& ctPath)
   return toTriangleMesh(surface.surface);
 }
 
-TriangleMesh airwayMeshFrom(const std::string& meshPath, const std::string& ctPath)
+TriangleMesh airwayMeshFrom(const std::string& meshPath, const std::string& ctPath,
+  std::map<std::string, std::string>* identity)
 {
   if (meshPath.empty() == ctPath.empty())
   {
     throw Error("give exactly one of --mesh and --ct");
   }
-  return meshPath.empty() ? segmentAirwayMesh(ctPath) : loadAirwayMesh(meshPath);
+  return meshPath.empty() ? segmentAirwayMesh(ctPath, identity) : loadAirwayMesh(meshPath);
 }
 
 } // namespace vimlop

@@ -3,6 +3,7 @@
 
 #include <vimlop/Core/TriangleMesh.h>
 
+#include <map>
 #include <string>
 
 namespace vimlop
@@ -21,13 +22,16 @@ TriangleMesh loadAirwayMesh(const std::string& path);
 
 /**
  * @brief The airway surface of a CT, segmented and meshed with the defaults of
- * `vimlop segment` (see AirwaySegmentation and AirwaySurface).
+ * `vimlop segment` (see AirwaySegmentation and AirwaySurface). The reader's
+ * warnings go to stderr; `identity`, when given, receives CTVolume::identity.
  * @throws vimlop::Error if the CT cannot be read or holds no airway.
  */
-TriangleMesh segmentAirwayMesh(const std::string& ctPath);
+TriangleMesh segmentAirwayMesh(
+  const std::string& ctPath, std::map<std::string, std::string>* identity = nullptr);
 
-/// @brief loadAirwayMesh(meshPath) or, when it is empty, segmentAirwayMesh(ctPath).
-TriangleMesh airwayMeshFrom(const std::string& meshPath, const std::string& ctPath);
+/// @brief loadAirwayMesh(meshPath) or, when it is empty, segmentAirwayMesh(ctPath, identity).
+TriangleMesh airwayMeshFrom(const std::string& meshPath, const std::string& ctPath,
+  std::map<std::string, std::string>* identity = nullptr);
 
 } // namespace vimlop
 

@@ -10,6 +10,7 @@
 #include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
 #include <vimlop/Report/RegisteredVideo.h>
 #include <vimlop/Report/RegistrationReport.h>
+#include <vimlop/Results/InputIdentity.h>
 #include <vimlop/Results/RecordJson.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 
@@ -20,6 +21,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <ostream>
 
 namespace vimlop
@@ -103,6 +105,36 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
     pipeline.startMode() == StartMode::Manual ? "manual" : "canonical",
     static_cast<int>(outcome.candidates.size()), outcome.bestCandidate };
   record.versions = { { "vtk", vtkVersion::GetVTKVersion() }, { "opencv", CV_VERSION } };
+  for (int f : pipeline.frameOf())
+  {
+    record.frameSources.push_back(pipeline.frameNames()[f]);
+  }
+  record.ctIdentity = pipeline.ctIdentity();
+  if (const VideoRegistrationInputs* in = pipeline.preparedInputs())
+  {
+    const std::pair<const char*, std::string> given[] = { { "ct", in->ctPath },
+      { "mesh", in->meshPath }, { "frames", in->framesPath }, { "intrinsics", in->intrinsicsPath },
+      { "tracker", in->trackerPath }, { "start_poses", in->startPosesPath },
+      { "colmap", in->colmapFolder }, { "truth", truthPoses.empty() ? "" : truthSource } };
+    for (const auto& [role, path] : given)
+    {
+      if (path.empty())
+      {
+        continue;
+      }
+      try
+      {
+        record.inputs.push_back(identifyInput(role, path));
+      }
+      catch (const Error& e)
+      {
+        // The registration is done: a file gone since is noted, not fatal.
+        std::cerr << "vimlop: warning: cannot identify the " << role << " input: " << e.what()
+                  << "\n";
+        record.inputs.push_back({ role, path, 0, std::string() });
+      }
+    }
+  }
   if (truthPoses.empty())
   {
     return record;

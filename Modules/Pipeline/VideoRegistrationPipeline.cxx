@@ -43,7 +43,9 @@ void VideoRegistrationPipeline::loadModel(const std::string& meshPath, const std
   // The model's time includes reading the mesh or segmenting the CT, its longest part.
   const StageTimings::Stopwatch watch;
   this->Impl->say("model");
-  this->loadModel(airwayMeshFrom(meshPath, ctPath));
+  std::map<std::string, std::string> identity;
+  this->loadModel(airwayMeshFrom(meshPath, ctPath, &identity));
+  this->Impl->CTIdentity = std::move(identity);
   this->Impl->Timings.set("model", watch);
 }
 

@@ -18,6 +18,7 @@
 
 #include <functional>
 #include <iosfwd>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -165,6 +166,10 @@ public:
   const std::vector<std::string>& frameNames() const;
   /// The loaded frames' ids (FrameSequence::ids(): their file numbers).
   const std::vector<int>& frameIds() const;
+  /// The CT's DICOM identity (CTVolume::identity) when the model came from one.
+  const std::map<std::string, std::string>& ctIdentity() const;
+  /// The inputs given to prepare() (null before it, or when the stages were run one by one).
+  const VideoRegistrationInputs* preparedInputs() const;
   const std::vector<std::vector<ContourPoint>>& contours() const;
   const SfmReconstruction& sfm() const;
   double initialScale() const;

@@ -77,6 +77,16 @@ const std::vector<int>& VideoRegistrationPipeline::frameIds() const
   return this->Impl->Ids;
 }
 
+const std::map<std::string, std::string>& VideoRegistrationPipeline::ctIdentity() const
+{
+  return this->Impl->CTIdentity;
+}
+
+const VideoRegistrationInputs* VideoRegistrationPipeline::preparedInputs() const
+{
+  return this->Impl->Inputs ? &*this->Impl->Inputs : nullptr;
+}
+
 const std::vector<std::vector<ContourPoint>>& VideoRegistrationPipeline::contours() const
 {
   return this->Impl->Contours;

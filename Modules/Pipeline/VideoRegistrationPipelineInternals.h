@@ -28,6 +28,8 @@ struct VideoRegistrationPipeline::Internals
   Progress Report;
 
   std::optional<TriangleMesh> Mesh;
+  /// The CT's identity (CTVolume::identity) when the model was segmented from one.
+  std::map<std::string, std::string> CTIdentity;
   std::unique_ptr<RegistrationModel> Model;
   PinholeCamera Intrinsics;
   bool FramesLoaded = false;

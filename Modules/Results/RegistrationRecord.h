@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -49,6 +50,23 @@ struct RegistrationRecord
   /// Per frame (in the order of data.frames), the picture of the frame: a PNG
   /// path relative to the result folder, or empty when there is none.
   std::vector<std::string> frameImages;
+  /// Per frame (in the order of data.frames), the name of the file (or the
+  /// frame of a video) it came from, e.g. "frame011.png"; may be empty.
+  std::vector<std::string> frameSources;
+  /// One input of the run, identified: what it is for ("ct", "frames",
+  /// "intrinsics", ...), its path as given, its size in bytes and its SHA-256
+  /// (of a folder: of its files' names and bytes, in name order).
+  struct InputFile
+  {
+    std::string role;
+    std::string path;
+    std::uint64_t bytes = 0;
+    std::string sha256;
+  };
+  std::vector<InputFile> inputs;
+  /// Who and what the CT is, from its DICOM headers when it has them:
+  /// "series_instance_uid", "study_instance_uid", "patient_id".
+  std::map<std::string, std::string> ctIdentity;
   std::optional<GroundTruth> truth;
   /// How much to trust the result (V13): written as "confidence".
   struct Confidence

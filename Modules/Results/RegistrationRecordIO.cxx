@@ -244,6 +244,10 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
     }
     const bool hasImage = j < record.frameImages.size() && !record.frameImages[j].empty();
     f["image"] = hasImage ? json(record.frameImages[j]) : json(nullptr);
+    if (j < record.frameSources.size() && !record.frameSources[j].empty())
+    {
+      f["source"] = record.frameSources[j];
+    }
     frames.push_back(f);
   }
 
@@ -303,6 +307,20 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
     versions[name] = version;
   }
   summary["versions"] = versions;
+  if (!record.inputs.empty())
+  {
+    json inputs = json::array();
+    for (const RegistrationRecord::InputFile& input : record.inputs)
+    {
+      inputs.push_back({ { "role", input.role }, { "path", input.path }, { "bytes", input.bytes },
+        { "sha256", input.sha256 } });
+    }
+    summary["inputs"] = inputs;
+  }
+  if (!record.ctIdentity.empty())
+  {
+    summary["ct_identity"] = record.ctIdentity;
+  }
   summary["files"] = files;
   writeFileAtomically((dir / "result.json").string(), summary.dump(2) + "\n");
 }
@@ -390,6 +408,9 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
         ? fj.at("image").get<std::string>()
         : std::string();
       record.frameImages.push_back(image);
+      record.frameSources.push_back(fj.contains("source") && fj.at("source").is_string()
+          ? fj.at("source").get<std::string>()
+          : std::string());
       if (!fj.contains("camera_to_ct"))
       {
         continue;
@@ -444,6 +465,19 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
       c.candidates = cj.value("candidates", 1);
       c.winner = cj.value("winner", 0);
       record.confidence = c;
+    }
+    if (j.contains("inputs"))
+    {
+      for (const json& input : j.at("inputs"))
+      {
+        record.inputs.push_back(
+          { input.at("role").get<std::string>(), input.at("path").get<std::string>(),
+            input.at("bytes").get<std::uint64_t>(), input.at("sha256").get<std::string>() });
+      }
+    }
+    if (j.contains("ct_identity"))
+    {
+      record.ctIdentity = j.at("ct_identity").get<std::map<std::string, std::string>>();
     }
     if (j.contains("versions") && j.at("versions").is_object())
     {

@@ -42,13 +42,16 @@
  * "id", "intrinsics" {fx, fy, cx, cy, width_px, height_px}, "camera_to_sfm"
  * and "camera_to_ct" 4 x 4, "contour_points", "matched", "inliers",
  * "contour_error_px", "contour_error_inliers_px", "visible_model_samples",
- * "image"), "history" (per iteration: "iteration", "with_contours",
+ * "image", and "source": the frame's file), "history" (per iteration: "iteration", "with_contours",
  * "transform" and "updated" 4 x 4, "cost", "cost_3d", "cost_2d",
  * "point_inliers", "contour_matches", "contour_inliers", "residual_error_mm",
  * "contour_error_px", "backoff_steps", "acceleration", "extrapolation_undone",
  * "times_ms" per stage), "files" (the table above) and, for simulated data,
  * "ground_truth" ("transform", "cameras_ct" 4 x 4 each, "targets_file",
- * "tre_mm", per-frame "camera_position_error_mm" and "camera_angle_error_deg").
+ * "tre_mm", per-frame "camera_position_error_mm" and "camera_angle_error_deg");
+ * when known, "inputs" (per input file: "role", "path", "bytes", "sha256")
+ * and "ct_identity" (the CT's DICOM series and study instance UIDs and
+ * patient id).
  * Readers ignore keys they do not know, so later writers may add some.
  */
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
 
 using namespace vimlop;
 
@@ -216,6 +217,11 @@ TEST(DicomSeriesFiles, ARegularSeriesReadsBackAsWritten)
   EXPECT_EQ(volume.dims, (std::array<int, 3>{ 8, 8, 4 }));
   EXPECT_NEAR(volume.spacingMm[2], 2.5, 1e-6);
   EXPECT_NEAR(volume.originMm[2], 5.0, 1e-6);
+  // Who and what the scan is, for the result folder.
+  EXPECT_EQ(volume.identity,
+    (std::map<std::string, std::string>{ { "patient_id", "PHANTOM" },
+      { "series_instance_uid", "1.2.826.0.1.3680043.2.1125.2001" },
+      { "study_instance_uid", "1.2.826.0.1.3680043.2.1125.2001.0" } }));
   for (int k = 0; k < 4; ++k)
   {
     EXPECT_EQ(volume.intensities[static_cast<std::size_t>(k) * 64 + 9], 100.0f * k - 1000.0f);

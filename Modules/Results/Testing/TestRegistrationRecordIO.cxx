@@ -47,6 +47,11 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   changed.options.method = RegistrationMethod::IMLP;
   changed.confidence = RegistrationRecord::Confidence{ true, 6.5, "canonical", 120, 17 };
   changed.versions["opencv"] = "4.6.0";
+  changed.frameSources.assign(changed.data.frames.size(), "");
+  changed.frameSources.back() = "frame011.png";
+  changed.inputs = { { "ct", "/data/ct", 123456789012ull, std::string(64, 'a') },
+    { "intrinsics", "k.yaml", 42, std::string(64, 'b') } };
+  changed.ctIdentity = { { "patient_id", "PHANTOM" }, { "series_instance_uid", "1.2.3" } };
   const std::string dir = fixtures::freshTestFolder("record-round-trip").string();
   writeRegistrationRecord(changed, dir);
   for (const char* file :
@@ -59,6 +64,13 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
 
   const RegistrationRecord back = readRegistrationRecord(dir);
   EXPECT_EQ(back.source, record.source);
+  EXPECT_EQ(back.frameSources, changed.frameSources);
+  ASSERT_EQ(back.inputs.size(), 2u);
+  EXPECT_EQ(back.inputs[0].role, "ct");
+  EXPECT_EQ(back.inputs[0].path, "/data/ct");
+  EXPECT_EQ(back.inputs[0].bytes, 123456789012ull);
+  EXPECT_EQ(back.inputs[1].sha256, std::string(64, 'b'));
+  EXPECT_EQ(back.ctIdentity, changed.ctIdentity);
   EXPECT_EQ(back.model.numberOfFaces(), record.model.numberOfFaces());
   EXPECT_LT((back.model.faceNormals()[7] - record.model.faceNormals()[7]).norm(), 1e-12);
   ASSERT_EQ(back.data.points.size(), record.data.points.size());

@@ -1,0 +1,52 @@
+#include <vimlop/Results/InputIdentity.h>
+
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Sha256.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <vector>
+
+namespace vimlop
+{
+
+namespace fs = std::filesystem;
+
+RegistrationRecord::InputFile identifyInput(const std::string& role, const std::string& path)
+{
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+  {
+    throw Error("'" + path + "': no such file or folder to identify");
+  }
+  RegistrationRecord::InputFile input{ role, path, 0, std::string() };
+  Sha256 digest;
+  if (!fs::is_directory(path, ec))
+  {
+    input.bytes = digest.updateFromFile(path);
+    input.sha256 = digest.hex();
+    return input;
+  }
+  std::vector<std::string> files;
+  for (fs::recursive_directory_iterator it(path, ec), end; !ec && it != end; it.increment(ec))
+  {
+    if (it->is_regular_file())
+    {
+      files.push_back(fs::relative(it->path(), path).generic_string());
+    }
+  }
+  if (ec)
+  {
+    throw Error("'" + path + "': cannot list the folder to identify it (" + ec.message() + ")");
+  }
+  std::sort(files.begin(), files.end());
+  for (const std::string& file : files)
+  {
+    digest.update(file.c_str(), file.size() + 1); // the name and its NUL
+    input.bytes += digest.updateFromFile((fs::path(path) / file).string());
+  }
+  input.sha256 = digest.hex();
+  return input;
+}
+
+} // namespace vimlop

@@ -1,0 +1,25 @@
+#ifndef vimlop_InputIdentity_h
+#define vimlop_InputIdentity_h
+
+#include <vimlop/Results/RegistrationRecord.h>
+
+#include <string>
+
+namespace vimlop
+{
+
+/**
+ * @brief Identifies one input of a run for its result folder: its path as
+ * given, its size and its SHA-256. A folder (DICOM slices, frames, a COLMAP
+ * model) is identified by its regular files, recursively, in the order of
+ * their relative paths: the size is their total, the digest that of each
+ * relative path, a NUL and the file's bytes, one after another. So the same
+ * files give the same digest wherever the folder lies.
+ * @throws vimlop::Error naming the path when it does not exist or a file
+ * cannot be read.
+ */
+RegistrationRecord::InputFile identifyInput(const std::string& role, const std::string& path);
+
+} // namespace vimlop
+
+#endif
