@@ -34,7 +34,10 @@ ServedPoses servedPosesOf(const RegistrationResult& result)
 
 void servePoses(const PoseServingOptions& options, const ServedPoses& poses)
 {
-  PoseStreamServer server(options.server);
+  PoseStreamServerOptions serverOptions = options.server;
+  serverOptions.onNotice = [&options](const std::string& text)
+  { std::fprintf(stderr, "%s: warning: %s\n", options.label.c_str(), text.c_str()); };
+  PoseStreamServer server(serverOptions);
   server.publish(poses.ctFromSfm ? &*poses.ctFromSfm : nullptr, poses.cameraToCT);
   stopRequested = 0;
   const auto previousInt = std::signal(SIGINT, requestStop);

@@ -134,7 +134,7 @@ void PoseStreamServer::publish(
     this->Clients[i].pending += messages;
     if (!this->flush(this->Clients[i]))
     {
-      this->closeClient(i);
+      this->dropSlowClient(i);
     }
   }
 }
@@ -151,6 +151,13 @@ void PoseStreamServer::accept()
     if (static_cast<int>(this->Clients.size()) >= this->Options.maxClients)
     {
       close(fd);
+      ++this->Refused;
+      const std::string count = std::to_string(this->Refused);
+      if (count.find_first_not_of('0', 1) == std::string::npos) // 1, 10, 100, ...
+      {
+        this->notice("refused a connection (" + count + " so far): " +
+          std::to_string(this->Options.maxClients) + " clients are served at once (--max-clients)");
+      }
       continue;
     }
     setNonBlocking(fd);
@@ -205,6 +212,28 @@ void PoseStreamServer::drain(Client& client, bool& alive)
   }
 }
 
+void PoseStreamServer::notice(const std::string& text) const
+{
+  if (this->Options.onNotice)
+  {
+    this->Options.onNotice(text);
+  }
+}
+
+void PoseStreamServer::dropSlowClient(size_t index)
+{
+  // A failed flush: either the connection broke, or the client reads too slowly.
+  const size_t unsent = this->Clients[index].pending.size();
+  if (unsent > static_cast<size_t>(this->Options.maxPendingBytes))
+  {
+    ++this->Dropped;
+    this->notice("dropped a client that does not keep up: " + std::to_string(unsent) +
+      " bytes of poses unsent (above " + std::to_string(this->Options.maxPendingBytes) +
+      "); it must reconnect for the poses");
+  }
+  this->closeClient(index);
+}
+
 void PoseStreamServer::closeClient(size_t index)
 {
   close(this->Clients[index].fd);
@@ -235,9 +264,10 @@ void PoseStreamServer::serve(const std::function<bool()>& keepRunning)
       {
         this->drain(this->Clients[i], alive);
       }
-      if (alive && (events & POLLOUT))
+      if (alive && (events & POLLOUT) && !this->flush(this->Clients[i]))
       {
-        alive = this->flush(this->Clients[i]);
+        this->dropSlowClient(i);
+        continue;
       }
       if (!alive)
       {

@@ -24,6 +24,12 @@ struct PoseStreamServerOptions
   int maxClients = 16;
   /// A client whose unsent data exceeds this is dropped (default 1 MiB).
   int maxPendingBytes = 1 << 20;
+  /**
+   * Told, in one line, whenever the server refuses a connection (at the 1st,
+   * 10th, 100th ... refusal, with the count) or drops a client that does not
+   * keep up: no pose is lost without a word. Empty: nobody is told.
+   */
+  std::function<void(const std::string&)> onNotice;
 };
 
 /**
@@ -78,6 +84,11 @@ public:
 
   /// @brief Clients connected now.
   int clientCount() const { return static_cast<int>(this->Clients.size()); }
+  /// @brief Connections refused because maxClients were served, so far.
+  int refusedCount() const { return this->Refused; }
+  /// @brief Clients dropped because they did not read what was sent (more
+  /// than maxPendingBytes unsent), so far.
+  int droppedCount() const { return this->Dropped; }
 
 private:
   struct Client
@@ -90,12 +101,16 @@ private:
   bool flush(Client& client);
   void drain(Client& client, bool& alive);
   void closeClient(size_t index);
+  void dropSlowClient(size_t index);
+  void notice(const std::string& text) const;
 
   PoseStreamServerOptions Options;
   int Listener = -1;
   int Port = 0;
   std::string Messages; ///< the packed messages of the last publish()
   std::vector<Client> Clients;
+  int Refused = 0;
+  int Dropped = 0;
 };
 
 } // namespace vimlop

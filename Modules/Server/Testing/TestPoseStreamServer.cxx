@@ -3,7 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <limits>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 using namespace vimlop;
 
@@ -55,4 +61,59 @@ TEST(PoseStreamServer, RefusesToPublishARepeatedIdOrAPoseBeyondFloats)
   EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(&ctFromSfm, twoPoses()); }),
     "pose server: refusing to publish: CTFromSfM is not a finite similarity within 1 km of the "
     "CT origin");
+}
+
+namespace
+{
+
+/// A loopback connection to `port` that never reads.
+int connectTo(int port)
+{
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  EXPECT_EQ(connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)), 0);
+  return fd;
+}
+
+/// Serves for about `ms` milliseconds.
+void serveFor(PoseStreamServer& server, int ms)
+{
+  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+  server.serve([&] { return std::chrono::steady_clock::now() < end; });
+}
+
+} // namespace
+
+TEST(PoseStreamServer, ARefusedConnectionAndADroppedClientAreToldNotSilent)
+{
+  std::vector<std::string> notices;
+  PoseStreamServerOptions options = anyFreePort();
+  options.maxClients = 1;
+  options.maxPendingBytes = 4096;
+  options.onNotice = [&](const std::string& text) { notices.push_back(text); };
+  PoseStreamServer server(options);
+  server.publish(nullptr, twoPoses());
+  const int reader = connectTo(server.port());
+  const int refused = connectTo(server.port());
+  serveFor(server, 300);
+  EXPECT_EQ(server.clientCount(), 1);
+  EXPECT_EQ(server.refusedCount(), 1);
+  ASSERT_EQ(notices.size(), 1u);
+  EXPECT_EQ(
+    notices[0], "refused a connection (1 so far): 1 clients are served at once (--max-clients)");
+  // The client never reads: publishing again and again fills its socket,
+  // then its 4 KiB of pending poses, and it is dropped with a word.
+  for (int i = 0; i < 100000 && server.clientCount() == 1; ++i)
+  {
+    server.publish(nullptr, twoPoses());
+  }
+  EXPECT_EQ(server.clientCount(), 0);
+  EXPECT_EQ(server.droppedCount(), 1);
+  ASSERT_EQ(notices.size(), 2u);
+  EXPECT_EQ(notices[1].rfind("dropped a client that does not keep up: ", 0), 0u) << notices[1];
+  close(reader);
+  close(refused);
 }
