@@ -5,6 +5,7 @@
 
 #include <igtlTransformMessage.h>
 
+#include <algorithm>
 #include <arpa/inet.h>
 #include <cerrno>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <poll.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -60,9 +62,25 @@ PoseStreamServer::PoseStreamServer(const PoseStreamServerOptions& options)
     throw Error("refusing to listen on " + options.host +
       ": not a loopback address (pass --allow-remote to serve other machines)");
   }
-  if (options.port < 0 || options.port > 65535 || options.maxClients < 1)
+  if (options.port < 0 || options.port > 65535 || options.maxClients < 1 ||
+    !(options.stallTimeoutS > 0.0))
   {
-    throw Error("the port must lie in [0, 65535] and at least one client must be allowed");
+    throw Error("the port must lie in [0, 65535], at least one client must be allowed and the "
+                "stall timeout must be positive");
+  }
+  // One descriptor per client, and a few for the rest of the process.
+  rlimit files{};
+  const rlim_t needed = static_cast<rlim_t>(options.maxClients) + 64;
+  if (getrlimit(RLIMIT_NOFILE, &files) == 0 && files.rlim_cur < needed)
+  {
+    files.rlim_cur = std::min(needed, files.rlim_max);
+    setrlimit(RLIMIT_NOFILE, &files);
+    if (files.rlim_cur < needed)
+    {
+      throw Error("serving " + std::to_string(options.maxClients) + " clients needs " +
+        std::to_string(needed) + " file descriptors; this process may open " +
+        std::to_string(files.rlim_max) + " (ulimit -n): lower --max-clients");
+    }
   }
   this->Listener = socket(AF_INET, SOCK_STREAM, 0);
   if (this->Listener < 0)
@@ -153,7 +171,7 @@ void PoseStreamServer::accept()
       close(fd);
       ++this->Refused;
       const std::string count = std::to_string(this->Refused);
-      if (count.find_first_not_of('0', 1) == std::string::npos) // 1, 10, 100, ...
+      if (count[0] == '1' && count.find_first_not_of('0', 1) == std::string::npos) // 1, 10, ...
       {
         this->notice("refused a connection (" + count + " so far): " +
           std::to_string(this->Options.maxClients) + " clients are served at once (--max-clients)");
@@ -190,6 +208,7 @@ bool PoseStreamServer::flush(Client& client)
       return false;
     }
     client.pending.erase(0, static_cast<size_t>(sent));
+    client.lastRead = std::chrono::steady_clock::now();
   }
   return static_cast<int>(client.pending.size()) <= this->Options.maxPendingBytes;
 }
@@ -234,6 +253,24 @@ void PoseStreamServer::dropSlowClient(size_t index)
   this->closeClient(index);
 }
 
+void PoseStreamServer::dropStalledClients()
+{
+  const auto now = std::chrono::steady_clock::now();
+  for (size_t i = this->Clients.size(); i-- > 0;)
+  {
+    const Client& client = this->Clients[i];
+    const double stalledS = std::chrono::duration<double>(now - client.lastRead).count();
+    if (!client.pending.empty() && stalledS > this->Options.stallTimeoutS)
+    {
+      ++this->Dropped;
+      this->notice("dropped a client that stopped reading: " +
+        std::to_string(client.pending.size()) + " bytes of poses untaken for " +
+        std::to_string(static_cast<int>(stalledS)) + " s; it must reconnect for the poses");
+      this->closeClient(i);
+    }
+  }
+}
+
 void PoseStreamServer::closeClient(size_t index)
 {
   close(this->Clients[index].fd);
@@ -274,6 +311,7 @@ void PoseStreamServer::serve(const std::function<bool()>& keepRunning)
         this->closeClient(i);
       }
     }
+    this->dropStalledClients();
     if (fds[0].revents & POLLIN)
     {
       this->accept();

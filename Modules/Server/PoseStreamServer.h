@@ -4,6 +4,7 @@
 #include <vimlop/Core/FramePose.h>
 #include <vimlop/Core/SimilarityTransform.h>
 
+#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
@@ -20,10 +21,16 @@ struct PoseStreamServerOptions
   int port = 18944;
   /// Listen on a non-loopback address (default off: refused).
   bool allowRemote = false;
-  /// Clients served at once (default 16); further connections are closed.
-  int maxClients = 16;
+  /// Clients served at once (default 512, so that hundreds of idle
+  /// connections still leave room for the navigation system's); further
+  /// connections are closed. Each takes a file descriptor: the server raises
+  /// its own limit to fit, or refuses to start.
+  int maxClients = 512;
   /// A client whose unsent data exceeds this is dropped (default 1 MiB).
   int maxPendingBytes = 1 << 20;
+  /// A client that has taken none of the data pending for it for this long
+  /// is dropped (default 10 s): the read timeout of a client that stopped reading.
+  double stallTimeoutS = 10.0;
   /**
    * Told, in one line, whenever the server refuses a connection (at the 1st,
    * 10th, 100th ... refusal, with the count) or drops a client that does not
@@ -87,7 +94,7 @@ public:
   /// @brief Connections refused because maxClients were served, so far.
   int refusedCount() const { return this->Refused; }
   /// @brief Clients dropped because they did not read what was sent (more
-  /// than maxPendingBytes unsent), so far.
+  /// than maxPendingBytes unsent, or nothing taken for stallTimeoutS), so far.
   int droppedCount() const { return this->Dropped; }
 
 private:
@@ -95,6 +102,8 @@ private:
   {
     int fd = -1;
     std::string pending;
+    /// When the client last took bytes (or connected).
+    std::chrono::steady_clock::time_point lastRead = std::chrono::steady_clock::now();
   };
 
   void accept();
@@ -102,6 +111,7 @@ private:
   void drain(Client& client, bool& alive);
   void closeClient(size_t index);
   void dropSlowClient(size_t index);
+  void dropStalledClients();
   void notice(const std::string& text) const;
 
   PoseStreamServerOptions Options;

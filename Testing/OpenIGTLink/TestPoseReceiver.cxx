@@ -1,10 +1,10 @@
 // A navigation-software stand-in for `vimlop serve`: an OpenIGTLink receiver
 // written against the OpenIGTLink library's client side (not VIMLOP's code).
 // It starts the server, harasses it with hostile clients (garbage bytes, early
-// disconnects, more connections than it serves), then receives every pose as
-// a well-behaved client and checks the matrices against the pose file or the
-// result folder's result.json (in RAS, as the protocol wants), and finally
-// stops the server with SIGINT.
+// disconnects, more connections than it serves), then, beside 500 idle
+// connections, receives every pose as a well-behaved client and checks the matrices against the
+// pose file or the result folder's result.json (in RAS, as the protocol wants), and finally stops
+// the server with SIGINT.
 //
 // Usage: TestPoseReceiver <vimlop> --poses <poses.json>
 //        TestPoseReceiver <vimlop> --result <result folder>
@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <arpa/inet.h>
 #include <array>
 #include <chrono>
@@ -185,8 +186,8 @@ int main(int argc, char** argv)
   {
     dup2(out[1], STDOUT_FILENO);
     close(out[0]);
-    execl(argv[1], argv[1], "serve", argv[2], argv[3], "--port", "0", "--max-clients", "4",
-      "--duration-s", "120", static_cast<char*>(nullptr));
+    execl(argv[1], argv[1], "serve", argv[2], argv[3], "--port", "0", "--duration-s", "120",
+      static_cast<char*>(nullptr));
     _exit(127);
   }
   close(out[1]);
@@ -222,21 +223,32 @@ int main(int argc, char** argv)
       close(fd);
     }
   }
-  // More connections than the server serves at once, never read from.
-  std::vector<int> crowd;
-  for (int i = 0; i < 40; ++i)
+  // More connections than the server serves at once (512 by default), never read from.
+  const auto openCrowd = [port](int count)
   {
-    crowd.push_back(rawConnect(port));
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  for (int fd : crowd)
-  {
-    if (fd >= 0)
+    std::vector<int> crowd;
+    for (int i = 0; i < count; ++i)
     {
-      close(fd);
+      crowd.push_back(rawConnect(port));
     }
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    return crowd;
+  };
+  const auto closeCrowd = [](const std::vector<int>& crowd)
+  {
+    for (int fd : crowd)
+    {
+      if (fd >= 0)
+      {
+        close(fd);
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  };
+  closeCrowd(openCrowd(520));
+  // 500 idle connections stay open while the well-behaved clients come.
+  const std::vector<int> idle = openCrowd(500);
+  check(std::count(idle.begin(), idle.end(), -1) == 0, "500 idle connections open");
 
   // A well-behaved client receives every pose, in RAS.
   std::map<std::string, std::vector<float>> got;
@@ -280,6 +292,7 @@ int main(int argc, char** argv)
   std::map<std::string, std::vector<float>> again;
   receivePoses(port, expected.size(), again);
   check(again == got, "a second client receives the same poses");
+  closeCrowd(idle);
 
   kill(server, SIGINT);
   int status = 0;

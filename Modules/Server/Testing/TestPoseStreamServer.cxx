@@ -97,11 +97,20 @@ TEST(PoseStreamServer, ARefusedConnectionAndADroppedClientAreToldNotSilent)
   PoseStreamServer server(options);
   server.publish(nullptr, twoPoses());
   const int reader = connectTo(server.port());
-  const int refused = connectTo(server.port());
+  serveFor(server, 100);
+  std::vector<int> refused;
+  for (int i = 0; i < 12; ++i)
+  {
+    refused.push_back(connectTo(server.port()));
+  }
   serveFor(server, 300);
   EXPECT_EQ(server.clientCount(), 1);
-  EXPECT_EQ(server.refusedCount(), 1);
-  ASSERT_EQ(notices.size(), 1u);
+  EXPECT_EQ(server.refusedCount(), 12);
+  // Told at the 1st and the 10th refusal, not at every one.
+  ASSERT_EQ(notices.size(), 2u);
+  EXPECT_EQ(
+    notices[1], "refused a connection (10 so far): 1 clients are served at once (--max-clients)");
+  notices.erase(notices.begin() + 1);
   EXPECT_EQ(
     notices[0], "refused a connection (1 so far): 1 clients are served at once (--max-clients)");
   // The client never reads: publishing again and again fills its socket,
@@ -115,5 +124,43 @@ TEST(PoseStreamServer, ARefusedConnectionAndADroppedClientAreToldNotSilent)
   ASSERT_EQ(notices.size(), 2u);
   EXPECT_EQ(notices[1].rfind("dropped a client that does not keep up: ", 0), 0u) << notices[1];
   close(reader);
-  close(refused);
+  for (int fd : refused)
+  {
+    close(fd);
+  }
+}
+
+TEST(PoseStreamServer, AClientThatStopsReadingIsDroppedAfterTheStallTimeout)
+{
+  std::vector<std::string> notices;
+  PoseStreamServerOptions options = anyFreePort();
+  options.maxPendingBytes = 64 << 20; // the stall, not the size, drops it here
+  options.stallTimeoutS = 0.2;
+  options.onNotice = [&](const std::string& text) { notices.push_back(text); };
+  PoseStreamServer server(options);
+  const int sleeper = connectTo(server.port());
+  serveFor(server, 100);
+  ASSERT_EQ(server.clientCount(), 1);
+  // 40 000 publications (8 MB) overflow the loopback socket buffers.
+  for (int i = 0; i < 40000; ++i)
+  {
+    server.publish(nullptr, twoPoses());
+  }
+  serveFor(server, 600);
+  EXPECT_EQ(server.clientCount(), 0);
+  EXPECT_EQ(server.droppedCount(), 1);
+  ASSERT_EQ(notices.size(), 1u);
+  EXPECT_EQ(notices[0].rfind("dropped a client that stopped reading: ", 0), 0u) << notices[0];
+  close(sleeper);
+}
+
+TEST(PoseStreamServer, TheDefaultServesHundredsOfClientsAndRaisesItsDescriptorLimit)
+{
+  EXPECT_EQ(PoseStreamServerOptions().maxClients, 512);
+  PoseStreamServerOptions options = anyFreePort();
+  options.maxClients = 1 << 30;
+  EXPECT_EQ(fixtures::errorMessageOf([&] { PoseStreamServer server(options); })
+              .find("serving 1073741824 clients needs 1073741888 file descriptors; this process "
+                    "may open "),
+    0u);
 }
