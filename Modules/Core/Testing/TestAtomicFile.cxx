@@ -1,6 +1,7 @@
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
 
+#include "ErrorMessage.h"
 #include "TestFolders.h"
 
 #include <gtest/gtest.h>
@@ -89,14 +90,6 @@ TEST(AtomicFile, SyncToDiskNamesAPathItCannotFlush)
   fs::create_directories(folder);
   EXPECT_NO_THROW(syncToDisk(folder.string()));
   const std::string missing = (folder / "missing").string();
-  try
-  {
-    syncToDisk(missing);
-    FAIL() << "no error";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(std::string(e.what()),
-      "'" + missing + "': cannot flush it to disk (No such file or directory)");
-  }
+  EXPECT_EQ(fixtures::errorMessageOf([&] { syncToDisk(missing); }),
+    "'" + missing + "': cannot flush it to disk (No such file or directory)");
 }

@@ -1,6 +1,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Sha256.h>
 
+#include "ErrorMessage.h"
 #include "TestFolders.h"
 
 #include <gtest/gtest.h>
@@ -50,13 +51,6 @@ TEST(Sha256, AFileIsIdentifiedByItsBytesAndAMissingOneIsNamed)
   std::ofstream(path, std::ios::binary) << "abc";
   EXPECT_EQ(
     Sha256::ofFile(path), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
-  try
-  {
-    Sha256::ofFile(path + ".missing");
-    FAIL() << "no error";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(std::string(e.what()), "'" + path + ".missing': cannot read the file to identify it");
-  }
+  EXPECT_EQ(fixtures::errorMessageOf([&] { Sha256::ofFile(path + ".missing"); }),
+    "'" + path + ".missing': cannot read the file to identify it");
 }

@@ -3,6 +3,7 @@
 #include <vimlop/Imaging/DicomSeriesGeometry.h>
 
 #include "DicomSliceWriter.h"
+#include "ErrorMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -45,15 +46,7 @@ std::vector<DicomSliceHeader> stackAt(const std::vector<double>& heights)
 
 std::string refusal(const std::vector<DicomSliceHeader>& slices)
 {
-  try
-  {
-    checkDicomSeriesGeometry(slices);
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "accepted";
+  return fixtures::errorMessageOf([&] { checkDicomSeriesGeometry(slices); });
 }
 
 /// The 20-degree gantry tilt of the issue: slices tilted about the row
@@ -91,7 +84,7 @@ TEST(DicomSeriesGeometry, AGantryTiltIsRefusedWithItsAngle)
     const double a = 20.0 * M_PI / 180.0;
     slices[k].positionMm = { 0.0, -2.0 * k * std::sin(a), 2.0 * k * std::cos(a) };
   }
-  EXPECT_EQ(refusal(slices), "accepted");
+  EXPECT_EQ(refusal(slices), "no error");
 }
 
 TEST(DicomSeriesGeometry, MissingSlicesAreRefusedNamingTheGapAndHowManyAreMissing)
@@ -104,7 +97,7 @@ TEST(DicomSeriesGeometry, MissingSlicesAreRefusedNamingTheGapAndHowManyAreMissin
     "the slices are not evenly spaced: 's2' and 's3' are 1.50 mm apart where the series steps "
     "1.00 mm; a volume with one spacing would misplace the slices beyond them");
   // Rounding in the decimal strings (a hundredth of the step) is not a gap.
-  EXPECT_EQ(refusal(stackAt({ 0, 1.004, 2, 2.997 })), "accepted");
+  EXPECT_EQ(refusal(stackAt({ 0, 1.004, 2, 2.997 })), "no error");
 }
 
 TEST(DicomSeriesGeometry, TwoSlicesAtOnePositionAreRefused)
@@ -196,15 +189,7 @@ std::vector<fixtures::DicomSliceSpec> axialSeries(int count, double stepMm)
 
 std::string readError(const std::string& folder)
 {
-  try
-  {
-    readCTVolume(folder);
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "no error";
+  return fixtures::errorMessageOf([&] { readCTVolume(folder); });
 }
 
 } // namespace

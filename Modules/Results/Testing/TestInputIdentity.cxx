@@ -1,6 +1,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Results/InputIdentity.h>
 
+#include "ErrorMessage.h"
 #include "TestFolders.h"
 
 #include <gtest/gtest.h>
@@ -40,14 +41,6 @@ TEST(InputIdentity, AFolderIsItsFilesWhereverItLiesAndAnyChangeShows)
   EXPECT_NE(identifyInput("frames", (root / "b").string()).sha256, a.sha256);
   std::ofstream(root / "a" / "frame001.png") << "One";
   EXPECT_NE(identifyInput("frames", (root / "a").string()).sha256, a.sha256);
-  try
-  {
-    identifyInput("ct", (root / "missing").string());
-    FAIL() << "no error";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(std::string(e.what()),
-      "'" + (root / "missing").string() + "': no such file or folder to identify");
-  }
+  EXPECT_EQ(fixtures::errorMessageOf([&] { identifyInput("ct", (root / "missing").string()); }),
+    "'" + (root / "missing").string() + "': no such file or folder to identify");
 }

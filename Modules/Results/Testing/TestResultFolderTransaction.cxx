@@ -1,6 +1,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Results/ResultFolderTransaction.h>
 
+#include "ErrorMessage.h"
 #include "TestFolders.h"
 
 #include <gtest/gtest.h>
@@ -35,15 +36,7 @@ void write(const fs::path& file, const std::string& text)
 
 std::string refusal(const std::string& folder, Existing existing)
 {
-  try
-  {
-    ResultFolderTransaction transaction(folder, existing);
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "accepted";
+  return fixtures::errorMessageOf([&] { ResultFolderTransaction transaction(folder, existing); });
 }
 
 /// An earlier run's complete result: result.json and a video.
@@ -130,7 +123,7 @@ TEST(ResultFolderTransaction, ASecondWriterIsRefusedAtOnceNamingTheFirst)
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   }
   // The lock ends with its transaction.
-  EXPECT_EQ(refusal(folder.string(), Existing::Refuse), "accepted");
+  EXPECT_EQ(refusal(folder.string(), Existing::Refuse), "no error");
 }
 
 TEST(ResultFolderTransaction, AKilledRunLeavesNoResultAndItsStagingIsRemovedByTheNext)
@@ -176,5 +169,5 @@ TEST(ResultFolderTransaction, ExistingFoldersAndBadNamesAreRefusedWithTheReason)
   EXPECT_EQ(refusal(".", Existing::Replace),
     "'.': name a folder of its own for the result (it is written beside, then renamed)");
   fs::create_directories(root / "empty");
-  EXPECT_EQ(refusal((root / "empty").string(), Existing::Replace), "accepted");
+  EXPECT_EQ(refusal((root / "empty").string(), Existing::Replace), "no error");
 }
