@@ -110,29 +110,18 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
     record.frameSources.push_back(pipeline.frameNames()[f]);
   }
   record.ctIdentity = pipeline.ctIdentity();
-  if (const VideoRegistrationInputs* in = pipeline.preparedInputs())
+  record.inputs = pipeline.inputIdentities();
+  if (!truthPoses.empty() && !record.inputs.empty())
   {
-    const std::pair<const char*, std::string> given[] = { { "ct", in->ctPath },
-      { "mesh", in->meshPath }, { "frames", in->framesPath }, { "intrinsics", in->intrinsicsPath },
-      { "tracker", in->trackerPath }, { "start_poses", in->startPosesPath },
-      { "colmap", in->colmapFolder }, { "truth", truthPoses.empty() ? "" : truthSource } };
-    for (const auto& [role, path] : given)
+    std::vector<std::string> problems;
+    for (RegistrationRecord::InputFile& truth :
+      identifyInputs({ { "truth", truthSource } }, problems))
     {
-      if (path.empty())
-      {
-        continue;
-      }
-      try
-      {
-        record.inputs.push_back(identifyInput(role, path));
-      }
-      catch (const Error& e)
-      {
-        // The registration is done: a file gone since is noted, not fatal.
-        std::cerr << "vimlop: warning: cannot identify the " << role << " input: " << e.what()
-                  << "\n";
-        record.inputs.push_back({ role, path, 0, std::string() });
-      }
+      record.inputs.push_back(std::move(truth));
+    }
+    for (const std::string& problem : problems)
+    {
+      std::cerr << "vimlop: warning: " << problem << "\n";
     }
   }
   if (truthPoses.empty())

@@ -8,6 +8,7 @@
 #include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Pipeline/VideoRegistrationData.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Results/InputIdentity.h>
 #include <vimlop/Video/FieldOfView.h>
 #include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Video/IntrinsicsIO.h>
@@ -388,6 +389,18 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
     throw Error("a manual start needs a pose file");
   }
   d.Inputs = in;
+  // Identified as they are when the run starts, in a thread of its own.
+  const std::vector<std::pair<std::string, std::string>> files = { { "ct", in.ctPath },
+    { "mesh", in.meshPath }, { "frames", in.framesPath }, { "intrinsics", in.intrinsicsPath },
+    { "tracker", in.trackerPath }, { "start_poses", in.startPosesPath },
+    { "colmap", in.colmapFolder } };
+  d.InputIdentities = std::async(std::launch::async,
+    [files]
+    {
+      Internals::Identities identities;
+      identities.inputs = identifyInputs(files, identities.problems);
+      return identities;
+    }).share();
 }
 
 void VideoRegistrationPipeline::process()

@@ -13,6 +13,7 @@
 #include <vimlop/Pipeline/StageTimings.h>
 #include <vimlop/Pipeline/VideoRegistrationInputs.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
+#include <vimlop/Results/RegistrationRecord.h>
 #include <vimlop/Video/SfmReconstruction.h>
 #include <vimlop/Video/TrackerTrajectory.h>
 
@@ -168,8 +169,14 @@ public:
   const std::vector<int>& frameIds() const;
   /// The CT's DICOM identity (CTVolume::identity) when the model came from one.
   const std::map<std::string, std::string>& ctIdentity() const;
-  /// The inputs given to prepare() (null before it, or when the stages were run one by one).
-  const VideoRegistrationInputs* preparedInputs() const;
+  /**
+   * The identity (path, size, SHA-256) of each input file given to prepare(),
+   * as they were when it was called (computed in a thread of its own; this
+   * waits for it). Empty before prepare(), or when the stages were run one by
+   * one. An input that could not be identified has no digest, and a warning
+   * says why.
+   */
+  std::vector<RegistrationRecord::InputFile> inputIdentities() const;
   const std::vector<std::vector<ContourPoint>>& contours() const;
   const SfmReconstruction& sfm() const;
   double initialScale() const;

@@ -82,9 +82,19 @@ const std::map<std::string, std::string>& VideoRegistrationPipeline::ctIdentity(
   return this->Impl->CTIdentity;
 }
 
-const VideoRegistrationInputs* VideoRegistrationPipeline::preparedInputs() const
+std::vector<RegistrationRecord::InputFile> VideoRegistrationPipeline::inputIdentities() const
 {
-  return this->Impl->Inputs ? &*this->Impl->Inputs : nullptr;
+  const Internals& d = *this->Impl;
+  if (!d.InputIdentities.valid())
+  {
+    return {};
+  }
+  const Internals::Identities& identities = d.InputIdentities.get();
+  for (const std::string& problem : identities.problems)
+  {
+    d.Warn(problem);
+  }
+  return identities.inputs;
 }
 
 const std::vector<std::vector<ContourPoint>>& VideoRegistrationPipeline::contours() const

@@ -12,6 +12,7 @@
 
 #include <opencv2/core/mat.hpp>
 
+#include <future>
 #include <iostream>
 #include <ostream>
 #include <sstream>
@@ -54,6 +55,14 @@ struct VideoRegistrationPipeline::Internals
   std::optional<VideoRegistrationInputs> Inputs;
   std::optional<TrackerTrajectory> Tracker;
   std::vector<FramePose> StartPoses;
+  /// The inputs' identities (InputIdentity.h), computed beside the stages
+  /// from prepare() on, so that hashing them delays no result.
+  struct Identities
+  {
+    std::vector<RegistrationRecord::InputFile> inputs;
+    std::vector<std::string> problems;
+  };
+  std::shared_future<Identities> InputIdentities;
   /// The time of each stage run, in order (timings()).
   StageTimings Timings;
 

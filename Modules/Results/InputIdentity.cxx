@@ -49,4 +49,28 @@ RegistrationRecord::InputFile identifyInput(const std::string& role, const std::
   return input;
 }
 
+std::vector<RegistrationRecord::InputFile> identifyInputs(
+  const std::vector<std::pair<std::string, std::string>>& rolesAndPaths,
+  std::vector<std::string>& problems)
+{
+  std::vector<RegistrationRecord::InputFile> inputs;
+  for (const auto& [role, path] : rolesAndPaths)
+  {
+    if (path.empty())
+    {
+      continue;
+    }
+    try
+    {
+      inputs.push_back(identifyInput(role, path));
+    }
+    catch (const Error& e)
+    {
+      problems.push_back("cannot identify the " + role + " input: " + e.what());
+      inputs.push_back({ role, path, 0, std::string() });
+    }
+  }
+  return inputs;
+}
+
 } // namespace vimlop

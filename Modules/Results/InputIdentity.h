@@ -4,6 +4,8 @@
 #include <vimlop/Results/RegistrationRecord.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace vimlop
 {
@@ -19,6 +21,16 @@ namespace vimlop
  * cannot be read.
  */
 RegistrationRecord::InputFile identifyInput(const std::string& role, const std::string& path);
+
+/**
+ * @brief identifyInput() of each (role, path) whose path is not empty. An
+ * input that cannot be identified is listed with no digest, and the reason
+ * appended to `problems`: the run it describes is done, so it is a warning,
+ * not a failure. Prints nothing (it may run in a thread of its own).
+ */
+std::vector<RegistrationRecord::InputFile> identifyInputs(
+  const std::vector<std::pair<std::string, std::string>>& rolesAndPaths,
+  std::vector<std::string>& problems);
 
 } // namespace vimlop
 

@@ -44,3 +44,21 @@ TEST(InputIdentity, AFolderIsItsFilesWhereverItLiesAndAnyChangeShows)
   EXPECT_EQ(fixtures::errorMessageOf([&] { identifyInput("ct", (root / "missing").string()); }),
     "'" + (root / "missing").string() + "': no such file or folder to identify");
 }
+
+TEST(InputIdentity, AnInputThatCannotBeIdentifiedIsListedWithoutDigestAndWhy)
+{
+  const fs::path root = fixtures::freshTestFolder("identity-list");
+  std::ofstream(root / "k.yaml") << "abc";
+  std::vector<std::string> problems;
+  const auto inputs = identifyInputs({ { "intrinsics", (root / "k.yaml").string() }, { "mesh", "" },
+                                       { "tracker", (root / "gone.csv").string() } },
+    problems);
+  ASSERT_EQ(inputs.size(), 2u); // the empty path is no input
+  EXPECT_EQ(inputs[0].bytes, 3u);
+  EXPECT_EQ(inputs[1].role, "tracker");
+  EXPECT_TRUE(inputs[1].sha256.empty());
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0],
+    "cannot identify the tracker input: '" + (root / "gone.csv").string() +
+      "': no such file or folder to identify");
+}
