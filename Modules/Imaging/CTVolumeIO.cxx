@@ -5,6 +5,7 @@
 #include <vimlop/Imaging/CTVolumeIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/CTHeaderChecks.h>
 #include <vimlop/Imaging/DicomSeriesGeometry.h>
 #include <vimlop/Imaging/ITKImageIOFactories.h>
 #include <vimlop/Imaging/InVesaliusProjectReader.h>
@@ -25,10 +26,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <mutex>
 #include <sstream>
@@ -250,113 +248,12 @@ std::string formatName(const std::string& lowerPath)
   return "";
 }
 
-/// ITK's NIfTI reader fills a short file's missing voxels silently; compare
-/// the size of an uncompressed NIfTI-1 file with what its header promises.
-void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
-{
-  std::ifstream file(path, std::ios::binary);
-  unsigned char header[112] = {};
-  if (!file.read(reinterpret_cast<char*>(header), sizeof(header)))
-  {
-    return; // ITK has already judged the header
-  }
-  auto u32 = [&](int at, bool little)
-  {
-    return little ? std::uint32_t(header[at]) | std::uint32_t(header[at + 1]) << 8 |
-        std::uint32_t(header[at + 2]) << 16 | std::uint32_t(header[at + 3]) << 24
-                  : std::uint32_t(header[at + 3]) | std::uint32_t(header[at + 2]) << 8 |
-        std::uint32_t(header[at + 1]) << 16 | std::uint32_t(header[at]) << 24;
-  };
-  bool little = true;
-  if (u32(0, true) != 348)
-  {
-    if (u32(0, false) != 348)
-    {
-      return; // not NIfTI-1 (NIfTI-2 files are left to ITK)
-    }
-    little = false;
-  }
-  const std::uint32_t bits = u32(108, little);
-  float voxOffset = 0.0f;
-  std::memcpy(&voxOffset, &bits, sizeof(voxOffset));
-  const std::uint64_t expected =
-    static_cast<std::uint64_t>(std::max(voxOffset, 348.0f)) + voxelBytes;
-  std::error_code ec;
-  const std::uint64_t actual = std::filesystem::file_size(path, ec);
-  if (!ec && actual < expected)
-  {
-    fail(path,
-      "the file is truncated (" + std::to_string(actual) + " bytes, the header promises " +
-        std::to_string(expected) + ")");
-  }
-}
-
-/// A MetaImage header names its data file (or LOCAL: the data follow the
-/// header). MetaIO prints to stderr when the file is missing and reads a
-/// short one as zeros (0 HU), so look first and say it in one line.
-void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  bool compressed = false;
-  long long headerBytes = 0; // HeaderSize: bytes to skip in the data file; -1 reads the tail
-  for (int lines = 0; lines < 200 && std::getline(in, line); ++lines)
-  {
-    const auto equals = line.find('=');
-    if (equals == std::string::npos)
-    {
-      continue;
-    }
-    std::string key = line.substr(0, equals);
-    key.erase(key.find_last_not_of(" \t") + 1);
-    std::string value = line.substr(equals + 1);
-    value.erase(0, value.find_first_not_of(" \t"));
-    value.erase(value.find_last_not_of(" \t\r") + 1);
-    if (key == "CompressedData")
-    {
-      compressed = lowerCase(value) == "true";
-    }
-    else if (key == "HeaderSize")
-    {
-      headerBytes = std::atoll(value.c_str());
-    }
-    if (key != "ElementDataFile")
-    {
-      continue;
-    }
-    if (value == "LIST" || value.find('%') != std::string::npos)
-    {
-      return; // one file per slice: left to MetaIO
-    }
-    std::error_code ec;
-    std::uint64_t available = 0;
-    if (value == "LOCAL")
-    {
-      const std::uint64_t size = std::filesystem::file_size(path, ec);
-      available = size - std::min(size, static_cast<std::uint64_t>(in.tellg()));
-    }
-    else
-    {
-      const std::filesystem::path data = std::filesystem::path(path).parent_path() / value;
-      if (!std::filesystem::exists(data, ec))
-      {
-        fail(path, "the data file '" + value + "' named by the header does not exist");
-      }
-      available = std::filesystem::file_size(data, ec);
-      available -= std::min<std::uint64_t>(available, std::max(headerBytes, 0LL));
-    }
-    if (!compressed && !ec && available < voxelBytes)
-    {
-      fail(path,
-        "the image data are cut short (" + std::to_string(available) +
-          " bytes, the header promises " + std::to_string(voxelBytes) + ")");
-    }
-    return;
-  }
-}
-
 CTVolume readImageFile(const std::string& path, const std::string& format)
 {
+  if (format == "NRRD")
+  {
+    detail::checkNrrdHeader(path); // before teem parses it
+  }
   itk::ImageIOBase::Pointer io =
     itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
   if (!io)
@@ -416,11 +313,11 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
   }
   if (endsWith(lowerCase(path), ".nii"))
   {
-    checkNiftiLength(path, io->GetImageSizeInBytes());
+    detail::checkNiftiLength(path, io->GetImageSizeInBytes());
   }
   if (format == "MetaImage")
   {
-    checkMetaImageData(path, io->GetImageSizeInBytes());
+    detail::checkMetaImageData(path, io->GetImageSizeInBytes());
   }
   auto reader = itk::ImageFileReader<ImageType>::New();
   reader->SetFileName(path);
