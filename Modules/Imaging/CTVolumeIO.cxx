@@ -122,26 +122,17 @@ CTVolume toVolume(const ImageType* image)
   return volume;
 }
 
-/// The Series Instance UID (0020,000e) stored in a DICOM file, trimmed.
+/// The Series Instance UID (0020,000e) stored in a DICOM file, or "".
 std::string seriesInstanceUID(const std::string& file)
 {
-  auto io = itk::GDCMImageIO::New();
-  io->SetFileName(file);
-  std::string uid;
   try
   {
-    io->ReadImageInformation();
-    io->GetValueFromTag("0020|000e", uid);
+    return readDicomSliceHeader(file).seriesInstanceUID;
   }
-  catch (const itk::ExceptionObject&)
+  catch (const Error&)
   {
     return std::string();
   }
-  while (!uid.empty() && (uid.back() == ' ' || uid.back() == '\0'))
-  {
-    uid.pop_back();
-  }
-  return uid;
 }
 
 CTVolume readDicomSeries(const std::string& folder, const std::string& seriesUID)
