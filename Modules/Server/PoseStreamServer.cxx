@@ -46,6 +46,46 @@ std::string packTransform(const std::string& name, const Eigen::Matrix4d& m)
     static_cast<size_t>(message->GetPackSize()));
 }
 
+std::string addressText(std::uint32_t address);
+
+} // namespace
+
+/// "10.1.2.3" or "10.1.0.0/16".
+PoseStreamServer::AddressBlock PoseStreamServer::parseAddressBlock(const std::string& text)
+{
+  const auto slash = text.find('/');
+  const std::string address = text.substr(0, slash);
+  PoseStreamServer::AddressBlock block;
+  in_addr parsed{};
+  bool valid = inet_pton(AF_INET, address.c_str(), &parsed) == 1;
+  if (valid && slash != std::string::npos)
+  {
+    const std::string bits = text.substr(slash + 1);
+    valid = !bits.empty() && bits.size() <= 2 &&
+      bits.find_first_not_of("0123456789") == std::string::npos && std::stoi(bits) <= 32;
+    block.prefixBits = valid ? std::stoi(bits) : 0;
+  }
+  if (!valid)
+  {
+    throw Error("'" + text +
+      "' is not an IPv4 address or block to allow (a.b.c.d, or a.b.c.d/n with n at most 32)");
+  }
+  block.address = parsed.s_addr;
+  return block;
+}
+
+namespace
+{
+
+std::string addressText(std::uint32_t address)
+{
+  char text[INET_ADDRSTRLEN] = {};
+  in_addr a{};
+  a.s_addr = address;
+  inet_ntop(AF_INET, &a, text, sizeof(text));
+  return text;
+}
+
 } // namespace
 
 PoseStreamServer::PoseStreamServer(const PoseStreamServerOptions& options)
@@ -63,10 +103,14 @@ PoseStreamServer::PoseStreamServer(const PoseStreamServerOptions& options)
       ": not a loopback address (pass --allow-remote to serve other machines)");
   }
   if (options.port < 0 || options.port > 65535 || options.maxClients < 1 ||
-    !(options.stallTimeoutS > 0.0))
+    options.maxClientsPerAddress < 1 || !(options.stallTimeoutS > 0.0))
   {
-    throw Error("the port must lie in [0, 65535], at least one client must be allowed and the "
-                "stall timeout must be positive");
+    throw Error("the port must lie in [0, 65535], at least one client (and one per address) "
+                "must be allowed and the stall timeout must be positive");
+  }
+  for (const std::string& text : options.allowedClients)
+  {
+    this->Allowed.push_back(parseAddressBlock(text));
   }
   // One descriptor per client, and a few for the rest of the process.
   rlimit files{};
@@ -157,30 +201,95 @@ void PoseStreamServer::publish(
   }
 }
 
+bool PoseStreamServer::allowed(std::uint32_t address) const
+{
+  if (this->Allowed.empty())
+  {
+    return true;
+  }
+  return std::any_of(this->Allowed.begin(), this->Allowed.end(),
+    [&](const AddressBlock& block)
+    {
+      const std::uint32_t mask =
+        block.prefixBits == 0 ? 0u : ~std::uint32_t(0) << (32 - block.prefixBits);
+      return (ntohl(address) & mask) == (ntohl(block.address) & mask);
+    });
+}
+
+void PoseStreamServer::countAndTell(int& counter, const std::string& what)
+{
+  ++counter;
+  const std::string count = std::to_string(counter);
+  if (count[0] == '1' && count.find_first_not_of('0', 1) == std::string::npos) // 1, 10, ...
+  {
+    const auto colon = what.find(": ");
+    this->notice(what.substr(0, colon) + " (" + count + " so far)" + what.substr(colon));
+  }
+}
+
+void PoseStreamServer::makeRoomFor(std::uint32_t address)
+{
+  // The connection of this address that has taken data least recently;
+  // the vector holds clients in the order they came, so ties go to the oldest.
+  size_t idlest = this->Clients.size();
+  int fromAddress = 0;
+  for (size_t i = 0; i < this->Clients.size(); ++i)
+  {
+    if (this->Clients[i].address != address)
+    {
+      continue;
+    }
+    ++fromAddress;
+    if (idlest == this->Clients.size() ||
+      this->Clients[i].lastRead < this->Clients[idlest].lastRead)
+    {
+      idlest = i;
+    }
+  }
+  if (fromAddress >= this->Options.maxClientsPerAddress)
+  {
+    this->closeClient(idlest);
+    this->countAndTell(this->Replaced,
+      "closed a connection from " + addressText(address) + ": " +
+        std::to_string(this->Options.maxClientsPerAddress) +
+        " are kept per address (--max-clients-per-address); its most idle one made room for "
+        "the new one");
+  }
+}
+
 void PoseStreamServer::accept()
 {
   for (;;)
   {
-    const int fd = ::accept(this->Listener, nullptr, nullptr);
+    sockaddr_in peer{};
+    socklen_t length = sizeof(peer);
+    const int fd = ::accept(this->Listener, reinterpret_cast<sockaddr*>(&peer), &length);
     if (fd < 0)
     {
       return; // no more pending connections (or a transient error)
     }
+    const std::uint32_t address = peer.sin_addr.s_addr;
+    if (!this->allowed(address))
+    {
+      close(fd);
+      this->countAndTell(this->Refused,
+        "refused a connection: " + addressText(address) +
+          " is not an allowed client (--allow-client)");
+      continue;
+    }
+    this->makeRoomFor(address);
     if (static_cast<int>(this->Clients.size()) >= this->Options.maxClients)
     {
       close(fd);
-      ++this->Refused;
-      const std::string count = std::to_string(this->Refused);
-      if (count[0] == '1' && count.find_first_not_of('0', 1) == std::string::npos) // 1, 10, ...
-      {
-        this->notice("refused a connection (" + count + " so far): " +
-          std::to_string(this->Options.maxClients) + " clients are served at once (--max-clients)");
-      }
+      this->countAndTell(this->Refused,
+        "refused a connection: " + std::to_string(this->Options.maxClients) +
+          " clients are served at once (--max-clients)");
       continue;
     }
     setNonBlocking(fd);
     Client client;
     client.fd = fd;
+    client.address = address;
     client.pending = this->Messages;
     if (this->flush(client))
     {

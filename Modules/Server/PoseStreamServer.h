@@ -5,6 +5,7 @@
 #include <vimlop/Core/SimilarityTransform.h>
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -26,6 +27,22 @@ struct PoseStreamServerOptions
   /// connections are closed. Each takes a file descriptor: the server raises
   /// its own limit to fit, or refuses to start.
   int maxClients = 512;
+  /// Connections kept from one address (default 64): a new one beyond it
+  /// replaces that address's most idle connection (the one that has taken
+  /// data least recently; the oldest among equals), so one host, or a client
+  /// that reconnects and leaves dead connections behind, cannot fill the
+  /// server, while the next connection from it is still served. Local
+  /// programs share 127.0.0.1.
+  int maxClientsPerAddress = 64;
+  /**
+   * The only addresses allowed to connect, as IPv4 addresses or CIDR blocks
+   * ("10.1.2.3", "10.1.0.0/16"; add "127.0.0.1" to keep local programs);
+   * empty (the default): every address that can reach the socket. Other
+   * connections are closed at once and told about. OpenIGTLink has no
+   * authentication: this narrows who receives poses on a navigation
+   * network, it does not prove who they are.
+   */
+  std::vector<std::string> allowedClients;
   /// A client whose unsent data exceeds this is dropped (default 1 MiB).
   int maxPendingBytes = 1 << 20;
   /// A client that has taken none of the data pending for it for this long
@@ -91,8 +108,12 @@ public:
 
   /// @brief Clients connected now.
   int clientCount() const { return static_cast<int>(this->Clients.size()); }
-  /// @brief Connections refused because maxClients were served, so far.
+  /// @brief Connections refused because maxClients were served, or from
+  /// an address not in allowedClients, so far.
   int refusedCount() const { return this->Refused; }
+  /// @brief Connections closed to make room for a newer one from the same
+  /// address (maxClientsPerAddress), so far.
+  int replacedCount() const { return this->Replaced; }
   /// @brief Clients dropped because they did not read what was sent (more
   /// than maxPendingBytes unsent, or nothing taken for stallTimeoutS), so far.
   int droppedCount() const { return this->Dropped; }
@@ -101,12 +122,25 @@ private:
   struct Client
   {
     int fd = -1;
+    /// The peer's IPv4 address, in network byte order.
+    std::uint32_t address = 0;
     std::string pending;
     /// When the client last took bytes (or connected).
     std::chrono::steady_clock::time_point lastRead = std::chrono::steady_clock::now();
   };
 
+  /// An address and the number of leading bits that must match.
+  struct AddressBlock
+  {
+    std::uint32_t address = 0;
+    int prefixBits = 32;
+  };
+
+  static AddressBlock parseAddressBlock(const std::string& text);
   void accept();
+  bool allowed(std::uint32_t address) const;
+  void makeRoomFor(std::uint32_t address);
+  void countAndTell(int& counter, const std::string& what);
   bool flush(Client& client);
   void drain(Client& client, bool& alive);
   void closeClient(size_t index);
@@ -119,7 +153,9 @@ private:
   int Port = 0;
   std::string Messages; ///< the packed messages of the last publish()
   std::vector<Client> Clients;
+  std::vector<AddressBlock> Allowed;
   int Refused = 0;
+  int Replaced = 0;
   int Dropped = 0;
 };
 

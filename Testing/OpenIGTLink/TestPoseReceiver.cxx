@@ -2,9 +2,9 @@
 // written against the OpenIGTLink library's client side (not VIMLOP's code).
 // It starts the server, harasses it with hostile clients (garbage bytes, early
 // disconnects, more connections than it serves), then, beside 500 idle
-// connections, receives every pose as a well-behaved client and checks the matrices against the
-// pose file or the result folder's result.json (in RAS, as the protocol wants), and finally stops
-// the server with SIGINT.
+// connections from 8 addresses, receives every pose as a well-behaved client and checks the
+// matrices against the pose file or the result folder's result.json (in RAS, as the protocol
+// wants), and finally stops the server with SIGINT.
 //
 // Usage: TestPoseReceiver <vimlop> --poses <poses.json>
 //        TestPoseReceiver <vimlop> --result <result folder>
@@ -45,9 +45,18 @@ void check(bool ok, const std::string& what)
   failures += ok ? 0 : 1;
 }
 
-int rawConnect(int port)
+/// Connects from `from` (an address of the loopback block 127/8).
+int rawConnect(int port, const std::string& from = "127.0.0.1")
 {
   const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in source{};
+  source.sin_family = AF_INET;
+  inet_pton(AF_INET, from.c_str(), &source.sin_addr);
+  if (bind(fd, reinterpret_cast<sockaddr*>(&source), sizeof(source)) != 0)
+  {
+    close(fd);
+    return -1;
+  }
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_port = htons(static_cast<uint16_t>(port));
@@ -223,13 +232,15 @@ int main(int argc, char** argv)
       close(fd);
     }
   }
-  // More connections than the server serves at once (512 by default), never read from.
-  const auto openCrowd = [port](int count)
+  // More connections than the server serves at once (512 by default), never
+  // read from, from `hosts` addresses (127.0.0.10, ...: the server keeps 64
+  // per address).
+  const auto openCrowd = [port](int count, int hosts)
   {
     std::vector<int> crowd;
     for (int i = 0; i < count; ++i)
     {
-      crowd.push_back(rawConnect(port));
+      crowd.push_back(rawConnect(port, "127.0.0." + std::to_string(10 + i % hosts)));
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     return crowd;
@@ -245,9 +256,9 @@ int main(int argc, char** argv)
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
   };
-  closeCrowd(openCrowd(520));
-  // 500 idle connections stay open while the well-behaved clients come.
-  const std::vector<int> idle = openCrowd(500);
+  closeCrowd(openCrowd(520, 9));
+  // 500 idle connections from 8 hosts stay open while the well-behaved clients come.
+  const std::vector<int> idle = openCrowd(500, 8);
   check(std::count(idle.begin(), idle.end(), -1) == 0, "500 idle connections open");
 
   // A well-behaved client receives every pose, in RAS.
@@ -292,6 +303,18 @@ int main(int argc, char** argv)
   std::map<std::string, std::vector<float>> again;
   receivePoses(port, expected.size(), again);
   check(again == got, "a second client receives the same poses");
+  // None of the idle connections was closed to serve the clients.
+  int closed = 0;
+  for (int fd : idle)
+  {
+    char buffer[4096];
+    ssize_t n = 0;
+    while ((n = recv(fd, buffer, sizeof(buffer), MSG_DONTWAIT)) > 0)
+    {
+    }
+    closed += n == 0 ? 1 : 0;
+  }
+  check(closed == 0, std::to_string(closed) + " of the 500 idle connections closed by the server");
   closeCrowd(idle);
 
   kill(server, SIGINT);

@@ -67,15 +67,34 @@ namespace
 {
 
 /// A loopback connection to `port` that never reads.
-int connectTo(int port)
+/// Connects from `from`, a loopback address of the 127/8 block.
+int connectTo(int port, const char* from = "127.0.0.1")
 {
   const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in source{};
+  source.sin_family = AF_INET;
+  inet_pton(AF_INET, from, &source.sin_addr);
+  EXPECT_EQ(bind(fd, reinterpret_cast<sockaddr*>(&source), sizeof(source)), 0) << from;
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_port = htons(static_cast<uint16_t>(port));
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   EXPECT_EQ(connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)), 0);
   return fd;
+}
+
+/// True when the server has closed the connection (its data read to the end).
+bool closedByServer(int fd)
+{
+  char buffer[4096];
+  for (;;)
+  {
+    const ssize_t got = recv(fd, buffer, sizeof(buffer), MSG_DONTWAIT);
+    if (got <= 0)
+    {
+      return got == 0;
+    }
+  }
 }
 
 /// Serves for about `ms` milliseconds.
@@ -163,4 +182,89 @@ TEST(PoseStreamServer, TheDefaultServesHundredsOfClientsAndRaisesItsDescriptorLi
               .find("serving 1073741824 clients needs 1073741888 file descriptors; this process "
                     "may open "),
     0u);
+}
+
+TEST(PoseStreamServer, ManyConnectionsFromOneAddressReplaceItsMostIdleAndLeaveOthersAlone)
+{
+  std::vector<std::string> notices;
+  PoseStreamServerOptions options = anyFreePort();
+  options.maxClientsPerAddress = 3;
+  options.onNotice = [&](const std::string& text) { notices.push_back(text); };
+  PoseStreamServer server(options);
+  server.publish(nullptr, twoPoses());
+  const int navigation = connectTo(server.port(), "127.0.0.1");
+  serveFor(server, 100);
+  std::vector<int> crowd;
+  for (int i = 0; i < 5; ++i)
+  {
+    crowd.push_back(connectTo(server.port(), "127.0.0.2"));
+    serveFor(server, 50); // one at a time, so that their order is known
+  }
+  serveFor(server, 200);
+  EXPECT_EQ(server.clientCount(), 4);
+  EXPECT_EQ(server.replacedCount(), 2);
+  EXPECT_EQ(server.refusedCount(), 0);
+  // All took their poses at once: the oldest two of 127.0.0.2 made room.
+  EXPECT_TRUE(closedByServer(crowd[0]));
+  EXPECT_TRUE(closedByServer(crowd[1]));
+  for (int i = 2; i < 5; ++i)
+  {
+    EXPECT_FALSE(closedByServer(crowd[static_cast<size_t>(i)])) << i;
+  }
+  EXPECT_FALSE(closedByServer(navigation));
+  ASSERT_EQ(notices.size(), 1u); // told at the 1st, the 10th ...
+  EXPECT_EQ(notices[0],
+    "closed a connection from 127.0.0.2 (1 so far): 3 are kept per address "
+    "(--max-clients-per-address); its most idle one made room for the new one");
+  close(navigation);
+  for (int fd : crowd)
+  {
+    close(fd);
+  }
+}
+
+TEST(PoseStreamServer, OnlyAllowedAddressesConnectWhenAListIsGiven)
+{
+  std::vector<std::string> notices;
+  PoseStreamServerOptions options = anyFreePort();
+  options.allowedClients = { "127.0.0.2", "127.0.1.0/24" };
+  options.onNotice = [&](const std::string& text) { notices.push_back(text); };
+  PoseStreamServer server(options);
+  server.publish(nullptr, twoPoses());
+  const int listed = connectTo(server.port(), "127.0.0.2");
+  const int inBlock = connectTo(server.port(), "127.0.1.77");
+  const int local = connectTo(server.port(), "127.0.0.1");
+  const int outside = connectTo(server.port(), "127.0.2.1");
+  serveFor(server, 300);
+  EXPECT_EQ(server.clientCount(), 2);
+  EXPECT_EQ(server.refusedCount(), 2);
+  EXPECT_FALSE(closedByServer(listed));
+  EXPECT_FALSE(closedByServer(inBlock));
+  EXPECT_TRUE(closedByServer(local));
+  EXPECT_TRUE(closedByServer(outside));
+  ASSERT_GE(notices.size(), 1u);
+  EXPECT_EQ(notices[0].rfind("refused a connection (1 so far): 127.0.", 0), 0u) << notices[0];
+  EXPECT_NE(notices[0].find(" is not an allowed client (--allow-client)"), std::string::npos)
+    << notices[0];
+  for (int fd : { listed, inBlock, local, outside })
+  {
+    close(fd);
+  }
+}
+
+TEST(PoseStreamServer, RefusesAnAllowListEntryThatIsNotAnAddressOrBlock)
+{
+  for (const char* entry : { "300.1.1.1", "10.0.0.0/33", "10.0.0.0/", "10.0.0.0/8x", "host" })
+  {
+    PoseStreamServerOptions options = anyFreePort();
+    options.allowedClients = { entry };
+    EXPECT_EQ(fixtures::errorMessageOf([&] { PoseStreamServer server(options); }),
+      "'" + std::string(entry) +
+        "' is not an IPv4 address or block to allow (a.b.c.d, or a.b.c.d/n with n at most 32)");
+  }
+  PoseStreamServerOptions none = anyFreePort();
+  none.maxClientsPerAddress = 0;
+  EXPECT_EQ(fixtures::errorMessageOf([&] { PoseStreamServer server(none); }),
+    "the port must lie in [0, 65535], at least one client (and one per address) must be allowed "
+    "and the stall timeout must be positive");
 }
