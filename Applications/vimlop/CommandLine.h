@@ -21,6 +21,7 @@ class App;
 namespace vimlop
 {
 
+struct CTReadOptions;
 struct EndoscopeSimulationOptions;
 struct PoseServingOptions;
 struct SimulatedWorldOptions;
@@ -41,6 +42,9 @@ std::string joinList(const std::vector<std::string>& items);
 /// @brief Adds --mesh and --ct, each excluding the other: the airway a command reads with
 /// airwayMeshFrom (Imaging/ModelLoading.h).
 void addModelOptions(CLI::App& command, std::string& mesh, std::string& ct);
+
+/// @brief Adds --series and --resample-irregular-series (how a DICOM folder is read).
+void addCTReadOptions(CLI::App& command, CTReadOptions& options);
 
 /**
  * @brief Adds a flag for every setting of the main job to `command`, stored
@@ -77,7 +81,8 @@ void addWorldOptions(CLI::App& command, SimulatedWorldOptions& options);
 void addWorldPresetOption(CLI::App& command, WorldSettings& settings);
 
 /**
- * @brief Adds --host, --port, --allow-remote, --max-clients and --duration-s
+ * @brief Adds --host, --port, --allow-remote, --max-clients, --max-clients-per-address,
+ * --allow-client and --duration-s
  * to `command`, stored into `options` (which must outlive the parse): the
  * flags of every subcommand that serves poses (VIMLOP::Server's servePoses).
  */

@@ -1,5 +1,6 @@
 #include "CommandLine.h"
 #include <vimlop/Core/RegistrationOptionTable.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
 #include <vimlop/Server/PoseServing.h>
@@ -64,6 +65,15 @@ void addPipelineOptions(CLI::App& c, VideoRegistrationOptions& p)
     ->default_str(p.fieldOfView.toText());
 }
 
+void addCTReadOptions(CLI::App& command, CTReadOptions& options)
+{
+  command.add_option(
+    "--series", options.dicomSeriesUID, "DICOM series UID when a folder holds several");
+  command.add_flag("--resample-irregular-series", options.resampleIrregularSeries,
+    "resample a DICOM series tilted by the gantry or with missing or uneven slices onto a "
+    "regular grid (with a warning) instead of refusing it");
+}
+
 void addPoseServingOptions(CLI::App& command, PoseServingOptions& options)
 {
   command.add_option("--host", options.server.host, "address to listen on")->capture_default_str();
@@ -72,6 +82,13 @@ void addPoseServingOptions(CLI::App& command, PoseServingOptions& options)
   command.add_flag("--allow-remote", options.server.allowRemote, "allow a non-loopback address");
   command.add_option("--max-clients", options.server.maxClients, "clients served at once")
     ->capture_default_str();
+  command
+    .add_option("--max-clients-per-address", options.server.maxClientsPerAddress,
+      "connections kept from one address; a new one beyond it replaces that address's most idle")
+    ->capture_default_str();
+  command.add_option("--allow-client", options.server.allowedClients,
+    "only this address or CIDR block may connect (repeat for more; default: any; add "
+    "127.0.0.1 to keep local programs)");
   command
     .add_option("--duration-s", options.durationS, "stop after this many seconds (0: until Ctrl-C)")
     ->capture_default_str();

@@ -1,3 +1,4 @@
+#include "CommandLine.h"
 #include "Commands.h"
 
 #include <vimlop/Core/Error.h>
@@ -24,12 +25,12 @@ namespace
 struct InfoOptions
 {
   std::string path;
-  std::string seriesUID;
+  CTReadOptions ct;
 };
 
-void printCT(const std::string& path, const std::string& seriesUID)
+void printCT(const std::string& path, const CTReadOptions& options)
 {
-  const CTVolume v = readCTVolume(path, seriesUID);
+  const CTVolume v = readCTVolume(path, options);
   for (const std::string& warning : v.warnings)
   {
     std::cerr << "vimlop info: warning: " << warning << "\n";
@@ -110,7 +111,7 @@ void runInfo(const InfoOptions& options)
   const std::string& path = options.path;
   if (isCTVolumePath(path))
   {
-    printCT(path, options.seriesUID);
+    printCT(path, options.ct);
   }
   else if (isMeshPath(path))
   {
@@ -138,7 +139,7 @@ void addInfoCommand(CLI::App& app)
   info
     ->add_option("file", options->path, "CT volume (file or DICOM folder), mesh or intrinsics file")
     ->required();
-  info->add_option("--series", options->seriesUID, "DICOM series UID when a folder holds several");
+  addCTReadOptions(*info, options->ct);
   info->callback([options] { runInfo(*options); });
 }
 

@@ -1,3 +1,4 @@
+#include "CommandLine.h"
 #include "Commands.h"
 
 #include "TerminalProgress.h"
@@ -26,7 +27,7 @@ namespace
 struct SegmentOptions
 {
   std::string ct;
-  std::string seriesUID;
+  CTReadOptions ctReading;
   std::string out;
   std::string labelOut;
   std::string seed;
@@ -70,7 +71,7 @@ void runSegment(SegmentOptions options)
     options.segmentation.seedMm = parsePoint(options.seed, "--seed-mm");
   }
 
-  const CTVolume ct = readCTVolume(options.ct, options.seriesUID);
+  const CTVolume ct = readCTVolume(options.ct, options.ctReading);
   for (const std::string& warning : ct.warnings)
   {
     std::cerr << "vimlop segment: warning: " << warning << "\n";
@@ -109,8 +110,7 @@ void addSegmentCommand(CLI::App& app)
   segment->add_option("--ct", options->ct, "CT volume: file or DICOM folder")->required();
   segment->add_option("--out", options->out, "Output surface: .vtp, .vtk, .stl or .ply")
     ->required();
-  segment->add_option(
-    "--series", options->seriesUID, "DICOM series UID when a folder holds several");
+  addCTReadOptions(*segment, options->ctReading);
   segment->add_option("--threshold", options->segmentation.airThresholdHU, "Air threshold in HU")
     ->capture_default_str();
   segment

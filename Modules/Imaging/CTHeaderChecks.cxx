@@ -3,10 +3,16 @@
 #include <vimlop/Core/Error.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <iterator>
+#include <sstream>
 
 namespace vimlop::detail
 {
@@ -50,6 +56,10 @@ void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
   const std::uint32_t bits = u32(108, little);
   float voxOffset = 0.0f;
   std::memcpy(&voxOffset, &bits, sizeof(voxOffset));
+  if (!(voxOffset >= 0.0f && voxOffset < 1e15f))
+  {
+    fail(path, "the header's vox_offset is not a byte offset in the file");
+  }
   const std::uint64_t expected =
     static_cast<std::uint64_t>(std::max(voxOffset, 348.0f)) + voxelBytes;
   std::error_code ec;
@@ -65,12 +75,27 @@ void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
 /// A MetaImage header names its data file (or LOCAL: the data follow the
 /// header). MetaIO prints to stderr when the file is missing and reads a
 /// short one as zeros (0 HU), so look first and say it in one line.
+void checkCompressedBound(
+  const std::string& path, std::uint64_t compressedBytes, std::uint64_t voxelBytes)
+{
+  // Deflate (gzip, zlib) expands a byte into at most 1032.
+  constexpr std::uint64_t maxRatio = 1032;
+  if (compressedBytes < voxelBytes / maxRatio)
+  {
+    fail(path,
+      "the header promises " + std::to_string(voxelBytes) + " bytes of voxels, which " +
+        std::to_string(compressedBytes) +
+        " bytes of compressed data cannot hold; refusing to allocate them");
+  }
+}
+
 void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
 {
   std::ifstream in(path, std::ios::binary);
   std::string line;
   bool compressed = false;
   long long headerBytes = 0; // HeaderSize: bytes to skip in the data file; -1 reads the tail
+  std::uint64_t compressedBytes = 0;
   for (int lines = 0; lines < 200 && std::getline(in, line); ++lines)
   {
     const auto equals = line.find('=');
@@ -91,9 +116,21 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
     {
       headerBytes = std::atoll(value.c_str());
     }
+    else if (key == "CompressedDataSize")
+    {
+      // MetaIO allocates this many bytes before reading them.
+      compressedBytes = std::strtoull(value.c_str(), nullptr, 10);
+    }
     if (key != "ElementDataFile")
     {
       continue;
+    }
+    if (value.empty() ||
+      !std::all_of(value.begin(), value.end(), [](unsigned char c) { return std::isprint(c); }))
+    {
+      // MetaIO read such a value as a file it could not open, then tried to
+      // allocate the rest of a stream that had failed: 2^63 bytes.
+      fail(path, "the header's ElementDataFile is not a file name, LOCAL or LIST");
     }
     if (value == "LIST" || value.find('%') != std::string::npos)
     {
@@ -122,7 +159,83 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
         "the image data are cut short (" + std::to_string(available) +
           " bytes, the header promises " + std::to_string(voxelBytes) + ")");
     }
+    if (compressed && !ec)
+    {
+      checkCompressedBound(path, available, voxelBytes);
+      if (compressedBytes > available)
+      {
+        fail(path,
+          "the header's CompressedDataSize (" + std::to_string(compressedBytes) +
+            " bytes) is more than the " + std::to_string(available) + " bytes of data");
+      }
+    }
     return;
+  }
+}
+
+void checkNrrdData(const std::string& path, std::uint64_t voxelBytes)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::string encoding = "raw";
+  std::string dataFile;
+  std::uint64_t headerEnd = 0;
+  for (int lines = 0; lines < 1000 && std::getline(in, line); ++lines)
+  {
+    headerEnd += line.size() + 1;
+    if (!line.empty() && line.back() == '\r')
+    {
+      line.pop_back();
+    }
+    if (line.empty())
+    {
+      break; // attached data follow
+    }
+    const auto colon = line.find(": ");
+    if (colon == std::string::npos)
+    {
+      continue;
+    }
+    const std::string key = line.substr(0, colon);
+    const std::string value = line.substr(colon + 2);
+    if (key == "encoding")
+    {
+      encoding = value;
+    }
+    else if (key == "data file" || key == "datafile")
+    {
+      dataFile = value;
+    }
+  }
+  std::error_code ec;
+  std::uint64_t available = 0;
+  if (dataFile.empty())
+  {
+    const std::uint64_t size = std::filesystem::file_size(path, ec);
+    available = size - std::min(size, headerEnd);
+  }
+  else if (dataFile.find(' ') == std::string::npos && dataFile != "LIST")
+  {
+    const std::filesystem::path data = std::filesystem::path(path).parent_path() / dataFile;
+    available = std::filesystem::file_size(data, ec);
+  }
+  else
+  {
+    return; // a list or pattern of files: left to teem
+  }
+  if (ec)
+  {
+    return; // teem says what is missing
+  }
+  if (encoding == "raw" && available < voxelBytes)
+  {
+    fail(path,
+      "the image data are cut short (" + std::to_string(available) +
+        " bytes, the header promises " + std::to_string(voxelBytes) + ")");
+  }
+  if (encoding == "gzip" || encoding == "gz")
+  {
+    checkCompressedBound(path, available, voxelBytes);
   }
 }
 
@@ -173,6 +286,304 @@ void checkNrrdHeader(const std::string& path)
   if (!detached)
   {
     fail(path, "the header does not end with a blank line before the data");
+  }
+}
+
+namespace
+{
+
+/// The data elements of a DICOM file, walked as GDCM will read them, with
+/// every declared length checked against the bytes its container has left:
+/// GDCM allocates a length before it reads the value.
+class DicomWalk
+{
+public:
+  DicomWalk(const std::string& path, const std::string& data)
+    : Path(path)
+    , Data(data)
+  {
+  }
+
+  /// The file meta group (explicit VR little endian) from byte 132; returns
+  /// where the data set starts and whether it is implicit VR.
+  std::size_t metaGroup(bool& implicit)
+  {
+    std::size_t at = 132;
+    implicit = false;
+    for (int elements = 0; at + 8 <= this->Data.size() && this->u16(at) == 0x0002; ++elements)
+    {
+      if (elements >= 100)
+      {
+        this->corrupt(at, "is one of more than 100 in the file meta group");
+      }
+      const std::size_t value = this->explicitElement(at, this->Data.size());
+      const std::uint64_t length = this->Length;
+      if (this->u16(at + 2) == 0x0010)
+      {
+        // Transfer syntax: implicit VR little endian is 1.2.840.10008.1.2 exactly.
+        std::string uid = this->Data.substr(value, static_cast<std::size_t>(length));
+        while (!uid.empty() && (uid.back() == '\0' || uid.back() == ' '))
+        {
+          uid.pop_back();
+        }
+        implicit = uid == "1.2.840.10008.1.2";
+      }
+      at = value + static_cast<std::size_t>(length);
+    }
+    return at;
+  }
+
+  /// Elements from `at` to `end` (or to a delimiter when `end` is undefined).
+  std::size_t elements(std::size_t at, std::size_t end, bool implicit, int depth)
+  {
+    if (depth > 16)
+    {
+      this->corrupt(at, "lies in sequences nested more than 16 deep");
+    }
+    while (at + 8 <= end)
+    {
+      const std::uint32_t group = this->u16(at);
+      const std::uint32_t element = this->u16(at + 2);
+      if (group == 0xFFFE)
+      {
+        return at; // an item or delimiter: the caller's
+      }
+      const bool isImplicit = implicit;
+      const std::size_t value =
+        isImplicit ? this->implicitElement(at, end) : this->explicitElement(at, end);
+      if (this->Length == Undefined)
+      {
+        // A sequence (or encapsulated pixel data) of items up to its delimiter.
+        at = this->items(value, end, implicit, depth + 1);
+        continue;
+      }
+      (void)group;
+      (void)element;
+      if (this->IsSequence)
+      {
+        this->items(value, value + static_cast<std::size_t>(this->Length), implicit, depth + 1);
+      }
+      at = value + static_cast<std::size_t>(this->Length);
+    }
+    this->leftover(at, end);
+    return at;
+  }
+
+private:
+  static constexpr std::uint64_t Undefined = 0xFFFFFFFFu;
+
+  std::uint32_t u16(std::size_t at) const
+  {
+    return static_cast<std::uint32_t>(static_cast<unsigned char>(this->Data[at])) |
+      static_cast<std::uint32_t>(static_cast<unsigned char>(this->Data[at + 1])) << 8;
+  }
+
+  std::uint64_t u32(std::size_t at) const
+  {
+    return this->u16(at) | static_cast<std::uint64_t>(this->u16(at + 2)) << 16;
+  }
+
+  [[noreturn]] void corrupt(std::size_t at, const std::string& problem) const
+  {
+    char tag[16];
+    std::snprintf(tag, sizeof(tag), "(%04X,%04X)", this->u16(at), this->u16(at + 2));
+    fail(this->Path,
+      "the DICOM file is corrupt: element " + std::string(tag) + " at byte " + std::to_string(at) +
+        " " + problem);
+  }
+
+  void bound(std::size_t at, std::size_t value, std::size_t end) const
+  {
+    if (this->Length == Undefined || (value <= end && this->Length <= end - value))
+    {
+      return;
+    }
+    const std::string left = std::to_string(end > value ? end - value : 0);
+    if (end == this->Data.size())
+    {
+      char tag[16];
+      std::snprintf(tag, sizeof(tag), "(%04X,%04X)", this->u16(at), this->u16(at + 2));
+      fail(this->Path,
+        "the file is truncated: element " + std::string(tag) + " at byte " + std::to_string(at) +
+          " declares " + std::to_string(this->Length) + " bytes and " + left + " are left");
+    }
+    this->corrupt(at,
+      "declares " + std::to_string(this->Length) + " bytes, more than the " + left +
+        " left in the sequence around it");
+  }
+
+  std::size_t explicitElement(std::size_t at, std::size_t end)
+  {
+    static const char* const vrs[] = { "AE", "AS", "AT", "CS", "DA", "DS", "DT", "FL", "FD", "IS",
+      "LO", "LT", "OB", "OD", "OF", "OL", "OV", "OW", "PN", "SH", "SL", "SQ", "SS", "ST", "SV",
+      "TM", "UC", "UI", "UL", "UN", "UR", "US", "UT", "UV" };
+    static const char* const longVrs[] = { "OB", "OD", "OF", "OL", "OV", "OW", "SQ", "SV", "UC",
+      "UN", "UR", "UT", "UV" };
+    const std::string vr = this->Data.substr(at + 4, 2);
+    const auto in = [&](const char* const* list, std::size_t n)
+    { return std::find_if(list, list + n, [&](const char* v) { return vr == v; }) != list + n; };
+    if (!in(vrs, std::size(vrs)))
+    {
+      this->corrupt(at, "has no valid value representation");
+    }
+    this->IsSequence = vr == "SQ";
+    std::size_t value = 0;
+    if (in(longVrs, std::size(longVrs)))
+    {
+      if (at + 12 > end)
+      {
+        this->corrupt(at, "is cut off");
+      }
+      this->Length = this->u32(at + 8);
+      value = at + 12;
+    }
+    else
+    {
+      this->Length = this->u16(at + 6);
+      value = at + 8;
+    }
+    this->bound(at, value, end);
+    return value;
+  }
+
+  std::size_t implicitElement(std::size_t at, std::size_t end)
+  {
+    this->IsSequence = false; // not known without a dictionary: a defined length is skipped whole
+    this->Length = this->u32(at + 4);
+    this->bound(at, at + 8, end);
+    return at + 8;
+  }
+
+  /// Items (FFFE,E000) up to `end` or a sequence delimiter (FFFE,E0DD).
+  std::size_t items(std::size_t at, std::size_t end, bool implicit, int depth)
+  {
+    while (at + 8 <= end)
+    {
+      if (this->u16(at) != 0xFFFE)
+      {
+        this->corrupt(at, "stands where a sequence item should");
+      }
+      const std::uint32_t kind = this->u16(at + 2);
+      this->Length = this->u32(at + 4);
+      if (kind == 0xE0DD)
+      {
+        return at + 8;
+      }
+      if (kind != 0xE000)
+      {
+        this->corrupt(at, "is no sequence item");
+      }
+      const std::size_t value = at + 8;
+      if (this->Length == Undefined)
+      {
+        at = this->elements(value, end, implicit, depth);
+        if (at + 8 > end || this->u16(at) != 0xFFFE || this->u16(at + 2) != 0xE00D)
+        {
+          this->corrupt(at < end ? at : value, "ends an item without its delimiter");
+        }
+        at += 8;
+        continue;
+      }
+      this->bound(at, value, end);
+      // A fragment of pixel data or an item's elements: both are bounded.
+      at = value + static_cast<std::size_t>(this->Length);
+    }
+    this->leftover(at, end);
+    return at;
+  }
+
+  /// Fewer bytes than an element header left at the end of a container:
+  /// GDCM reads them as a tag and a VR and aborts on what it finds.
+  void leftover(std::size_t at, std::size_t end) const
+  {
+    if (at >= end)
+    {
+      return;
+    }
+    if (end == this->Data.size())
+    {
+      fail(this->Path,
+        "the file is truncated: it ends inside an element at byte " + std::to_string(at));
+    }
+    fail(this->Path,
+      "the DICOM file is corrupt: a sequence ends inside an element at byte " + std::to_string(at));
+  }
+
+  const std::string& Path;
+  const std::string& Data;
+  std::uint64_t Length = 0;
+  bool IsSequence = false;
+};
+
+} // namespace
+
+bool hasDicomPreamble(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  char head[132] = {};
+  in.read(head, sizeof(head));
+  return in.gcount() == 132 && std::memcmp(head + 128, "DICM", 4) == 0;
+}
+
+void checkDicomPart10(const std::string& path)
+{
+  if (!hasDicomPreamble(path))
+  {
+    fail(path, "not a DICOM file (no 'DICM' at byte 128)");
+  }
+  std::ifstream in(path, std::ios::binary);
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  DicomWalk walk(path, data);
+  bool implicit = false;
+  const std::size_t dataSet = walk.metaGroup(implicit);
+  walk.elements(dataSet, data.size(), implicit, 0);
+}
+
+/// ITK reads a spacing of 1e300 mm or an origin of 1e308 mm as given, and
+/// they overflow later.
+void checkGridGeometry(const std::string& path, const std::array<double, 3>& spacingMm,
+  const std::array<double, 3>& originMm, const std::array<double, 9>& direction)
+{
+  constexpr double maxSpacingMm = 100.0;
+  constexpr double maxOriginMm = 1e6;
+  std::ostringstream problem;
+  problem << std::setprecision(6);
+  const auto& s = spacingMm;
+  const auto& o = originMm;
+  if (!std::all_of(s.begin(), s.end(),
+        [](double v) { return std::isfinite(v) && v > 0.0 && v <= maxSpacingMm; }))
+  {
+    problem << "the voxel spacing " << s[0] << " x " << s[1] << " x " << s[2]
+            << " mm is not a CT's: each must be finite, positive and at most " << maxSpacingMm
+            << " mm";
+  }
+  else if (!std::all_of(o.begin(), o.end(),
+             [](double v) { return std::isfinite(v) && std::abs(v) <= maxOriginMm; }))
+  {
+    problem << "the origin (" << o[0] << ", " << o[1] << ", " << o[2]
+            << ") mm is not finite or lies farther than 1 km from the scanner's";
+  }
+  else
+  {
+    // The columns (the voxel axes in LPS) unit and perpendicular.
+    const auto& d = direction;
+    for (int a = 0; a < 3 && problem.str().empty(); ++a)
+    {
+      for (int b = a; b < 3; ++b)
+      {
+        const double dot = d[a] * d[b] + d[3 + a] * d[3 + b] + d[6 + a] * d[6 + b];
+        if (!(std::abs(dot - (a == b ? 1.0 : 0.0)) <= 1e-3))
+        {
+          problem << "the direction matrix is not orthonormal (its columns, the voxel axes, must "
+                     "be unit vectors at right angles)";
+          break;
+        }
+      }
+    }
+  }
+  if (!problem.str().empty())
+  {
+    fail(path, problem.str());
   }
 }
 

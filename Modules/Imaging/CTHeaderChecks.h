@@ -3,9 +3,11 @@
 
 // Checks of a CT file's header made before ITK reads it, for what ITK's
 // readers let through: data shorter than the header promises (read as
-// zeros), and NRRD headers that teem's parser mishandles. Each throws
+// zeros), NRRD headers that teem's parser mishandles, and grid geometry
+// ITK reads as given and no scan has. Each throws
 // vimlop::Error "'path': problem". ITK-free: plain file reading.
 
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -15,8 +17,19 @@ namespace vimlop::detail
 /// @brief An uncompressed NIfTI-1 file holds the voxel bytes its header promises.
 void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes);
 
-/// @brief A MetaImage header's data file exists and holds the voxel bytes promised.
+/// @brief A MetaImage header's data file exists and holds the voxel bytes
+/// promised (raw), or enough for them (compressed).
 void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes);
+
+/// @brief Compressed data of `compressedBytes` can hold `voxelBytes`
+/// (deflate expands a byte into at most 1032): a small file cannot make the
+/// reader allocate gigabytes.
+void checkCompressedBound(
+  const std::string& path, std::uint64_t compressedBytes, std::uint64_t voxelBytes);
+
+/// @brief An NRRD file's data (attached, or one detached file) hold the voxel
+/// bytes promised: all of them raw, enough for them gzip-compressed.
+void checkNrrdData(const std::string& path, std::uint64_t voxelBytes);
 
 /**
  * @brief An NRRD header has lines of at most 1024 characters (teem copied a
@@ -24,6 +37,27 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes);
  * the same file, ends with the blank line the format requires.
  */
 void checkNrrdHeader(const std::string& path);
+
+/// @brief The file has 'DICM' at byte 128, as DICOM Part 10 files do.
+bool hasDicomPreamble(const std::string& path);
+
+/**
+ * @brief A DICOM Part 10 file, walked element by element as GDCM will read
+ * it, before GDCM does (built with assertions, it aborts the process on an
+ * invalid VR, and it allocates an element's declared length before reading
+ * it): 'DICM' at byte 128, valid VRs, every declared length within what its
+ * file or sequence has left, items closed by their delimiters, sequences
+ * nested at most 16 deep.
+ */
+void checkDicomPart10(const std::string& path);
+
+/**
+ * @brief Geometry no CT (and no field on a CT's grid) has, whatever the
+ * format: spacing not finite, not positive or above 100 mm; origin not
+ * finite or beyond 1 km; direction columns not orthonormal.
+ */
+void checkGridGeometry(const std::string& path, const std::array<double, 3>& spacingMm,
+  const std::array<double, 3>& originMm, const std::array<double, 9>& direction);
 
 } // namespace vimlop::detail
 

@@ -7,12 +7,11 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/CTHeaderChecks.h>
 #include <vimlop/Imaging/DicomSeriesGeometry.h>
-#include <vimlop/Imaging/ITKImageIOFactories.h>
+#include <vimlop/Imaging/ITKImageFiles.h>
 #include <vimlop/Imaging/InVesaliusProjectReader.h>
 
 #include <itkGDCMImageIO.h>
 #include <itkGDCMImageIOFactory.h>
-#include <itkGDCMSeriesFileNames.h>
 #include <itkImage.h>
 #include <itkImageFileReader.h>
 #include <itkImageFileWriter.h>
@@ -28,6 +27,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <iomanip>
+#include <map>
 #include <mutex>
 #include <sstream>
 
@@ -60,10 +60,13 @@ bool endsWith(const std::string& s, const std::string& suffix)
     s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+} // namespace
+
 /// ITK's messages span several lines with source locations; keep the gist.
-std::string itkMessage(const itk::ExceptionObject& e)
+std::string detail::itkMessage(const std::exception& e)
 {
-  std::string text = e.GetDescription();
+  const auto* itkError = dynamic_cast<const itk::ExceptionObject*>(&e);
+  std::string text = itkError ? itkError->GetDescription() : e.what();
   const auto newline = text.find('\n');
   if (newline != std::string::npos)
   {
@@ -83,8 +86,6 @@ std::string itkMessage(const itk::ExceptionObject& e)
   }
   return text;
 }
-
-} // namespace
 
 void detail::registerImageIOs()
 {
@@ -122,44 +123,74 @@ CTVolume toVolume(const ImageType* image)
   return volume;
 }
 
-/// The Series Instance UID (0020,000e) stored in a DICOM file, or "".
-std::string seriesInstanceUID(const std::string& file)
+/// The group a slice belongs to: its series, and (as GDCM's "series
+/// details" did) its orientation and size, so that scout images filed under
+/// the series UID of the scan form a group of their own.
+std::string seriesGroupKey(const DicomSliceHeader& h)
 {
-  try
+  std::ostringstream key;
+  key << h.seriesInstanceUID << " " << h.rows << "x" << h.columns << std::fixed
+      << std::setprecision(2);
+  for (double v : h.orientation)
   {
-    return readDicomSliceHeader(file).seriesInstanceUID;
+    key << " " << (std::abs(v) < 0.005 ? 0.0 : v);
   }
-  catch (const Error&)
-  {
-    return std::string();
-  }
+  return key.str();
 }
 
-CTVolume readDicomSeries(const std::string& folder, const std::string& seriesUID)
+CTVolume readDicomSeries(const std::string& folder, const CTReadOptions& options)
 {
-  // Series details split a series whose slices differ in size or orientation
-  // (scout images, say); each group is named by the series UID plus details.
-  auto names = itk::GDCMSeriesFileNames::New();
-  names->SetUseSeriesDetails(true);
-  names->SetDirectory(folder);
-  const std::vector<std::string> groups = names->GetSeriesUIDs();
-  if (groups.empty())
+  const std::string& seriesUID = options.dicomSeriesUID;
+  // Every file is judged by VIMLOP before GDCM parses it (GDCM aborts or
+  // allocates gigabytes on some broken files), so the folder is not handed
+  // to GDCM's scanner: files without the DICOM preamble are passed over,
+  // the others walked, their headers read and grouped here.
+  std::vector<std::string> paths;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
   {
-    fail(folder, "the folder holds no DICOM series");
-  }
-  std::string chosen;
-  size_t most = 0;
-  for (const std::string& group : groups)
-  {
-    const std::vector<std::string> files = names->GetFileNames(group);
-    const bool wanted = seriesUID.empty() || seriesInstanceUID(files.front()) == seriesUID;
-    if (wanted && files.size() > most)
+    if (entry.is_regular_file(ec))
     {
-      most = files.size();
-      chosen = group;
+      paths.push_back(entry.path().string());
     }
   }
-  if (chosen.empty())
+  std::sort(paths.begin(), paths.end());
+  std::map<std::string, std::vector<DicomSliceHeader>> groups;
+  int passedOver = 0;
+  for (const std::string& file : paths)
+  {
+    if (!detail::hasDicomPreamble(file))
+    {
+      ++passedOver;
+      continue;
+    }
+    // A broken DICOM file is refused naming it, rather than passed over.
+    DicomSliceHeader header = readDicomSliceHeader(file);
+    if (header.rows == 0 || header.columns == 0)
+    {
+      ++passedOver; // a DICOMDIR, a report: no image
+      continue;
+    }
+    groups[seriesGroupKey(header)].push_back(std::move(header));
+  }
+  if (groups.empty())
+  {
+    fail(folder,
+      "the folder holds no DICOM series" +
+        (passedOver == 0 ? std::string()
+                         : " (" + std::to_string(passedOver) +
+              " files without 'DICM' at byte 128 or without pixels were passed over)"));
+  }
+  const std::vector<DicomSliceHeader>* chosen = nullptr;
+  for (const auto& [key, slices] : groups)
+  {
+    const bool wanted = seriesUID.empty() || slices.front().seriesInstanceUID == seriesUID;
+    if (wanted && (!chosen || slices.size() > chosen->size()))
+    {
+      chosen = &slices;
+    }
+  }
+  if (!chosen)
   {
     fail(folder, "no DICOM series with UID '" + seriesUID + "' in the folder");
   }
@@ -168,21 +199,20 @@ CTVolume readDicomSeries(const std::string& folder, const std::string& seriesUID
   {
     std::ostringstream msg;
     msg << "the folder holds " << groups.size() << " DICOM series; read the largest ("
-        << seriesInstanceUID(names->GetFileNames(chosen).front()) << ", " << most
+        << chosen->front().seriesInstanceUID << ", " << chosen->size()
         << " slices); choose another by its series UID";
     warnings.push_back(msg.str());
   }
   // Judge every slice's header before ITK makes a volume of them: its series
   // reader assumes one orientation and even steps, and fills what is missing.
-  std::vector<DicomSliceHeader> headers;
+  const std::vector<DicomSliceHeader>& headers = *chosen;
   std::vector<std::string> files;
+  DicomSeriesLayout layout;
   try
   {
-    for (const std::string& file : names->GetFileNames(chosen))
-    {
-      headers.push_back(readDicomSliceHeader(file));
-    }
-    for (std::size_t index : checkDicomSeriesGeometry(headers).order)
+    layout = checkDicomSeriesGeometry(headers, DicomSeriesTolerances(),
+      options.resampleIrregularSeries ? IrregularSeries::Resample : IrregularSeries::Refuse);
+    for (std::size_t index : layout.order)
     {
       files.push_back(headers[index].file);
     }
@@ -198,11 +228,27 @@ CTVolume readDicomSeries(const std::string& folder, const std::string& seriesUID
   {
     reader->Update();
   }
-  catch (const itk::ExceptionObject& e)
+  catch (const std::exception& e) // ITK also throws std::length_error, std::bad_alloc
   {
-    fail(folder, "cannot read the DICOM series (" + itkMessage(e) + ")");
+    fail(folder, "cannot read the DICOM series (" + detail::itkMessage(e) + ")");
   }
   CTVolume volume = toVolume(reader->GetOutput());
+  if (!layout.irregularities.empty())
+  {
+    const DicomSliceHeader& lowest = headers[layout.order.front()];
+    volume = resampleDicomStack(volume, layout, lowest);
+    std::ostringstream what;
+    what << std::fixed << std::setprecision(2) << "resampled onto a regular grid of "
+         << volume.dims[2] << " slices " << layout.sliceStepMm << " mm apart along the normal of '"
+         << lowest.file << "', as asked, from an irregular series: ";
+    for (std::size_t i = 0; i < layout.irregularities.size(); ++i)
+    {
+      what << (i ? "; " : "") << layout.irregularities[i];
+    }
+    what << ". Voxels beside the slices' pixels are -1024 HU (air)";
+    warnings.push_back(what.str());
+    volume.identity["resampled"] = what.str();
+  }
   volume.format = "DICOM series";
   volume.warnings = std::move(warnings);
   const DicomSliceHeader& first = headers.front();
@@ -218,8 +264,11 @@ CTVolume readDicomSeries(const std::string& folder, const std::string& seriesUID
   return volume;
 }
 
-std::string formatName(const std::string& lowerPath)
+} // namespace
+
+std::string detail::imageFormatName(const std::string& path)
 {
+  const std::string lowerPath = lowerCase(path);
   if (endsWith(lowerPath, ".nii") || endsWith(lowerPath, ".nii.gz"))
   {
     return "NIfTI";
@@ -239,11 +288,19 @@ std::string formatName(const std::string& lowerPath)
   return "";
 }
 
-CTVolume readImageFile(const std::string& path, const std::string& format)
+namespace
+{
+
+itk::ImageIOBase::Pointer openCheckedImageFile(
+  const std::string& path, const std::string& format, const detail::ExpectedImage& expected)
 {
   if (format == "NRRD")
   {
     detail::checkNrrdHeader(path); // before teem parses it
+  }
+  if (format == "DICOM")
+  {
+    detail::checkDicomPart10(path); // before GDCM parses it
   }
   itk::ImageIOBase::Pointer io =
     itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
@@ -258,7 +315,7 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
   }
   catch (const itk::ExceptionObject& e)
   {
-    fail(path, "cannot read the " + format + " header (" + itkMessage(e) + ")");
+    fail(path, "cannot read the " + format + " header (" + detail::itkMessage(e) + ")");
   }
   const unsigned dimensions = io->GetNumberOfDimensions();
   std::string size;
@@ -268,17 +325,19 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
   }
   if (dimensions < 3)
   {
-    fail(path, "the image is 2-D (" + size + " pixels); a 3-D CT volume is needed");
+    fail(path, "the image is 2-D (" + size + " pixels); a 3-D " + expected.what + " is needed");
   }
   if (io->GetDimensions(0) < 2 || io->GetDimensions(1) < 2 || io->GetDimensions(2) < 2)
   {
     // One voxel thick along an axis is a slice (or a point), not a volume.
-    fail(
-      path, "the image is " + size + " voxels; a 3-D CT volume needs at least 2 along each axis");
+    fail(path,
+      "the image is " + size + " voxels; a 3-D " + expected.what +
+        " needs at least 2 along each axis");
   }
   if (dimensions > 3 && io->GetDimensions(3) > 1)
   {
-    fail(path, "the image is 4-D (a time series); a 3-D CT volume is needed");
+    fail(
+      path, "the image is 4-D (a time series); a 3-D " + std::string(expected.what) + " is needed");
   }
   // Refuse before allocating: a header can promise far more than any CT.
   std::uint64_t voxels = 1;
@@ -296,20 +355,65 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
       "the header promises more than " + std::to_string(MaxVoxels) +
         " voxels; refusing to allocate it");
   }
-  if (io->GetNumberOfComponents() != 1)
+  if (io->GetComponentType() == itk::IOComponentEnum::UNKNOWNCOMPONENTTYPE)
+  {
+    fail(path, "the header names no voxel type " + format + " files have");
+  }
+  if (io->GetNumberOfComponents() != expected.components)
   {
     fail(path,
-      "the image has " + std::to_string(io->GetNumberOfComponents()) +
-        " components per voxel; a scalar CT volume is needed");
+      "the image has " + std::to_string(io->GetNumberOfComponents()) + " components per voxel; " +
+        expected.componentsRule);
   }
+  const std::uint64_t voxelBytes = io->GetImageSizeInBytes();
   if (endsWith(lowerCase(path), ".nii"))
   {
-    detail::checkNiftiLength(path, io->GetImageSizeInBytes());
+    detail::checkNiftiLength(path, voxelBytes);
+  }
+  if (endsWith(lowerCase(path), ".nii.gz"))
+  {
+    std::error_code ec;
+    detail::checkCompressedBound(path, std::filesystem::file_size(path, ec), voxelBytes);
+  }
+  if (format == "NRRD")
+  {
+    detail::checkNrrdData(path, voxelBytes);
   }
   if (format == "MetaImage")
   {
-    detail::checkMetaImageData(path, io->GetImageSizeInBytes());
+    detail::checkMetaImageData(path, voxelBytes);
   }
+  return io;
+}
+
+} // namespace
+
+itk::ImageIOBase::Pointer detail::openImageFile(
+  const std::string& path, const std::string& format, const ExpectedImage& expected)
+{
+  // ITK throws from more places than ReadImageInformation (the image IO
+  // factories' CanReadFile, the size of an unknown type): none may escape.
+  try
+  {
+    return openCheckedImageFile(path, format, expected);
+  }
+  catch (const Error&)
+  {
+    throw;
+  }
+  catch (const std::exception& e)
+  {
+    fail(path, "cannot read the " + format + " header (" + detail::itkMessage(e) + ")");
+  }
+}
+
+namespace
+{
+
+CTVolume readImageFile(const std::string& path, const std::string& format)
+{
+  itk::ImageIOBase::Pointer io =
+    detail::openImageFile(path, format, { "CT volume", 1, "a scalar CT volume is needed" });
   auto reader = itk::ImageFileReader<ImageType>::New();
   reader->SetFileName(path);
   reader->SetImageIO(io);
@@ -317,9 +421,9 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
   {
     reader->Update();
   }
-  catch (const itk::ExceptionObject& e)
+  catch (const std::exception& e) // ITK also throws std::length_error, std::bad_alloc
   {
-    fail(path, "cannot read the image data (" + itkMessage(e) + ")");
+    fail(path, "cannot read the image data (" + detail::itkMessage(e) + ")");
   }
   CTVolume volume = toVolume(reader->GetOutput());
   volume.format = format;
@@ -332,66 +436,19 @@ bool isCTVolumePath(const std::string& path)
 {
   const std::string lower = lowerCase(path);
   return std::filesystem::is_directory(path) || endsWith(lower, ".inv3") ||
-    !formatName(lower).empty();
+    !detail::imageFormatName(lower).empty();
 }
 
 bool isWritableCTVolumePath(const std::string& path)
 {
-  const std::string format = formatName(lowerCase(path));
+  const std::string format = detail::imageFormatName(path);
   return !format.empty() && format != "DICOM";
 }
 
 namespace
 {
 
-/// Geometry no CT has, refused whatever the format: ITK reads a spacing of
-/// 1e300 mm or an origin of 1e308 mm as given, and they overflow later.
-void checkGeometry(const std::string& path, const CTVolume& volume)
-{
-  constexpr double maxSpacingMm = 100.0;
-  constexpr double maxOriginMm = 1e6;
-  std::ostringstream problem;
-  problem << std::setprecision(6);
-  const auto& s = volume.spacingMm;
-  const auto& o = volume.originMm;
-  if (!std::all_of(s.begin(), s.end(),
-        [](double v) { return std::isfinite(v) && v > 0.0 && v <= maxSpacingMm; }))
-  {
-    problem << "the voxel spacing " << s[0] << " x " << s[1] << " x " << s[2]
-            << " mm is not a CT's: each must be finite, positive and at most " << maxSpacingMm
-            << " mm";
-  }
-  else if (!std::all_of(o.begin(), o.end(),
-             [](double v) { return std::isfinite(v) && std::abs(v) <= maxOriginMm; }))
-  {
-    problem << "the origin (" << o[0] << ", " << o[1] << ", " << o[2]
-            << ") mm is not finite or lies farther than 1 km from the scanner's";
-  }
-  else
-  {
-    // The columns (the voxel axes in LPS) unit and perpendicular.
-    const auto& d = volume.direction;
-    for (int a = 0; a < 3 && problem.str().empty(); ++a)
-    {
-      for (int b = a; b < 3; ++b)
-      {
-        const double dot = d[a] * d[b] + d[3 + a] * d[3 + b] + d[6 + a] * d[6 + b];
-        if (!(std::abs(dot - (a == b ? 1.0 : 0.0)) <= 1e-3))
-        {
-          problem << "the direction matrix is not orthonormal (its columns, the voxel axes, must "
-                     "be unit vectors at right angles)";
-          break;
-        }
-      }
-    }
-  }
-  if (!problem.str().empty())
-  {
-    fail(path, problem.str());
-  }
-}
-
-CTVolume readAnyFormat(const std::string& path, const std::string& dicomSeriesUID)
+CTVolume readAnyFormat(const std::string& path, const CTReadOptions& options)
 {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
@@ -401,14 +458,14 @@ CTVolume readAnyFormat(const std::string& path, const std::string& dicomSeriesUI
   detail::registerImageIOs();
   if (std::filesystem::is_directory(path, ec))
   {
-    return readDicomSeries(path, dicomSeriesUID);
+    return readDicomSeries(path, options);
   }
   const std::string lower = lowerCase(path);
   if (endsWith(lower, ".inv3"))
   {
     return readInVesaliusProject(path);
   }
-  const std::string format = formatName(lower);
+  const std::string format = detail::imageFormatName(lower);
   if (format.empty())
   {
     fail(path,
@@ -420,10 +477,10 @@ CTVolume readAnyFormat(const std::string& path, const std::string& dicomSeriesUI
 
 } // namespace
 
-CTVolume readCTVolume(const std::string& path, const std::string& dicomSeriesUID)
+CTVolume readCTVolume(const std::string& path, const CTReadOptions& options)
 {
-  CTVolume volume = readAnyFormat(path, dicomSeriesUID);
-  checkGeometry(path, volume);
+  CTVolume volume = readAnyFormat(path, options);
+  detail::checkGridGeometry(path, volume.spacingMm, volume.originMm, volume.direction);
   return volume;
 }
 
@@ -469,7 +526,7 @@ void writeCTVolume(const CTVolume& volume, const std::string& path)
   }
   catch (const itk::ExceptionObject& e)
   {
-    fail(path, "cannot write the image (" + itkMessage(e) + ")");
+    fail(path, "cannot write the image (" + detail::itkMessage(e) + ")");
   }
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -110,8 +111,8 @@ void checkSlice(const DicomSliceHeader& s, const DicomSeriesTolerances& toleranc
 
 } // namespace
 
-DicomSeriesLayout checkDicomSeriesGeometry(
-  const std::vector<DicomSliceHeader>& slices, const DicomSeriesTolerances& tolerances)
+DicomSeriesLayout checkDicomSeriesGeometry(const std::vector<DicomSliceHeader>& slices,
+  const DicomSeriesTolerances& tolerances, IrregularSeries irregular)
 {
   if (slices.size() < 2)
   {
@@ -172,28 +173,45 @@ DicomSeriesLayout checkDicomSeriesGeometry(
     }
   }
 
+  // Refused, or noted for the resampling: the first tilted slice and the
+  // first uneven step tell what is wrong.
+  const auto irregularity = [&](const std::ostringstream& problem, const char* consequence)
+  {
+    if (irregular == IrregularSeries::Refuse)
+    {
+      throw Error(problem.str() + "; " + consequence +
+        ": resample it onto a regular grid (--resample-irregular-series)");
+    }
+    layout.irregularities.push_back(problem.str());
+  };
   const std::size_t base = layout.order.front();
   const double pixelMm = std::min(first.pixelSpacingMm[0], first.pixelSpacingMm[1]);
+  layout.alongMm.push_back(0.0);
+  layout.besideMm.push_back({ 0.0, 0.0 });
+  bool tilted = false;
   for (std::size_t k = 1; k < layout.order.size(); ++k)
   {
     const DicomSliceHeader& s = slices[layout.order[k]];
+    const double height = along[layout.order[k]] - along[base];
     Vec3 drift{};
     for (int axis = 0; axis < 3; ++axis)
     {
       const double offset = s.positionMm[axis] - slices[base].positionMm[axis];
-      drift[axis] = offset - (along[layout.order[k]] - along[base]) * normal[axis];
+      drift[axis] = offset - height * normal[axis];
     }
+    layout.alongMm.push_back(height);
+    layout.besideMm.push_back(
+      { dot(drift, rowDirection(first)), dot(drift, columnDirection(first)) });
     const double driftMm = std::sqrt(dot(drift, drift));
-    if (driftMm > tolerances.inPlaneDriftPixels * pixelMm)
+    if (!tilted && driftMm > tolerances.inPlaneDriftPixels * pixelMm)
     {
-      const double height = along[layout.order[k]] - along[base];
+      tilted = true;
       auto m = message();
       m << "the slices are not stacked along their normal: '" << s.file << "' lies " << driftMm
         << " mm beside the normal through '" << slices[base].file << "', " << height
         << " mm from it (a gantry tilt or shear of " << std::atan2(driftMm, height) * 180.0 / M_PI
-        << " degrees); a regular volume of it would misplace the anatomy, so resample the series "
-           "onto a regular grid first";
-      refuse(m);
+        << " degrees)";
+      irregularity(m, "a regular volume of it would misplace the anatomy");
     }
   }
 
@@ -218,10 +236,100 @@ DicomSeriesLayout checkDicomSeriesGeometry(
     {
       m << " (" << missing << (missing == 1 ? " slice is" : " slices are") << " missing)";
     }
-    m << "; a volume with one spacing would misplace the slices beyond them";
-    refuse(m);
+    irregularity(m, "a volume with one spacing would misplace the slices beyond them");
+    break;
   }
   return layout;
+}
+
+namespace
+{
+
+/// Bilinear within one slice (columns x rows, row-major by row); NaN beyond its pixels.
+double sampleSlice(const float* slice, int columns, int rows, double x, double y)
+{
+  if (!(x >= 0.0 && y >= 0.0 && x <= columns - 1 && y <= rows - 1))
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const int x0 = std::min(static_cast<int>(x), columns - 2);
+  const int y0 = std::min(static_cast<int>(y), rows - 2);
+  const double fx = x - x0;
+  const double fy = y - y0;
+  const float* p = slice + static_cast<std::size_t>(y0) * columns + x0;
+  return (1 - fy) * ((1 - fx) * p[0] + fx * p[1]) +
+    fy * ((1 - fx) * p[columns] + fx * p[columns + 1]);
+}
+
+} // namespace
+
+CTVolume resampleDicomStack(const CTVolume& stack, const DicomSeriesLayout& layout,
+  const DicomSliceHeader& first, float fillHU)
+{
+  const int columns = stack.dims[0];
+  const int rows = stack.dims[1];
+  const std::size_t count = layout.alongMm.size();
+  if (columns < 2 || rows < 2 || count < 2 || static_cast<std::size_t>(stack.dims[2]) != count ||
+    layout.besideMm.size() != count || !(layout.sliceStepMm > 0.0) ||
+    stack.intensities.size() != stack.numberOfVoxels())
+  {
+    throw Error("resampleDicomStack: the stack does not match the series layout");
+  }
+  // DICOM's Pixel Spacing is between rows, then between columns.
+  const double columnStepMm = first.pixelSpacingMm[1];
+  const double rowStepMm = first.pixelSpacingMm[0];
+  const double heightMm = layout.alongMm.back();
+  CTVolume volume;
+  volume.dims = { columns, rows, static_cast<int>(std::lround(heightMm / layout.sliceStepMm)) + 1 };
+  volume.spacingMm = { columnStepMm, rowStepMm, layout.sliceStepMm };
+  volume.originMm = first.positionMm;
+  const Vec3 row = rowDirection(first);
+  const Vec3 column = columnDirection(first);
+  const Vec3 normal = cross(row, column);
+  for (int r = 0; r < 3; ++r)
+  {
+    volume.direction[3 * r + 0] = row[r];
+    volume.direction[3 * r + 1] = column[r];
+    volume.direction[3 * r + 2] = normal[r];
+  }
+  volume.intensities.resize(volume.numberOfVoxels());
+  const std::size_t sliceVoxels = static_cast<std::size_t>(columns) * rows;
+  std::size_t below = 0;
+  for (int m = 0; m < volume.dims[2]; ++m)
+  {
+    const double z = std::min(m * layout.sliceStepMm, heightMm);
+    while (below + 2 < count && layout.alongMm[below + 1] <= z)
+    {
+      ++below;
+    }
+    const double w = std::clamp(
+      (z - layout.alongMm[below]) / (layout.alongMm[below + 1] - layout.alongMm[below]), 0.0, 1.0);
+    float* out = volume.intensities.data() + static_cast<std::size_t>(m) * sliceVoxels;
+    const float* lower = stack.intensities.data() + below * sliceVoxels;
+    const float* upper = lower + sliceVoxels;
+    const auto& shiftLower = layout.besideMm[below];
+    const auto& shiftUpper = layout.besideMm[below + 1];
+    for (int j = 0; j < rows; ++j)
+    {
+      for (int i = 0; i < columns; ++i)
+      {
+        // The voxel's point in each slice's own pixel coordinates; a voxel
+        // one of its two slices does not cover is filled, not half blended.
+        const double a = w < 1.0
+          ? sampleSlice(
+              lower, columns, rows, i - shiftLower[0] / columnStepMm, j - shiftLower[1] / rowStepMm)
+          : 0.0;
+        const double b = w > 0.0
+          ? sampleSlice(
+              upper, columns, rows, i - shiftUpper[0] / columnStepMm, j - shiftUpper[1] / rowStepMm)
+          : 0.0;
+        const double value = (1 - w) * a + w * b;
+        out[static_cast<std::size_t>(j) * columns + i] =
+          std::isnan(value) ? fillHU : static_cast<float>(value);
+      }
+    }
+  }
+  return volume;
 }
 
 } // namespace vimlop

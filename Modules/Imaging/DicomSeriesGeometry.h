@@ -1,6 +1,8 @@
 #ifndef vimlop_DicomSeriesGeometry_h
 #define vimlop_DicomSeriesGeometry_h
 
+#include <vimlop/Imaging/CTVolume.h>
+
 #include "VIMLOPImagingModule.h"
 
 #include <array>
@@ -68,13 +70,30 @@ struct DicomSeriesTolerances
   double minimumStepDeviationMm = 0.01;
 };
 
+/// @brief What checkDicomSeriesGeometry() does with a series whose slices
+/// are not stacked along their normal (gantry tilt) or not evenly spaced.
+enum class IrregularSeries
+{
+  Refuse,   ///< throw, naming the slices and the figures (the default)
+  Resample, ///< accept it and say what is irregular; resampleDicomStack() makes it regular
+};
+
 /// @brief A series that passed the checks: its slices in order along the
-/// slice normal, and the step between them.
+/// slice normal, where each lies, and the step between them.
 struct DicomSeriesLayout
 {
   /// Indices into the checked headers, along the slice normal (row x column).
   std::vector<std::size_t> order;
+  /// The median step between neighbouring slices, mm.
   double sliceStepMm = 0.0;
+  /// Per slice of `order`: its distance from the first along the normal, mm.
+  std::vector<double> alongMm;
+  /// Per slice of `order`: how far its position lies beside the normal
+  /// through the first slice's, along the row and the column direction, mm.
+  std::vector<std::array<double, 2>> besideMm;
+  /// Empty for a regular series; otherwise (IrregularSeries::Resample) what
+  /// is irregular about it, in the words a refusal would have used.
+  std::vector<std::string> irregularities;
 };
 
 /**
@@ -89,7 +108,26 @@ struct DicomSeriesLayout
  */
 VIMLOPIMAGING_EXPORT DicomSeriesLayout checkDicomSeriesGeometry(
   const std::vector<DicomSliceHeader>& slices,
-  const DicomSeriesTolerances& tolerances = DicomSeriesTolerances());
+  const DicomSeriesTolerances& tolerances = DicomSeriesTolerances(),
+  IrregularSeries irregular = IrregularSeries::Refuse);
+
+/**
+ * @brief Resamples the slices of a series onto a regular grid, for a series
+ * checkDicomSeriesGeometry() accepted with IrregularSeries::Resample.
+ *
+ * `stack` holds the slices' pixels as read, in `layout.order` (columns x rows
+ * x slices; its geometry is not used) and `first` is the header of the first
+ * slice of that order. The volume made has its origin at that slice's
+ * position, its axes along the row direction, the column direction and the
+ * slice normal, the pixel spacing in plane and `layout.sliceStepMm` between
+ * slices, from the first slice to the last. Each voxel is interpolated
+ * linearly between the two slices around it along the normal and bilinearly
+ * within each, at the point where the voxel lies, so a tilted slice is
+ * shifted into place and a gap is bridged; a voxel beside a tilted slice's
+ * pixels gets `fillHU` (air).
+ */
+VIMLOPIMAGING_EXPORT CTVolume resampleDicomStack(const CTVolume& stack,
+  const DicomSeriesLayout& layout, const DicomSliceHeader& first, float fillHU = -1024.0f);
 
 } // namespace vimlop
 

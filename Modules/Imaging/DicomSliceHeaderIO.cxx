@@ -5,6 +5,7 @@
 #include <vimlop/Imaging/DicomSeriesGeometry.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/CTHeaderChecks.h>
 
 #include <gdcmDataSet.h>
 #include <gdcmExplicitDataElement.h>
@@ -57,6 +58,7 @@ std::array<double, count> decimals(const std::string& text)
 
 DicomSliceHeader readDicomSliceHeader(const std::string& file)
 {
+  detail::checkDicomPart10(file); // before GDCM parses it
   const gdcm::Tag pixelData(0x7fe0, 0x0010);
   gdcm::Reader reader;
   reader.SetFileName(file.c_str());

@@ -2,14 +2,16 @@
 #include <vimlop/Imaging/DisplacementFieldIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/CTHeaderChecks.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
-#include <vimlop/Imaging/ITKImageIOFactories.h>
+#include <vimlop/Imaging/ITKImageFiles.h>
 
 #include <itkImage.h>
 #include <itkImageFileReader.h>
 #include <itkImageFileWriter.h>
 #include <itkVector.h>
 
+#include <cmath>
 #include <filesystem>
 
 namespace vimlop
@@ -23,13 +25,6 @@ using FieldImage = itk::Image<itk::Vector<float, 3>, 3>;
 [[noreturn]] void fail(const std::string& path, const std::string& problem)
 {
   throw Error("'" + path + "': " + problem);
-}
-
-std::string firstLine(const itk::ExceptionObject& e)
-{
-  std::string text = e.GetDescription();
-  const auto newline = text.find('\n');
-  return newline == std::string::npos ? text : text.substr(0, newline);
 }
 
 } // namespace
@@ -84,7 +79,7 @@ void writeDisplacementField(const DisplacementField& field, const std::string& p
   }
   catch (const itk::ExceptionObject& e)
   {
-    fail(path, "cannot write the displacement field (" + firstLine(e) + ")");
+    fail(path, "cannot write the displacement field (" + detail::itkMessage(e) + ")");
   }
 }
 
@@ -95,22 +90,25 @@ DisplacementField readDisplacementField(const std::string& path)
   {
     fail(path, "no such file");
   }
+  const std::string format = detail::imageFormatName(path);
+  if (format.empty() || format == "DICOM")
+  {
+    fail(path, "unsupported field type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
+  }
   detail::registerImageIOs();
+  // The CT reader's checks: a field file is as hostile as a CT file.
+  itk::ImageIOBase::Pointer io = detail::openImageFile(
+    path, format, { "displacement field", 3, "a displacement field has 3 (its x, y and z in mm)" });
   auto reader = itk::ImageFileReader<FieldImage>::New();
   reader->SetFileName(path);
+  reader->SetImageIO(io);
   try
   {
-    reader->UpdateOutputInformation();
-    if (reader->GetImageIO()->GetNumberOfComponents() != 3 ||
-      reader->GetImageIO()->GetNumberOfDimensions() < 3)
-    {
-      fail(path, "not a 3-D displacement field with 3 components per voxel");
-    }
     reader->Update();
   }
-  catch (const itk::ExceptionObject& e)
+  catch (const std::exception& e) // ITK also throws std::length_error, std::bad_alloc
   {
-    fail(path, "cannot read the displacement field (" + firstLine(e) + ")");
+    fail(path, "cannot read the displacement field (" + detail::itkMessage(e) + ")");
   }
   const FieldImage* image = reader->GetOutput();
   DisplacementField field;
@@ -124,12 +122,18 @@ DisplacementField readDisplacementField(const std::string& path)
       field.direction[3 * row + axis] = image->GetDirection()(row, axis);
     }
   }
+  detail::checkGridGeometry(path, field.spacingMm, field.originMm, field.direction);
   field.displacements.resize(3 * field.numberOfPoints());
   const FieldImage::PixelType* buffer = image->GetBufferPointer();
   for (std::size_t i = 0; i < field.numberOfPoints(); ++i)
   {
     for (unsigned a = 0; a < 3; ++a)
     {
+      if (!std::isfinite(buffer[i][a]))
+      {
+        // A NaN would move every mesh vertex near it to NaN, far from any anatomy.
+        fail(path, "grid point " + std::to_string(i) + " holds a displacement that is not finite");
+      }
       field.displacements[3 * i + a] = buffer[i][a];
     }
   }

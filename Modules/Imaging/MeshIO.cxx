@@ -1,11 +1,14 @@
 #include <vimlop/Imaging/MeshIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/MeshFileChecks.h>
+#include <vimlop/Imaging/PlyMeshReader.h>
 
+#include <vtkCellArray.h>
 #include <vtkNew.h>
 #include <vtkOBJReader.h>
-#include <vtkPLYReader.h>
 #include <vtkPLYWriter.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataReader.h>
 #include <vtkPolyDataWriter.h>
@@ -56,147 +59,32 @@ vtkSmartPointer<vtkPolyData> runReader(Reader* reader, const std::string& path)
   return mesh;
 }
 
-/// VIMLOP's surfaces have 10^4 to 10^6 triangles; a file that promises more
-/// points or cells than this is corrupt or not meant for VIMLOP, and VTK's
-/// readers would allocate what it promises before noticing.
-constexpr std::uint64_t maxMeshElements = 20000000;
-
-void checkPromise(const std::string& path, std::uint64_t count, const std::string& what)
+/// What VIMLOP's PLY reader read, as VTK's reader would have returned it.
+vtkSmartPointer<vtkPolyData> toPolyData(const std::string& path, const detail::PlyMesh& ply)
 {
-  if (count > maxMeshElements)
+  if (ply.points.empty())
   {
-    fail(path,
-      "the file promises " + std::to_string(count) + " " + what + "; meshes with more than " +
-        std::to_string(maxMeshElements) + " are refused");
+    fail(path, "not a readable mesh (no points could be read)");
   }
-}
-
-/// Legacy VTK: the counts after POINTS, POLYGONS and the like, wherever they
-/// are in the file (ASCII or binary data between them).
-void checkLegacyVtk(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  while (std::getline(in, line))
+  vtkNew<vtkPoints> points;
+  points->SetNumberOfPoints(static_cast<vtkIdType>(ply.points.size()));
+  for (std::size_t i = 0; i < ply.points.size(); ++i)
   {
-    std::istringstream words(line);
-    std::string keyword;
-    std::uint64_t count = 0;
-    if (!(words >> keyword) || keyword.empty() ||
-      !std::isupper(static_cast<unsigned char>(keyword[0])))
+    points->SetPoint(static_cast<vtkIdType>(i), ply.points[i].data());
+  }
+  vtkNew<vtkCellArray> polys;
+  for (const std::vector<std::int64_t>& face : ply.faces)
+  {
+    polys->InsertNextCell(static_cast<vtkIdType>(face.size()));
+    for (std::int64_t id : face)
     {
-      continue;
-    }
-    if (keyword == "POINTS" && (words >> count))
-    {
-      checkPromise(path, count, "points");
-    }
-    else if ((keyword == "VERTICES" || keyword == "LINES" || keyword == "POLYGONS" ||
-               keyword == "TRIANGLE_STRIPS") &&
-      (words >> count))
-    {
-      checkPromise(path, count, "cells");
-      std::uint64_t size = 0;
-      if (words >> size)
-      {
-        // Every cell lists at least one point id, besides its size or offset.
-        checkPromise(path, size / 4, "cells (" + std::to_string(size) + " cell ids)");
-      }
-    }
-    else if ((keyword == "POINT_DATA" || keyword == "CELL_DATA") && (words >> count))
-    {
-      checkPromise(path, count, "data values");
+      polys->InsertCellPoint(static_cast<vtkIdType>(id));
     }
   }
-}
-
-/// VTK XML: the counts in the attributes of the Piece elements.
-void checkXmlPolyData(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::string head(1 << 16, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  for (const char* attribute : { "NumberOfPoints=\"", "NumberOfVerts=\"", "NumberOfLines=\"",
-         "NumberOfStrips=\"", "NumberOfPolys=\"" })
-  {
-    for (size_t at = head.find(attribute); at != std::string::npos;
-         at = head.find(attribute, at + 1))
-    {
-      const size_t digits = at + std::strlen(attribute);
-      std::uint64_t count = 0;
-      size_t i = digits;
-      for (;
-           i < head.size() && i < digits + 19 && std::isdigit(static_cast<unsigned char>(head[i]));
-           ++i)
-      {
-        count = count * 10 + static_cast<std::uint64_t>(head[i] - '0');
-      }
-      const std::string name(attribute + 8, std::strlen(attribute) - 10);
-      checkPromise(path, count, name == "Points" ? "points" : "cells (" + name + ")");
-    }
-  }
-}
-
-/// VTK's STL reader accepts a binary file shorter than its triangle count
-/// says; check the count against the size first (binary STL: an 80-byte
-/// header, a 4-byte count, 50 bytes per triangle).
-void checkStl(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  char start[84] = {};
-  in.read(start, sizeof(start));
-  const std::streamsize got = in.gcount();
-  const std::uint64_t size = std::filesystem::file_size(path);
-  if (got < 84)
-  {
-    if (got >= 5 && std::strncmp(start, "solid", 5) == 0)
-    {
-      return; // a short ASCII file: VTK's reader judges it
-    }
-    fail(path, "not an STL file (too short)");
-  }
-  std::uint32_t count = 0;
-  for (int i = 3; i >= 0; --i)
-  {
-    count = count << 8 | static_cast<unsigned char>(start[80 + i]);
-  }
-  const std::uint64_t binarySize = 84 + 50 * static_cast<std::uint64_t>(count);
-  if (binarySize == size || std::strncmp(start, "solid", 5) == 0)
-  {
-    return; // a consistent binary file, or ASCII
-  }
-  fail(path,
-    "truncated or corrupt binary STL (" + std::to_string(count) + " triangles need " +
-      std::to_string(binarySize) + " bytes, the file has " + std::to_string(size) + ")");
-}
-
-/// VTK's PLY reader allocates what the header's element counts promise and
-/// can crash on a huge count; each element needs at least one byte, so a
-/// count above the file size is a lie.
-void checkPly(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  const std::uint64_t size = std::filesystem::file_size(path);
-  std::string line;
-  for (int lines = 0; lines < 1000 && std::getline(in, line); ++lines)
-  {
-    if (line.rfind("end_header", 0) == 0)
-    {
-      return;
-    }
-    std::istringstream words(line);
-    std::string keyword;
-    std::string name;
-    std::uint64_t count = 0;
-    if ((words >> keyword >> name >> count) && keyword == "element" && count > size)
-    {
-      fail(path,
-        "the PLY header promises " + std::to_string(count) + " " + name + " elements in a " +
-          std::to_string(size) + "-byte file");
-    }
-  }
-  fail(path, "not a PLY file (no end_header)");
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->SetPoints(points);
+  mesh->SetPolys(polys);
+  return mesh;
 }
 
 } // namespace
@@ -230,7 +118,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
     {
       fail(path, "not a VTK XML polydata file");
     }
-    checkXmlPolyData(path);
+    detail::checkXmlPolyData(path);
     return runReader(reader.Get(), path);
   }
   if (ext == ".vtk")
@@ -241,27 +129,22 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
     {
       fail(path, "not a legacy VTK polydata file");
     }
-    checkLegacyVtk(path);
+    detail::checkLegacyVtk(path);
     return runReader(reader.Get(), path);
   }
   if (ext == ".stl")
   {
-    checkStl(path);
+    detail::checkStl(path);
     vtkNew<vtkSTLReader> reader;
     return runReader(reader.Get(), path);
   }
   if (ext == ".ply")
   {
-    vtkNew<vtkPLYReader> reader;
-    if (!reader->CanReadFile(path.c_str()))
-    {
-      fail(path, "not a PLY file");
-    }
-    checkPly(path);
-    return runReader(reader.Get(), path);
+    return toPolyData(path, detail::readPlyMesh(path));
   }
   if (ext == ".obj")
   {
+    detail::checkObj(path);
     vtkNew<vtkOBJReader> reader;
     return runReader(reader.Get(), path);
   }

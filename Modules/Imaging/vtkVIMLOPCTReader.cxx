@@ -40,8 +40,11 @@ bool vtkVIMLOPCTReader::ReadVolume()
   }
   try
   {
-    this->Volume = std::make_unique<vimlop::CTVolume>(
-      vimlop::readCTVolume(this->FileName, this->SeriesUID ? this->SeriesUID : ""));
+    vimlop::CTReadOptions options;
+    options.dicomSeriesUID = this->SeriesUID ? this->SeriesUID : "";
+    options.resampleIrregularSeries = this->ResampleIrregularSeries;
+    this->Volume =
+      std::make_unique<vimlop::CTVolume>(vimlop::readCTVolume(this->FileName, options));
   }
   catch (const vimlop::Error& e)
   {
@@ -93,5 +96,7 @@ void vtkVIMLOPCTReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "SeriesUID: " << (this->SeriesUID ? this->SeriesUID : "(largest series)") << "\n";
+  os << indent << "ResampleIrregularSeries: " << (this->ResampleIrregularSeries ? "on" : "off")
+     << "\n";
   os << indent << "FormatName: " << this->FormatName << "\n";
 }

@@ -44,6 +44,14 @@ public:
   vtkGetStringMacro(SeriesUID);
   ///@}
 
+  ///@{
+  /// Resample a DICOM series tilted by the gantry or unevenly spaced onto a
+  /// regular grid (with a warning) instead of failing. Default: off.
+  vtkSetMacro(ResampleIrregularSeries, bool);
+  vtkGetMacro(ResampleIrregularSeries, bool);
+  vtkBooleanMacro(ResampleIrregularSeries, bool);
+  ///@}
+
   /// Format of the last file read, e.g. "NIfTI"; empty before a successful update.
   const char* GetFormatName() const { return this->FormatName.c_str(); }
 
@@ -66,6 +74,7 @@ private:
 
   char* FileName = nullptr;
   char* SeriesUID = nullptr;
+  bool ResampleIrregularSeries = false;
   std::string FormatName;
   std::vector<std::string> Warnings;
   /// Read in RequestInformation (the header and the voxels come together for

@@ -73,6 +73,39 @@ bool naturalLess(const std::string& a, const std::string& b)
   return a.size() - i < b.size() - j;
 }
 
+/// One image file decoded; OpenCV's decoders throw on some broken files
+/// (an image larger than their own limit, say) where others return nothing.
+cv::Mat decodeImage(const std::string& file)
+{
+  cv::Mat image;
+  try
+  {
+    image = cv::imread(file, cv::IMREAD_UNCHANGED);
+  }
+  catch (const cv::Exception& e)
+  {
+    fail(file, "not a readable image (OpenCV: " + e.err + ")");
+  }
+  if (image.empty())
+  {
+    fail(file, "not a readable image");
+  }
+  return image;
+}
+
+/// The next frame of a video; false at its end.
+bool readFrame(cv::VideoCapture& capture, const std::string& path, cv::Mat& image)
+{
+  try
+  {
+    return capture.read(image) && !image.empty();
+  }
+  catch (const cv::Exception& e)
+  {
+    fail(path, "a frame cannot be decoded (OpenCV: " + e.err + ")");
+  }
+}
+
 cv::Mat toBGR8(const cv::Mat& image)
 {
   cv::Mat out = image;
@@ -236,11 +269,7 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
     for (std::size_t i = 0; i < names.size(); ++i)
     {
       const std::string file = (fs::path(path) / names[i]).string();
-      const cv::Mat image = cv::imread(file, cv::IMREAD_UNCHANGED);
-      if (image.empty())
-      {
-        fail(file, "not a readable image");
-      }
+      const cv::Mat image = decodeImage(file);
       if (!judged[i])
       {
         checkFrameSize(path, names[i], static_cast<std::uint64_t>(image.cols),
@@ -252,7 +281,17 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
   }
   else
   {
-    cv::VideoCapture capture(path);
+    // FFmpeg alone: the camera back ends OpenCV would also try (FireWire,
+    // USB) probe devices, not files, and leak what they list.
+    cv::VideoCapture capture;
+    try
+    {
+      capture.open(path, cv::CAP_FFMPEG);
+    }
+    catch (const cv::Exception& e)
+    {
+      fail(path, "not a readable video file (OpenCV: " + e.err + ")");
+    }
     if (!capture.isOpened())
     {
       fail(path, "not a readable video file or image folder");
@@ -266,7 +305,7 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
       containerBytes);
     std::uint64_t decodedBytes = 0;
     cv::Mat image;
-    while (sequence.size() < maxFrames && capture.read(image) && !image.empty())
+    while (sequence.size() < maxFrames && readFrame(capture, path, image))
     {
       const std::string name = "frame" + std::to_string(sequence.size());
       checkFrameSize(path, name, static_cast<std::uint64_t>(image.cols),

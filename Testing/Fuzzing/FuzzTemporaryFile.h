@@ -49,6 +49,19 @@ inline std::string temporaryFolder(const std::string& name)
 }
 
 /**
+ * The folder `name` of this process, emptied: readers of folders (DICOM
+ * series, frame folders) see only the files of the current input.
+ */
+inline std::string emptyFolder(const std::string& name)
+{
+  const std::string path = temporaryPath("-" + name);
+  std::error_code ec;
+  std::filesystem::remove_all(path, ec);
+  std::filesystem::create_directories(path, ec);
+  return path;
+}
+
+/**
  * Splits an input into `count` files at the separator line "=====\n": the
  * seed corpora hold several files of a folder in one input this way, and
  * libFuzzer's mutations (which insert and erase bytes) move data between them.

@@ -110,13 +110,13 @@ TEST(CTVolumeIO, ReadsADicomSeriesSortedByPosition)
     EXPECT_EQ(largest.intensities[static_cast<size_t>(k) * 120 + 17], 100.0f * k - 1000.0f) << k;
   }
   EXPECT_NEAR(largest.spacingMm[2], 2.5, 1e-6);
-  const CTVolume small = readCTVolume(folder, "1.2.826.0.1.3680043.2.1125.1002");
+  const CTVolume small = readCTVolume(folder, { "1.2.826.0.1.3680043.2.1125.1002" });
   EXPECT_EQ(small.dims[2], 3);
   EXPECT_TRUE(small.warnings.empty());
   EXPECT_EQ(messageOf(folder + "/../DicomTwoSeries"), "no error");
   try
   {
-    readCTVolume(folder, "9.9.9");
+    readCTVolume(folder, { "9.9.9" });
     FAIL();
   }
   catch (const Error& e)
@@ -194,4 +194,47 @@ TEST(CTVolumeIO, GeometryNoCTHasIsRefused)
     "'" + sheared +
       "': the direction matrix is not orthonormal (its columns, the voxel axes, must be unit "
       "vectors at right angles)");
+}
+
+TEST(CTVolumeIO, ASmallFileCannotMakeTheReaderAllocateGigabytes)
+{
+  const auto write = [](const std::string& name, const std::string& header, std::size_t dataBytes)
+  {
+    const std::string path = out + "/" + name;
+    std::ofstream(path, std::ios::binary) << header << std::string(dataBytes, '\x01');
+    return path;
+  };
+  const std::string nrrd = "NRRD0004\ntype: short\ndimension: 3\nsizes: 1000 1000 1000\n";
+  const std::string raw = write("promise-raw.nrrd", nrrd + "encoding: raw\nendian: little\n\n", 10);
+  EXPECT_EQ(messageOf(raw),
+    "'" + raw + "': the image data are cut short (10 bytes, the header promises 2000000000)");
+  const std::string gzip =
+    write("promise-gzip.nrrd", nrrd + "encoding: gzip\nendian: little\n\n", 20);
+  EXPECT_EQ(messageOf(gzip),
+    "'" + gzip +
+      "': the header promises 2000000000 bytes of voxels, which 20 bytes of compressed data "
+      "cannot hold; refusing to allocate them");
+  const std::string mha = write("promise.mha",
+    "ObjectType = Image\nNDims = 3\nDimSize = 1000 1000 1000\nElementType = MET_SHORT\n"
+    "CompressedData = True\nCompressedDataSize = 20\nElementDataFile = LOCAL\n",
+    20);
+  EXPECT_EQ(messageOf(mha),
+    "'" + mha +
+      "': the header promises 2000000000 bytes of voxels, which 20 bytes of compressed data "
+      "cannot hold; refusing to allocate them");
+}
+
+TEST(CTVolumeIO, AMetaImageCompressedSizeBeyondItsDataIsRefused)
+{
+  // MetaIO allocated the CompressedDataSize it read, 8 EiB here, before reading.
+  const std::string path = out + "/compressed-size.mha";
+  std::ofstream(path, std::ios::binary)
+    << "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_SHORT\n"
+    << "CompressedData = True\nCompressedDataSize = 9223372036854775807\n"
+    << "ElementDataFile = LOCAL\n"
+    << std::string(20, '\x01');
+  EXPECT_EQ(messageOf(path),
+    "'" + path +
+      "': the header's CompressedDataSize (9223372036854775807 bytes) is more than the 20 bytes "
+      "of data");
 }

@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 
@@ -77,7 +79,7 @@ TEST(DicomSeriesGeometry, AGantryTiltIsRefusedWithItsAngle)
   EXPECT_EQ(refusal(slices),
     "the slices are not stacked along their normal: 's1' lies 0.68 mm beside the normal through "
     "'s0', 1.88 mm from it (a gantry tilt or shear of 20.00 degrees); a regular volume of it "
-    "would misplace the anatomy, so resample the series onto a regular grid first");
+    "would misplace the anatomy: resample it onto a regular grid (--resample-irregular-series)");
   // The same orientation with positions that follow the normal is a plain oblique stack.
   for (int k = 0; k < 4; ++k)
   {
@@ -92,10 +94,11 @@ TEST(DicomSeriesGeometry, MissingSlicesAreRefusedNamingTheGapAndHowManyAreMissin
   EXPECT_EQ(refusal(stackAt({ 0, 1, 2, 3, 9, 10, 11 })),
     "the slices are not evenly spaced: 's3' and 's4' are 6.00 mm apart where the series steps "
     "1.00 mm (5 slices are missing); a volume with one spacing would misplace the slices beyond "
-    "them");
+    "them: resample it onto a regular grid (--resample-irregular-series)");
   EXPECT_EQ(refusal(stackAt({ 0, 1, 2, 3.5, 4.5, 5.5 })),
     "the slices are not evenly spaced: 's2' and 's3' are 1.50 mm apart where the series steps "
-    "1.00 mm; a volume with one spacing would misplace the slices beyond them");
+    "1.00 mm; a volume with one spacing would misplace the slices beyond them: resample it onto "
+    "a regular grid (--resample-irregular-series)");
   // Rounding in the decimal strings (a hundredth of the step) is not a gap.
   EXPECT_EQ(refusal(stackAt({ 0, 1.004, 2, 2.997 })), "no error");
 }
@@ -156,6 +159,75 @@ TEST(DicomSeriesGeometry, EachSliceNeedsAPositionASpacingAndAllItsPixels)
   slices[1].columns = 9;
   EXPECT_EQ(refusal(slices), "the slices differ in size: 's1' is 8 x 9 pixels, 's0' 8 x 8");
   EXPECT_EQ(refusal(stackAt({ 4 })), "the DICOM series has a single slice; a 3-D CT is needed");
+}
+
+TEST(DicomSeriesGeometry, ATiltedStackWithAGapIsResampledWhereEachVoxelLiesWhenAsked)
+{
+  // 16 x 12 pixels of 0.75 mm along the rows and 0.5 mm between them, tilted
+  // 20 degrees, climbing straight up z with 3 slices missing between 4 and 10.
+  const double a = 20.0 * M_PI / 180.0;
+  const std::vector<double> heights{ 0, 2, 4, 10, 12 };
+  std::vector<DicomSliceHeader> slices = stackAt(heights);
+  tilt(slices, 20.0);
+  CTVolume stack;
+  stack.dims = { 16, 12, static_cast<int>(heights.size()) };
+  // A linear field of the patient frame: interpolation must give it back exactly.
+  const auto field = [](const std::array<double, 3>& p)
+  { return 0.3 * p[0] + 0.2 * p[1] + 0.5 * p[2]; };
+  for (DicomSliceHeader& s : slices)
+  {
+    s.columns = 16;
+    s.rows = 12;
+    s.pixelSpacingMm = { 0.5, 0.75 };
+    s.pixelBytes = s.expectedPixelBytes = 16 * 12 * 2;
+    for (int j = 0; j < 12; ++j)
+    {
+      for (int i = 0; i < 16; ++i)
+      {
+        const std::array<double, 3> p{ s.positionMm[0] + 0.75 * i,
+          s.positionMm[1] + 0.5 * j * std::cos(a), s.positionMm[2] + 0.5 * j * std::sin(a) };
+        stack.intensities.push_back(static_cast<float>(field(p)));
+      }
+    }
+  }
+  const DicomSeriesLayout layout =
+    checkDicomSeriesGeometry(slices, DicomSeriesTolerances(), IrregularSeries::Resample);
+  ASSERT_EQ(layout.irregularities.size(), 2u);
+  EXPECT_EQ(
+    layout.irregularities[0].rfind("the slices are not stacked along their normal: ", 0), 0u);
+  EXPECT_EQ(layout.irregularities[1],
+    "the slices are not evenly spaced: 's2' and 's3' are 5.64 mm apart where the series steps "
+    "1.88 mm (2 slices are missing)");
+
+  const CTVolume volume = resampleDicomStack(stack, layout, slices[0]);
+  EXPECT_EQ(volume.dims, (std::array<int, 3>{ 16, 12, 7 }));
+  EXPECT_NEAR(volume.spacingMm[2], 2.0 * std::cos(a), 1e-9);
+  int inside = 0;
+  for (int m = 0; m < 7; ++m)
+  {
+    for (int j = 0; j < 12; ++j)
+    {
+      for (int i = 0; i < 16; ++i)
+      {
+        const float value = volume.intensities[static_cast<std::size_t>((m * 12 + j) * 16 + i)];
+        if (value == -1024.0f)
+        {
+          // Only beside the shifted slices: the first slice is the grid's.
+          EXPECT_GT(m, 0) << i << " " << j;
+          continue;
+        }
+        ++inside;
+        const double expected = field(volume.indexToPhysical({ double(i), double(j), double(m) }));
+        ASSERT_NEAR(value, expected, 1e-3) << i << " " << j << " " << m;
+      }
+    }
+  }
+  EXPECT_GT(inside, 16 * 12 * 7 / 2);
+
+  CTVolume wrong = stack;
+  wrong.dims[2] = 4;
+  EXPECT_EQ(fixtures::errorMessageOf([&] { resampleDicomStack(wrong, layout, slices[0]); }),
+    "resampleDicomStack: the stack does not match the series layout");
 }
 
 // The same checks on files, through readCTVolume(): a regular series reads
@@ -225,8 +297,8 @@ TEST(DicomSeriesFiles, ATiltedSeriesAGapAndATruncatedSliceAreRefusedBeforeAVolum
     "'" + tiltedFolder + "': the slices are not stacked along their normal: '" + tiltedFolder +
       "/slice1.dcm' lies 0.68 mm beside the normal through '" + tiltedFolder +
       "/slice0.dcm', 1.88 mm from it (a gantry tilt or shear of 20.00 degrees); a regular "
-      "volume of it would misplace the anatomy, so resample the series onto a regular grid "
-      "first");
+      "volume of it would misplace the anatomy: resample it onto a regular grid "
+      "(--resample-irregular-series)");
 
   std::vector<fixtures::DicomSliceSpec> gap = axialSeries(8, 1.0);
   gap.erase(gap.begin() + 3, gap.begin() + 5);
@@ -235,7 +307,8 @@ TEST(DicomSeriesFiles, ATiltedSeriesAGapAndATruncatedSliceAreRefusedBeforeAVolum
     "'" + gapFolder + "': the slices are not evenly spaced: '" + gapFolder + "/slice2.dcm' and '" +
       gapFolder +
       "/slice3.dcm' are 3.00 mm apart where the series steps 1.00 mm (2 slices are missing); a "
-      "volume with one spacing would misplace the slices beyond them");
+      "volume with one spacing would misplace the slices beyond them: resample it onto a "
+      "regular grid (--resample-irregular-series)");
 
   std::vector<fixtures::DicomSliceSpec> nanSpacing = axialSeries(3, 1.0);
   nanSpacing[1].pixelSpacing = "nan\\0.5";
@@ -248,8 +321,94 @@ TEST(DicomSeriesFiles, ATiltedSeriesAGapAndATruncatedSliceAreRefusedBeforeAVolum
   std::vector<fixtures::DicomSliceSpec> truncated = axialSeries(3, 1.0);
   truncated[2].truncateBytes = 28;
   const std::string truncatedFolder = writeSeries("truncated", truncated);
+  // Refused while the folder's files are walked, before GDCM allocates what they declare.
   EXPECT_EQ(readError(truncatedFolder),
-    "'" + truncatedFolder + "': slice '" + truncatedFolder +
-      "/slice2.dcm': the file is truncated: it holds 100 bytes of pixel data where its header "
-      "promises 128 (8 x 8 pixels)");
+    "'" + truncatedFolder +
+      "/slice2.dcm': the file is truncated: element (7FE0,0010) at byte 624 declares 128 bytes "
+      "and 100 are left");
+}
+
+TEST(DicomSeriesFiles, AGapIsBridgedAndSaidWhenResamplingIsAsked)
+{
+  std::vector<fixtures::DicomSliceSpec> gap = axialSeries(8, 1.0);
+  gap.erase(gap.begin() + 3, gap.begin() + 5);
+  const std::string folder = writeSeries("gap-resampled", gap);
+  CTReadOptions options;
+  options.resampleIrregularSeries = true;
+  const CTVolume volume = readCTVolume(folder, options);
+  EXPECT_EQ(volume.dims, (std::array<int, 3>{ 8, 8, 8 }));
+  EXPECT_NEAR(volume.spacingMm[2], 1.0, 1e-6);
+  EXPECT_NEAR(volume.originMm[2], 5.0, 1e-6);
+  // The written slices keep their values, the missing ones lie on the line between.
+  for (int k = 0; k < 8; ++k)
+  {
+    EXPECT_NEAR(
+      volume.intensities[static_cast<std::size_t>(k) * 64 + 9], 100.0f * k - 1000.0f, 1e-3)
+      << k;
+  }
+  const std::string said = "resampled onto a regular grid of 8 slices 1.00 mm apart along the "
+                           "normal of '" +
+    folder +
+    "/slice0.dcm', as asked, from an irregular series: the slices are not evenly spaced: '" +
+    folder + "/slice2.dcm' and '" + folder +
+    "/slice3.dcm' are 3.00 mm apart where the series steps 1.00 mm (2 slices are missing). "
+    "Voxels beside the slices' pixels are -1024 HU (air)";
+  ASSERT_EQ(volume.warnings.size(), 1u);
+  EXPECT_EQ(volume.warnings[0], said);
+  EXPECT_EQ(volume.identity.at("resampled"), said);
+  // Without the option the same folder is refused (above).
+  EXPECT_NE(readError(folder).find("(--resample-irregular-series)"), std::string::npos);
+}
+
+TEST(DicomSeriesFiles, ACorruptFileMetaGroupIsRefusedBeforeGDCMParsesIt)
+{
+  // GDCM, built with assertions, aborted the process on an invalid VR there.
+  std::vector<fixtures::DicomSliceSpec> slices = axialSeries(3, 1.0);
+  const std::string folder = writeSeries("bad-meta", slices);
+  const std::string file = folder + "/slice1.dcm";
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string transferSyntax("\x02\x00\x10\x00UI", 6);
+  ASSERT_NE(bytes.find(transferSyntax), std::string::npos);
+  bytes[bytes.find(transferSyntax) + 4] = '?';
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  EXPECT_EQ(readError(folder),
+    "'" + file +
+      "': the DICOM file is corrupt: element (0002,0010) at byte 234 has no valid value "
+      "representation");
+  EXPECT_EQ(readError(file),
+    "'" + file +
+      "': the DICOM file is corrupt: element (0002,0010) at byte 234 has no valid value "
+      "representation");
+  const std::string notDicom = out + "/not-part-10.dcm";
+  std::ofstream(notDicom, std::ios::binary) << std::string(200, '\0');
+  EXPECT_EQ(readError(notDicom), "'" + notDicom + "': not a DICOM file (no 'DICM' at byte 128)");
+}
+
+TEST(DicomSeriesFiles, FilesWithoutThePreambleAreNeverHandedToGDCM)
+{
+  // Ten bytes GDCM took for big-endian DICOM and aborted on (an assertion).
+  const std::string folder = writeSeries("stray-file", axialSeries(3, 1.0));
+  std::ofstream(folder + "/stray.dcm", std::ios::binary)
+    << std::string("\xff\xfc\xff\xfe\x00UN\x01\x00\x02", 10);
+  std::ofstream(folder + "/README.txt") << "scanned on the phantom";
+  const CTVolume volume = readCTVolume(folder);
+  EXPECT_EQ(volume.dims, (std::array<int, 3>{ 8, 8, 3 }));
+  EXPECT_TRUE(volume.warnings.empty());
+}
+
+TEST(DicomSeriesFiles, BytesTooFewForAnElementAtTheEndAreATruncation)
+{
+  // GDCM read them as a tag and a value representation and aborted.
+  const std::string folder = writeSeries("tail-bytes", axialSeries(3, 1.0));
+  const std::string file = folder + "/slice0.dcm";
+  const auto size = std::filesystem::file_size(file);
+  std::ofstream(file, std::ios::binary | std::ios::app)
+    << std::string("\x28\xfe\x70\xfe\x70\xfe", 6);
+  EXPECT_EQ(readError(folder),
+    "'" + file + "': the file is truncated: it ends inside an element at byte " +
+      std::to_string(size));
 }

@@ -1,11 +1,16 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Rotation.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/DisplacementFieldIO.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 
+#include "ErrorMessage.h"
+
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <limits>
 
 using namespace vimlop;
 
@@ -101,7 +106,7 @@ TEST(DisplacementFieldIO, RoundTripsAsVectorImages)
   {
     field.displacements[i] = 0.25 * static_cast<double>(i % 17) - 2.0;
   }
-  for (const std::string ext : { ".nii.gz", ".mha", ".nrrd" })
+  for (const std::string ext : { ".nii", ".nii.gz", ".mha", ".nrrd" })
   {
     const std::string path = out + "/field" + ext;
     writeDisplacementField(field, path);
@@ -126,4 +131,64 @@ TEST(DisplacementFieldIO, RoundTripsAsVectorImages)
   EXPECT_THROW(writeDisplacementField(field, out + "/field.png"), Error);
   EXPECT_THROW(writeDisplacementField(DisplacementField(), out + "/empty.mha"), Error);
   EXPECT_THROW(readDisplacementField(out + "/no-field-here.mha"), Error);
+}
+
+namespace
+{
+
+DisplacementField smallField()
+{
+  DisplacementField field;
+  field.dims = { 5, 4, 3 };
+  field.displacements.assign(3 * field.numberOfPoints(), 0.5);
+  return field;
+}
+
+std::string fieldError(const std::string& path)
+{
+  return fixtures::errorMessageOf([&] { readDisplacementField(path); });
+}
+
+} // namespace
+
+TEST(DisplacementFieldIO, RefusesFieldsThatWouldMoveTheMeshAnywhereWithTheCause)
+{
+  DisplacementField notFinite = smallField();
+  notFinite.displacements[3 * 7 + 1] = std::numeric_limits<double>::quiet_NaN();
+  const std::string nan = out + "/field-nan.mha";
+  writeDisplacementField(notFinite, nan);
+  EXPECT_EQ(fieldError(nan), "'" + nan + "': grid point 7 holds a displacement that is not finite");
+
+  DisplacementField sheared = smallField();
+  sheared.direction = { 1, 0.5, 0, 0, 1, 0, 0, 0, 1 };
+  const std::string shear = out + "/field-shear.nrrd";
+  writeDisplacementField(sheared, shear);
+  EXPECT_EQ(fieldError(shear),
+    "'" + shear +
+      "': the direction matrix is not orthonormal (its columns, the voxel axes, must be unit "
+      "vectors at right angles)");
+
+  // The CT reader's checks guard the field reader too.
+  const std::string cut = out + "/field-cut.nii";
+  writeDisplacementField(smallField(), cut);
+  const auto bytes = std::filesystem::file_size(cut);
+  std::filesystem::resize_file(cut, bytes - 12);
+  EXPECT_EQ(fieldError(cut),
+    "'" + cut + "': the file is truncated (" + std::to_string(bytes - 12) +
+      " bytes, the header promises " + std::to_string(bytes) + ")");
+
+  CTVolume scalar;
+  scalar.dims = { 3, 3, 3 };
+  scalar.intensities.assign(27, -1000.0f);
+  const std::string ct = out + "/field-scalar.mha";
+  writeCTVolume(scalar, ct);
+  EXPECT_EQ(fieldError(ct),
+    "'" + ct +
+      "': the image has 1 components per voxel; a displacement field has 3 (its x, y and z in "
+      "mm)");
+
+  const std::string dicom = out + "/field.dcm";
+  write("field.dcm", "not used");
+  EXPECT_EQ(fieldError(dicom),
+    "'" + dicom + "': unsupported field type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
 }

@@ -1,3 +1,4 @@
+#include "ErrorMessage.h"
 #include "TestMeshes.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/MeshIO.h>
@@ -8,7 +9,9 @@
 #include <vtkCellArray.h>
 #include <vtkPolyData.h>
 
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 
 using namespace vimlop;
 
@@ -89,4 +92,208 @@ TEST(MeshIO, ErrorsNameTheFileAndTheProblem)
     "'" + out + "/mesh.off': unsupported mesh file type (expected .vtp, .vtk, .stl, .ply or .obj)");
   EXPECT_THROW(
     writePolyData(toPolyData(fixtures::makeBox({ 0, 0, 0 }, { 1, 1, 1 })), out + "/x.obj"), Error);
+}
+
+namespace
+{
+
+std::string readError(const std::string& path)
+{
+  return fixtures::errorMessageOf([&] { readPolyData(path); });
+}
+
+/// A PLY file of one triangle: the header, then `body` as given.
+std::string writePly(const std::string& name, const std::string& format, const std::string& body,
+  const std::string& faceList = "uchar int")
+{
+  const std::string path = out + "/" + name;
+  std::ofstream(path, std::ios::binary)
+    << "ply\nformat " << format << " 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    << "property float z\nelement face 1\nproperty list " << faceList
+    << " vertex_indices\nend_header\n"
+    << body;
+  return path;
+}
+
+std::string floats(std::initializer_list<float> values)
+{
+  std::string bytes;
+  for (float v : values)
+  {
+    bytes.append(reinterpret_cast<const char*>(&v), sizeof(v));
+  }
+  return bytes;
+}
+
+std::string face(std::uint8_t count, std::initializer_list<std::int32_t> ids)
+{
+  std::string bytes(1, static_cast<char>(count));
+  for (std::int32_t id : ids)
+  {
+    bytes.append(reinterpret_cast<const char*>(&id), sizeof(id));
+  }
+  return bytes;
+}
+
+} // namespace
+
+TEST(MeshIO, APlyFileIsReadByVIMLOPWhichRefusesWhatVTKsReaderMishandled)
+{
+  const std::string vertices = floats({ 0, 0, 0, 10, 0, 0, 0, 10, 0 });
+  // Whole files read, in both encodings.
+  EXPECT_EQ(toTriangleMesh(readPolyData(writePly("one-triangle.ply", "binary_little_endian",
+                             vertices + face(3, { 0, 1, 2 }))))
+              .numberOfFaces(),
+    1);
+  EXPECT_EQ(toTriangleMesh(readPolyData(writePly("one-triangle-ascii.ply", "ascii",
+                             "0 0 0\n10 0 0\n0 10 0\n3 0 1 2\n")))
+              .numberOfFaces(),
+    1);
+
+  // Cut short: VTK's reader read past its buffers (and freed one twice).
+  const std::string cut =
+    writePly("cut.ply", "binary_little_endian", vertices + face(3, { 0, 1, 2 }).substr(0, 7));
+  EXPECT_EQ(
+    readError(cut), "'" + cut + "': the file ends inside element 'face' 0 of 1 (truncated)");
+  const std::string cutVertices =
+    writePly("cut-vertices.ply", "binary_little_endian", vertices.substr(0, 30));
+  EXPECT_EQ(readError(cutVertices),
+    "'" + cutVertices + "': the file ends inside element 'vertex' 2 of 3 (truncated)");
+  const std::string cutAscii = writePly("cut-ascii.ply", "ascii", "0 0 0\n10 0 0\n");
+  EXPECT_EQ(readError(cutAscii),
+    "'" + cutAscii + "': the file ends before element 'vertex' 2 of 3 (truncated)");
+
+  // A face naming a vertex the file lacks: VTK looked it up out of bounds.
+  const std::string far =
+    writePly("far-index.ply", "binary_little_endian", vertices + face(3, { 0, 1, 1 << 28 }));
+  EXPECT_EQ(
+    readError(far), "'" + far + "': element 'face' 0 of 1 names vertex 268435456; the file has 3");
+  const std::string negative =
+    writePly("negative-index.ply", "ascii", "0 0 0\n10 0 0\n0 10 0\n3 0 -268435456 2\n");
+  EXPECT_EQ(readError(negative),
+    "'" + negative + "': element 'face' 0 of 1 names vertex -268435456; the file has 3");
+
+  // An unknown type; a list too long for the file.
+  const std::string type = writePly("bad-type.ply", "ascii", "", "uchar quad");
+  EXPECT_EQ(readError(type), "'" + type + "': unknown PLY property type 'quad'");
+  const std::string longList = writePly("long-list.ply", "binary_little_endian",
+    vertices + std::string("\xff\xff\xff\x7f", 4), "int int");
+  EXPECT_EQ(readError(longList),
+    "'" + longList + "': element 'face' 0 of 1 has a list of 2147483647 items");
+}
+
+TEST(MeshIO, APlyHeaderNeedsVerticesWithCoordinatesAndFacesWithIndices)
+{
+  // A mangled property line: VTK skipped it and freed a pointer it never set.
+  const std::string path = out + "/mangled.ply";
+  std::ofstream(path, std::ios::binary)
+    << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    << "property float z\nelement face 1\nobj_infoproperty list uchar int vertex_indices\n"
+    << "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(readError(path),
+    "'" + path + "': a PLY header line starts with 'obj_infoproperty', no PLY keyword");
+  const std::string noIndices =
+    writePly("no-indices.ply", "ascii", "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "uchar int");
+  std::string text;
+  {
+    std::ifstream in(noIndices);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  text.replace(text.find("vertex_indices"), 14, "corner_ids");
+  std::ofstream(noIndices, std::ios::binary) << text;
+  EXPECT_EQ(readError(noIndices),
+    "'" + noIndices + "': the PLY face element has no integer list 'vertex_indices'");
+  const std::string noZ = out + "/no-z.ply";
+  std::ofstream(noZ, std::ios::binary)
+    << "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+    << "end_header\n0 0\n";
+  EXPECT_EQ(
+    readError(noZ), "'" + noZ + "': the PLY vertex element lacks one of the properties x, y and z");
+  const std::string noVertices = out + "/no-vertices.ply";
+  std::ofstream(noVertices, std::ios::binary)
+    << "ply\nformat ascii 1.0\nelement Yertex 1\nproperty float x\nend_header\n0\n";
+  EXPECT_EQ(readError(noVertices), "'" + noVertices + "': the PLY file has no vertex element");
+  // A header that ends the file, without a newline: nothing is read past the end.
+  const std::string bare = out + "/bare-header.ply";
+  std::ofstream(bare, std::ios::binary)
+    << "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\n"
+    << "property float y\nproperty float z\nend_header";
+  EXPECT_EQ(
+    readError(bare), "'" + bare + "': the file ends inside element 'vertex' 0 of 1 (truncated)");
+}
+
+TEST(MeshIO, LegacyVtkCellListsAreWalkedBeforeVTKReadsThem)
+{
+  const auto write =
+    [](const std::string& name, const std::string& version, const std::string& cells)
+  {
+    const std::string path = out + "/" + name;
+    std::ofstream(path, std::ios::binary)
+      << "# vtk DataFile Version " << version << "\ntest\nASCII\nDATASET POLYDATA\n"
+      << "POINTS 3 float\n0 0 0 10 0 0 0 10 0\n"
+      << cells;
+    return path;
+  };
+  EXPECT_EQ(toTriangleMesh(readPolyData(write("old-cells.vtk", "2.0", "POLYGONS 1 4\n3 0 1 2\n")))
+              .numberOfFaces(),
+    1);
+  EXPECT_EQ(toTriangleMesh(readPolyData(write("new-cells.vtk", "5.1",
+                             "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 3\n"
+                             "CONNECTIVITY vtktypeint64\n0 1 2\n")))
+              .numberOfFaces(),
+    1);
+  // A cell longer than its list: VTK walked the counts past its buffer.
+  const std::string longCell = write("long-cell.vtk", "2.0", "POLYGONS 1 4\n5 0 1 2 0\n");
+  EXPECT_EQ(readError(longCell),
+    "'" + longCell + "': cell 0 of the POLYGONS does not fit in the list's 4 numbers");
+  // VTK's reader matches keywords by their start, in any case.
+  const std::string shouted = write("shouted.vtk", "x.51", "polygons! 1 4\n5 0 1 2 0\n");
+  EXPECT_EQ(readError(shouted),
+    "'" + shouted + "': cell 0 of the POLYGONS does not fit in the list's 4 numbers");
+  const std::string farId = write("far-id.vtk", "2.0", "POLYGONS 1 4\n3 0 1 7\n");
+  EXPECT_EQ(
+    readError(farId), "'" + farId + "': cell 0 of the POLYGONS names point 7; the file has 3");
+  const std::string offsets = write("bad-offsets.vtk", "5.1",
+    "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 5\nCONNECTIVITY vtktypeint64\n0 1 2\n");
+  EXPECT_EQ(readError(offsets),
+    "'" + offsets + "': the POLYGONS OFFSETS do not rise from 0 to the 3 ids of the CONNECTIVITY");
+  const std::string cut = write("cut-points.vtk", "5.1", "");
+  std::filesystem::resize_file(cut, std::filesystem::file_size(cut) - 6);
+  EXPECT_EQ(readError(cut), "'" + cut + "': the file ends inside the POINTS (truncated)");
+}
+
+TEST(MeshIO, ABinaryStlWhoseHeaderSaysSolidIsJudgedByItsSize)
+{
+  // VTK's own binary files start "solid" too; the count said 150 million triangles.
+  std::string bytes = "solid VTK generated SLA file";
+  bytes.resize(80, '\0');
+  const std::uint32_t count = 150000000;
+  bytes.append(reinterpret_cast<const char*>(&count), 4);
+  bytes.append(100, '\x7f');
+  const std::string path = out + "/solid-binary.stl";
+  std::ofstream(path, std::ios::binary) << bytes;
+  EXPECT_EQ(readError(path),
+    "'" + path +
+      "': truncated or corrupt binary STL (150000000 triangles need 7500000084 bytes, the file has "
+      "184)");
+}
+
+TEST(MeshIO, AnObjFaceNamesOnlyWhatIsDefinedBeforeIt)
+{
+  const auto write = [](const std::string& name, const std::string& faces)
+  {
+    const std::string path = out + "/" + name;
+    std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n" << faces;
+    return path;
+  };
+  EXPECT_EQ(toTriangleMesh(readPolyData(write("fine.obj", "f 1/1 2/1 -1/1\n"))).numberOfFaces(), 1);
+  // Texture index 0 became -1 inside VTK's reader, read out of bounds.
+  const std::string zero = write("zero-texture.obj", "f 1 2 3/0\n");
+  EXPECT_EQ(readError(zero),
+    "'" + zero + "': line 5 names texture coordinate '0'; 1 are defined before it");
+  const std::string far = write("far-vertex.obj", "f 1 2 4\n");
+  EXPECT_EQ(readError(far), "'" + far + "': line 5 names vertex '4'; 3 are defined before it");
+  const std::string normal = write("no-normal.obj", "f 1//1 2//1 3//1\n");
+  EXPECT_EQ(
+    readError(normal), "'" + normal + "': line 5 names normal '1'; 0 are defined before it");
 }

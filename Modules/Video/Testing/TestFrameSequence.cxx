@@ -214,3 +214,33 @@ TEST(FrameSequence, NamesThatDoNotNumberTheFramesGiveTheirIndices)
   cv::imwrite(huge + "/frame99999999999.png", numberedFrame(0));
   EXPECT_EQ(FrameSequence::load(huge).ids(), (std::vector<int>{ 0 }));
 }
+
+TEST(FrameSequence, AFrameOpenCVThrowsOnIsRefusedWithItsReason)
+{
+  // A TIFF (whose header VIMLOP does not read) of 40000 x 40000 pixels:
+  // OpenCV's decoder throws at its own limit of 2^30 pixels.
+  std::string tiff("II*\0\x08\0\0\0", 8);
+  const auto u16 = [&](std::uint16_t v) { tiff.append(reinterpret_cast<const char*>(&v), 2); };
+  const auto u32 = [&](std::uint32_t v) { tiff.append(reinterpret_cast<const char*>(&v), 4); };
+  const auto entry = [&](std::uint16_t tag, std::uint16_t type, std::uint32_t value)
+  {
+    u16(tag);
+    u16(type);
+    u32(1);
+    u32(value);
+  };
+  u16(6);
+  entry(256, 4, 40000); // ImageWidth
+  entry(257, 4, 40000); // ImageLength
+  entry(258, 3, 8);     // BitsPerSample
+  entry(262, 3, 1);     // Photometric: black is zero
+  entry(273, 4, 200);   // StripOffsets
+  entry(279, 4, 16);    // StripByteCounts
+  u32(0);
+  tiff.resize(216, '\0');
+  const std::string folder = freshFolder("huge-tiff");
+  std::ofstream(folder + "/0.tif", std::ios::binary) << tiff;
+  const std::string message = messageOf(folder);
+  EXPECT_EQ(message,
+    "'" + folder + "/0.tif': not a readable image (OpenCV: pixels <= CV_IO_MAX_IMAGE_PIXELS)");
+}
