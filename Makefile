@@ -38,13 +38,13 @@ fuzz:
 	CMake/run-fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
 # AddressSanitizer + UndefinedBehaviorSanitizer on the unit tests of the
-# modules that hold the algorithm and most parsers: Core, Raycast and Video
-# (COLMAP, intrinsics, tracker, SfM files). Imaging (ITK templates), the
-# rendering modules, the VTK face and the CLI would more than double the
-# stage's build time; the parsers VIMLOP owns there are fuzzed (Testing/Fuzzing).
-# More modules: make test-asan ASAN_TESTS="VIMLOPCoreTests VIMLOPImagingTests".
+# modules that hold the algorithm and every reader of the CLI's inputs: Core,
+# Raycast, Video (frames, video, COLMAP, intrinsics, tracker, SfM files) and
+# Imaging (CT volumes, DICOM series, meshes, displacement fields, poses). The
+# rendering modules, the VTK face and the CLI executable are left out (their
+# build would double the stage's; rendering needs Mesa under Xvfb).
 ASAN_DIR ?= build-asan
-ASAN_TESTS ?= VIMLOPCoreTests VIMLOPRaycastTests VIMLOPVideoTests
+ASAN_TESTS ?= VIMLOPCoreTests VIMLOPRaycastTests VIMLOPVideoTests VIMLOPImagingTests
 test-asan: deps
 	cmake -S . -B $(ASAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVIMLOP_ENABLE_SANITIZERS=ON
 	cmake --build $(ASAN_DIR) --parallel $(JOBS) --target $(ASAN_TESTS)

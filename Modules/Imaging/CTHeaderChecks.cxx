@@ -14,6 +14,8 @@
 #include <iterator>
 #include <sstream>
 
+#include <zlib.h>
+
 namespace vimlop::detail
 {
 
@@ -32,8 +34,9 @@ namespace
 void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
 {
   std::ifstream file(path, std::ios::binary);
-  unsigned char header[112] = {};
-  if (!file.read(reinterpret_cast<char*>(header), sizeof(header)))
+  unsigned char header[176] = {};
+  file.read(reinterpret_cast<char*>(header), sizeof(header));
+  if (file.gcount() < 112)
   {
     return; // ITK has already judged the header
   }
@@ -44,24 +47,36 @@ void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
                   : std::uint32_t(header[at + 3]) | std::uint32_t(header[at + 2]) << 8 |
         std::uint32_t(header[at + 1]) << 16 | std::uint32_t(header[at]) << 24;
   };
-  bool little = true;
-  if (u32(0, true) != 348)
+  // NIfTI-1 starts with 348, NIfTI-2 with 540 (the header's size), in the
+  // file's byte order; ITK reads both, and anything else it reads as such
+  // was allocating what its dimensions said.
+  const bool little = u32(0, true) == 348 || u32(0, true) == 540;
+  const std::uint32_t headerBytes = u32(0, little);
+  if (headerBytes != 348 && headerBytes != 540)
   {
-    if (u32(0, false) != 348)
-    {
-      return; // not NIfTI-1 (NIfTI-2 files are left to ITK)
-    }
-    little = false;
+    fail(path, "not a NIfTI-1 or NIfTI-2 header (it does not start with its size, 348 or 540)");
   }
-  const std::uint32_t bits = u32(108, little);
-  float voxOffset = 0.0f;
-  std::memcpy(&voxOffset, &bits, sizeof(voxOffset));
-  if (!(voxOffset >= 0.0f && voxOffset < 1e15f))
+  double voxOffset = 0.0;
+  if (headerBytes == 348)
+  {
+    const std::uint32_t bits = u32(108, little);
+    float offset = 0.0f;
+    std::memcpy(&offset, &bits, sizeof(offset));
+    voxOffset = offset;
+  }
+  else if (file.gcount() >= 176)
+  {
+    // NIfTI-2: vox_offset is a 64-bit integer at byte 168.
+    const std::uint64_t low = u32(little ? 168 : 172, little);
+    const std::uint64_t high = u32(little ? 172 : 168, little);
+    voxOffset = static_cast<double>(static_cast<std::int64_t>(high << 32 | low));
+  }
+  if (!(voxOffset >= 0.0 && voxOffset < 1e15))
   {
     fail(path, "the header's vox_offset is not a byte offset in the file");
   }
   const std::uint64_t expected =
-    static_cast<std::uint64_t>(std::max(voxOffset, 348.0f)) + voxelBytes;
+    static_cast<std::uint64_t>(std::max(voxOffset, static_cast<double>(headerBytes))) + voxelBytes;
   std::error_code ec;
   const std::uint64_t actual = std::filesystem::file_size(path, ec);
   if (!ec && actual < expected)
@@ -69,6 +84,58 @@ void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
     fail(path,
       "the file is truncated (" + std::to_string(actual) + " bytes, the header promises " +
         std::to_string(expected) + ")");
+  }
+}
+
+void checkNiftiHeader(const std::string& path)
+{
+  // gzread reads plain and gzip-compressed files alike.
+  gzFile file = gzopen(path.c_str(), "rb");
+  if (!file)
+  {
+    return; // ITK says what it cannot open
+  }
+  unsigned char header[348] = {};
+  const int got = gzread(file, header, sizeof(header));
+  gzclose(file);
+  std::uint32_t size = 0;
+  std::memcpy(&size, header, 4);
+  // NIfTI-1 starts with 348, NIfTI-2 with 540 (the header's size), in the
+  // file's byte order; ITK guessed at anything else and aborted on some.
+  const auto is = [&](std::uint32_t v) { return size == v || __builtin_bswap32(size) == v; };
+  if (got < 4 || !(is(348) || is(540)))
+  {
+    fail(path, "not a NIfTI-1 or NIfTI-2 header (it does not start with its size, 348 or 540)");
+  }
+  if (!is(348) || got < static_cast<int>(sizeof(header)))
+  {
+    return; // NIfTI-2 (or too short): ITK judges the rest
+  }
+  const bool swapped = size != 348;
+  // pixdim[8] at 76, quatern_b ... qoffset_z at 256, srow_x/y/z at 280:
+  // ITK takes an SVD of the orientation they make, which aborts on a NaN.
+  const auto finiteFloats = [&](int from, int count)
+  {
+    for (int i = 0; i < count; ++i)
+    {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, header + from + 4 * i, 4);
+      if (swapped)
+      {
+        bits = __builtin_bswap32(bits);
+      }
+      float v = 0.0f;
+      std::memcpy(&v, &bits, 4);
+      if (!std::isfinite(v))
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  if (!finiteFloats(76, 8) || !finiteFloats(256, 6) || !finiteFloats(280, 12))
+  {
+    fail(path, "the header's voxel sizes or orientation (pixdim, qform, sform) are not finite");
   }
 }
 
@@ -98,6 +165,13 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
   std::uint64_t compressedBytes = 0;
   for (int lines = 0; lines < 200 && std::getline(in, line); ++lines)
   {
+    // MetaIO reads a key up to a NUL byte, so "ElementDataFile\0..." was its
+    // data file while this reading passed it by: header text is text.
+    if (!std::all_of(line.begin(), line.end(),
+          [](unsigned char c) { return std::isprint(c) || c == '\t' || c == '\r'; }))
+    {
+      fail(path, "header line " + std::to_string(lines + 1) + " holds bytes that are not text");
+    }
     const auto equals = line.find('=');
     if (equals == std::string::npos)
     {
@@ -105,6 +179,21 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
     }
     std::string key = line.substr(0, equals);
     key.erase(key.find_last_not_of(" \t") + 1);
+    // MetaIO matches a key it does not know against its own by their start
+    // ("C" became a field whose copy overflowed a buffer): only its keys.
+    static const char* const keys[] = { "Comment", "ObjectType", "ObjectSubType", "NDims", "Name",
+      "ID", "ParentID", "Color", "Position", "Origin", "Offset", "TransformMatrix", "Orientation",
+      "Rotation", "CenterOfRotation", "AnatomicalOrientation", "ElementSpacing", "ElementSize",
+      "DimSize", "HeaderSize", "HeaderSizes", "Modality", "SequenceID", "ElementMin", "ElementMax",
+      "ElementNumberOfChannels", "ElementType", "ElementDataFile", "BinaryData",
+      "BinaryDataByteOrderMSB", "ElementByteOrderMSB", "CompressedData", "CompressedDataSize",
+      "TransformType", "AcquisitionDate", "DistanceUnits" };
+    if (std::none_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; }))
+    {
+      fail(path,
+        "header line " + std::to_string(lines + 1) + " has the key '" + key.substr(0, 40) +
+          "', which MetaImage does not define");
+    }
     std::string value = line.substr(equals + 1);
     value.erase(0, value.find_first_not_of(" \t"));
     value.erase(value.find_last_not_of(" \t\r") + 1);
@@ -130,11 +219,14 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
     {
       // MetaIO read such a value as a file it could not open, then tried to
       // allocate the rest of a stream that had failed: 2^63 bytes.
-      fail(path, "the header's ElementDataFile is not a file name, LOCAL or LIST");
+      fail(path, "the header's ElementDataFile is not a file name or LOCAL");
     }
-    if (value == "LIST" || value.find('%') != std::string::npos)
+    if (value.rfind("LIST", 0) == 0 || value.find('%') != std::string::npos)
     {
-      return; // one file per slice: left to MetaIO
+      // MetaIO divided by a step of 0 read from such a pattern; a CT comes in one file.
+      fail(path,
+        "the header lists one data file per slice (LIST or a pattern); VIMLOP reads MetaImage "
+        "volumes whose data are in one file");
     }
     std::error_code ec;
     std::uint64_t available = 0;
@@ -309,15 +401,43 @@ public:
   std::size_t metaGroup(bool& implicit)
   {
     std::size_t at = 132;
+    std::size_t groupEnd = 0; // from the group length (0002,0000)
     implicit = false;
+    // The standard requires the group to start with its length; GDCM reads a
+    // group without it in a compatibility mode that asserted on what followed.
+    if (at + 12 <= this->Data.size() && this->u16(at) == 0x0002 &&
+      (this->u16(at + 2) != 0x0000 || this->Data.compare(at + 4, 2, "UL") != 0 ||
+        this->u16(at + 6) != 4))
+    {
+      this->corrupt(at, "starts the file meta group where its group length (0002,0000) should");
+    }
     for (int elements = 0; at + 8 <= this->Data.size() && this->u16(at) == 0x0002; ++elements)
     {
       if (elements >= 100)
       {
         this->corrupt(at, "is one of more than 100 in the file meta group");
       }
-      const std::size_t value = this->explicitElement(at, this->Data.size());
+      // GDCM asserts on a meta element whose VR is not the standard's.
+      static const std::pair<std::uint32_t, const char*> metaVrs[] = { { 0x0000, "UL" },
+        { 0x0001, "OB" }, { 0x0002, "UI" }, { 0x0003, "UI" }, { 0x0010, "UI" }, { 0x0012, "UI" },
+        { 0x0013, "SH" }, { 0x0016, "AE" }, { 0x0100, "UI" }, { 0x0102, "OB" } };
+      for (const auto& [element, vr] : metaVrs)
+      {
+        if (this->u16(at + 2) == element && this->Data.compare(at + 4, 2, vr) != 0)
+        {
+          this->corrupt(at,
+            "has the value representation '" + this->Data.substr(at + 4, 2) +
+              "' where the standard has " + vr);
+        }
+      }
+      // Past (0002,0000), the elements must end where its group length says.
+      const std::size_t value =
+        this->explicitElement(at, groupEnd == 0 ? this->Data.size() : groupEnd);
       const std::uint64_t length = this->Length;
+      if (this->u16(at + 2) == 0x0000 && length == 4 && groupEnd == 0)
+      {
+        groupEnd = std::min<std::size_t>(value + 4 + this->u32(value), this->Data.size());
+      }
       if (this->u16(at + 2) == 0x0010)
       {
         // Transfer syntax: implicit VR little endian is 1.2.840.10008.1.2 exactly.
@@ -329,6 +449,15 @@ public:
         implicit = uid == "1.2.840.10008.1.2";
       }
       at = value + static_cast<std::size_t>(length);
+    }
+    if (at == 132)
+    {
+      // GDCM's reading of a file without one asserted on what it found instead.
+      fail(this->Path, "the DICOM file has no file meta information group (0002) after 'DICM'");
+    }
+    if (groupEnd != 0 && at != groupEnd)
+    {
+      this->corrupt(at, "does not end the file meta group where its group length says");
     }
     return at;
   }
@@ -357,8 +486,28 @@ public:
         at = this->items(value, end, implicit, depth + 1);
         continue;
       }
-      (void)group;
-      (void)element;
+      // GDCM asserts when an image attribute it reads as one number has
+      // another length: Samples per Pixel, Rows, Columns, Bits Allocated,
+      // Bits Stored, High Bit, Pixel Representation, Planar Configuration.
+      static const std::uint32_t oneUS[] = { 0x0002, 0x0006, 0x0010, 0x0011, 0x0100, 0x0101, 0x0102,
+        0x0103 };
+      const bool imageNumber = group == 0x0028 &&
+        std::find(std::begin(oneUS), std::end(oneUS), element) != std::end(oneUS);
+      if (imageNumber && !isImplicit && this->Vr != "US")
+      {
+        this->corrupt(
+          at, "has the value representation '" + this->Vr + "' where the standard has US");
+      }
+      if (imageNumber && this->Length != 2)
+      {
+        this->corrupt(
+          at, "holds " + std::to_string(this->Length) + " bytes where one 16-bit number belongs");
+      }
+      if (!isImplicit && this->Length % this->ValueSize != 0)
+      {
+        this->corrupt(
+          at, "holds " + std::to_string(this->Length) + " bytes, no whole number of its values");
+      }
       if (this->IsSequence)
       {
         this->items(value, value + static_cast<std::size_t>(this->Length), implicit, depth + 1);
@@ -385,10 +534,13 @@ private:
 
   [[noreturn]] void corrupt(std::size_t at, const std::string& problem) const
   {
-    char tag[16];
-    std::snprintf(tag, sizeof(tag), "(%04X,%04X)", this->u16(at), this->u16(at + 2));
+    char tag[16] = "";
+    if (at + 4 <= this->Data.size())
+    {
+      std::snprintf(tag, sizeof(tag), " (%04X,%04X)", this->u16(at), this->u16(at + 2));
+    }
     fail(this->Path,
-      "the DICOM file is corrupt: element " + std::string(tag) + " at byte " + std::to_string(at) +
+      "the DICOM file is corrupt: element" + std::string(tag) + " at byte " + std::to_string(at) +
         " " + problem);
   }
 
@@ -409,7 +561,7 @@ private:
     }
     this->corrupt(at,
       "declares " + std::to_string(this->Length) + " bytes, more than the " + left +
-        " left in the sequence around it");
+        " left in the group or sequence around it");
   }
 
   std::size_t explicitElement(std::size_t at, std::size_t end)
@@ -427,6 +579,11 @@ private:
       this->corrupt(at, "has no valid value representation");
     }
     this->IsSequence = vr == "SQ";
+    this->Vr = vr;
+    this->ValueSize = vr == "US" || vr == "SS" || vr == "OW"                             ? 2
+      : vr == "UL" || vr == "SL" || vr == "FL" || vr == "AT" || vr == "OF" || vr == "OL" ? 4
+      : vr == "FD" || vr == "OD" || vr == "SV" || vr == "UV" || vr == "OV"               ? 8
+                                                                                         : 1;
     std::size_t value = 0;
     if (in(longVrs, std::size(longVrs)))
     {
@@ -449,6 +606,7 @@ private:
   std::size_t implicitElement(std::size_t at, std::size_t end)
   {
     this->IsSequence = false; // not known without a dictionary: a defined length is skipped whole
+    this->ValueSize = 1;
     this->Length = this->u32(at + 4);
     this->bound(at, at + 8, end);
     return at + 8;
@@ -513,6 +671,8 @@ private:
   const std::string& Data;
   std::uint64_t Length = 0;
   bool IsSequence = false;
+  std::uint64_t ValueSize = 1; ///< bytes of one value of the element's VR (1: text or bytes)
+  std::string Vr;              ///< of the last explicit-VR element
 };
 
 } // namespace

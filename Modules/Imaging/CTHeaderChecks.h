@@ -14,11 +14,17 @@
 namespace vimlop::detail
 {
 
+/// @brief A NIfTI-1 header (plain or gzip) has finite voxel sizes and
+/// orientation; checked before ITK reads it.
+void checkNiftiHeader(const std::string& path);
+
 /// @brief An uncompressed NIfTI-1 file holds the voxel bytes its header promises.
 void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes);
 
 /// @brief A MetaImage header's data file exists and holds the voxel bytes
 /// promised (raw), or enough for them (compressed).
+/// Called with 0 voxel bytes before MetaIO reads the header, it judges the
+/// header alone: text only, MetaImage's keys only, one data file.
 void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes);
 
 /// @brief Compressed data of `compressedBytes` can hold `voxelBytes`

@@ -15,10 +15,12 @@
 #include <itkImage.h>
 #include <itkImageFileReader.h>
 #include <itkImageFileWriter.h>
-#include <itkImageIOFactory.h>
 #include <itkImageSeriesReader.h>
+#include <itkMetaImageIO.h>
 #include <itkMetaImageIOFactory.h>
+#include <itkNiftiImageIO.h>
 #include <itkNiftiImageIOFactory.h>
+#include <itkNrrdImageIO.h>
 #include <itkNrrdImageIOFactory.h>
 
 #include <algorithm>
@@ -302,9 +304,35 @@ itk::ImageIOBase::Pointer openCheckedImageFile(
   {
     detail::checkDicomPart10(path); // before GDCM parses it
   }
-  itk::ImageIOBase::Pointer io =
-    itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
-  if (!io)
+  if (format == "MetaImage")
+  {
+    detail::checkMetaImageData(path, 0); // the header's text, before MetaIO parses it
+  }
+  if (format == "NIfTI")
+  {
+    detail::checkNiftiHeader(path); // before ITK takes the orientation's SVD
+  }
+  // The reader of the format the extension names, not ITK's factory: the
+  // factory asks every reader whether it can read the file, and GDCM's
+  // answer parses a file of any name as DICOM (and aborts on some).
+  itk::ImageIOBase::Pointer io;
+  if (format == "NIfTI")
+  {
+    io = itk::NiftiImageIO::New();
+  }
+  else if (format == "NRRD")
+  {
+    io = itk::NrrdImageIO::New();
+  }
+  else if (format == "MetaImage")
+  {
+    io = itk::MetaImageIO::New();
+  }
+  else
+  {
+    io = itk::GDCMImageIO::New();
+  }
+  if (!io->CanReadFile(path.c_str()))
   {
     fail(path, "not a readable " + format + " file");
   }

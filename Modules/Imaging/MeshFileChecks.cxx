@@ -130,9 +130,17 @@ public:
     }
     for (std::uint64_t i = 0; i < values; ++i)
     {
-      if (this->word().empty())
+      const std::string w = this->word();
+      if (w.empty())
       {
         fail(this->Path, "the file ends inside the " + where + " (truncated)");
+      }
+      char* end = nullptr;
+      std::strtod(w.c_str(), &end);
+      if (*end != '\0')
+      {
+        // Counting it as a value would let the walk skip the next keyword.
+        fail(this->Path, "the " + where + " hold '" + w.substr(0, 20) + "', which is no number");
       }
     }
   }
@@ -160,7 +168,7 @@ std::string legacyKeyword(const std::string& word)
   std::transform(lower.begin(), lower.end(), lower.begin(),
     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   for (const char* keyword : { "dataset", "points", "vertices", "lines", "polygons",
-         "triangle_strips", "point_data", "cell_data" })
+         "triangle_strips", "point_data", "cell_data", "field", "metadata" })
   {
     if (lower.rfind(keyword, 0) == 0)
     {
@@ -230,7 +238,15 @@ void walkLegacyVtkCells(const std::string& path)
   const bool offsets =
     std::sscanf(header[0].c_str(), "# vtk DataFile Version %d.%d", &major, &minor) == 2 &&
     major >= 5;
-  LegacyVtkWalk walk(path, data, at, header[2].rfind("BINARY", 0) == 0);
+  // The file type line as VTK's writer writes it: its reader went on past a
+  // mangled one and read from a stream it had closed.
+  std::string type = header[2];
+  type.erase(type.find_last_not_of(" \t\r") + 1);
+  if (type != "ASCII" && type != "BINARY")
+  {
+    fail(path, "line 3 is '" + type.substr(0, 40) + "', not ASCII or BINARY");
+  }
+  LegacyVtkWalk walk(path, data, at, type == "BINARY");
   std::uint64_t points = 0;
   for (std::string word = walk.word(); !word.empty(); word = walk.word())
   {
@@ -333,9 +349,15 @@ void walkLegacyVtkCells(const std::string& path)
         }
       }
     }
+    else if (keyword == "POINT_DATA" || keyword == "CELL_DATA" || keyword == "FIELD" ||
+      keyword == "METADATA")
+    {
+      return; // data attributes: their counts are bounded above
+    }
     else
     {
-      return; // data attributes, or what VTK's reader judges itself
+      fail(
+        path, "the file holds '" + word.substr(0, 40) + "' where a legacy VTK keyword should be");
     }
   }
 }
@@ -469,6 +491,18 @@ void checkObj(const std::string& path)
     words >> keyword;
     if (keyword == "v" || keyword == "vt" || keyword == "vn")
     {
+      // As many numbers as VTK's reader takes (x y z; u [v [w]]; x y z).
+      int numbers = 0;
+      for (double value = 0.0; words >> value;)
+      {
+        ++numbers;
+      }
+      const bool enough = keyword == "vt" ? numbers >= 1 : numbers >= 3;
+      if (!enough || !words.eof())
+      {
+        fail(path,
+          "line " + std::to_string(number) + " is a '" + keyword + "' line without its numbers");
+      }
       ++defined[keyword == "v" ? 0 : keyword == "vt" ? 1 : 2];
       checkPromise(path, defined[0] + defined[1] + defined[2], "vertices and attributes");
       continue;
@@ -480,6 +514,17 @@ void checkObj(const std::string& path)
     std::string corner;
     while (words >> corner)
     {
+      // VTK's reader takes a file with normals (or texture coordinates) to
+      // give them at every corner, and looked them up out of bounds otherwise.
+      const std::size_t slashes = std::count(corner.begin(), corner.end(), '/');
+      const bool hasTexture = slashes >= 1 && corner.find("//") == std::string::npos;
+      const bool hasNormal = slashes == 2;
+      if (keyword == "f" && ((defined[1] > 0 && !hasTexture) || (defined[2] > 0 && !hasNormal)))
+      {
+        fail(path,
+          "line " + std::to_string(number) + " has a corner '" + corner.substr(0, 20) +
+            "' without the texture coordinate or normal the file defines for every corner");
+      }
       // v, v/vt, v//vn or v/vt/vn
       std::size_t start = 0;
       for (int part = 0; part < 3 && start <= corner.size(); ++part)

@@ -8,6 +8,7 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <tuple>
 
 using namespace vimlop;
@@ -237,4 +238,57 @@ TEST(CTVolumeIO, AMetaImageCompressedSizeBeyondItsDataIsRefused)
     "'" + path +
       "': the header's CompressedDataSize (9223372036854775807 bytes) is more than the 20 bytes "
       "of data");
+}
+
+TEST(CTVolumeIO, AFileIsReadOnlyByTheReaderItsExtensionNames)
+{
+  // ITK's factory let GDCM parse a .nii file as DICOM, and GDCM aborted.
+  std::string dicom(128, '\0');
+  dicom += "DICM";
+  dicom += std::string("\x02\x00\x00\x00OD\x00\x00\x04\x00\x00\x00\x76\x00\x00\x00", 16);
+  const std::string path = out + "/dicom-inside.nii";
+  std::ofstream(path, std::ios::binary) << dicom;
+  EXPECT_EQ(messageOf(path),
+    "'" + path +
+      "': not a NIfTI-1 or NIfTI-2 header (it does not start with its size, 348 or 540)");
+  // MetaIO read "ElementDataFile\0..." as its key; the header is text.
+  const std::string nul = out + "/nul-key.mha";
+  std::ofstream(nul, std::ios::binary)
+    << "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_SHORT\n"
+    << std::string("ElementDataFile\0 = LOCAL\n", 26) << std::string(16, '\x01');
+  EXPECT_EQ(messageOf(nul), "'" + nul + "': header line 5 holds bytes that are not text");
+  // MetaIO matched an unknown key by its start, and overflowed a buffer copying it.
+  const std::string unknown = out + "/unknown-key.mha";
+  std::ofstream(unknown, std::ios::binary)
+    << "ObjectType = Image\nNDims = 3\nC = 3\nDimSize = 2 2 2\nElementType = MET_SHORT\n"
+    << "ElementDataFile = LOCAL\n"
+    << std::string(16, '\x01');
+  EXPECT_EQ(messageOf(unknown),
+    "'" + unknown + "': header line 3 has the key 'C', which MetaImage does not define");
+  // One data file per slice: MetaIO divided by the pattern's step of 0.
+  const std::string pattern = out + "/pattern.mhd";
+  std::ofstream(pattern) << "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\n"
+                         << "ElementType = MET_SHORT\nElementDataFile = slice%03d.raw 0 1 0\n";
+  EXPECT_EQ(messageOf(pattern),
+    "'" + pattern +
+      "': the header lists one data file per slice (LIST or a pattern); VIMLOP reads MetaImage "
+      "volumes whose data are in one file");
+}
+
+TEST(CTVolumeIO, ANiftiOrientationThatIsNotFiniteIsRefusedBeforeITKReadsIt)
+{
+  // ITK took the SVD of the orientation, which aborted the process on a NaN.
+  CTVolume volume;
+  volume.dims = { 3, 3, 3 };
+  volume.intensities.assign(27, -1000.0f);
+  const std::string path = out + "/nan-sform.nii";
+  writeCTVolume(volume, path);
+  std::fstream file(path, std::ios::binary | std::ios::in | std::ios::out);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  file.seekp(280); // srow_x[0]
+  file.write(reinterpret_cast<const char*>(&nan), sizeof(nan));
+  file.close();
+  EXPECT_EQ(messageOf(path),
+    "'" + path +
+      "': the header's voxel sizes or orientation (pixdim, qform, sform) are not finite");
 }

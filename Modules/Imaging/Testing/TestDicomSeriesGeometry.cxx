@@ -377,12 +377,12 @@ TEST(DicomSeriesFiles, ACorruptFileMetaGroupIsRefusedBeforeGDCMParsesIt)
   std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
   EXPECT_EQ(readError(folder),
     "'" + file +
-      "': the DICOM file is corrupt: element (0002,0010) at byte 234 has no valid value "
-      "representation");
+      "': the DICOM file is corrupt: element (0002,0010) at byte 234 has the value "
+      "representation '?I' where the standard has UI");
   EXPECT_EQ(readError(file),
     "'" + file +
-      "': the DICOM file is corrupt: element (0002,0010) at byte 234 has no valid value "
-      "representation");
+      "': the DICOM file is corrupt: element (0002,0010) at byte 234 has the value "
+      "representation '?I' where the standard has UI");
   const std::string notDicom = out + "/not-part-10.dcm";
   std::ofstream(notDicom, std::ios::binary) << std::string(200, '\0');
   EXPECT_EQ(readError(notDicom), "'" + notDicom + "': not a DICOM file (no 'DICM' at byte 128)");
@@ -411,4 +411,57 @@ TEST(DicomSeriesFiles, BytesTooFewForAnElementAtTheEndAreATruncation)
   EXPECT_EQ(readError(folder),
     "'" + file + "': the file is truncated: it ends inside an element at byte " +
       std::to_string(size));
+}
+
+TEST(DicomSeriesFiles, AMetaElementBeyondTheGroupLengthIsRefused)
+{
+  // GDCM asserted when a meta element ran past the group's declared length.
+  const std::string folder = writeSeries("group-length", axialSeries(3, 1.0));
+  const std::string file = folder + "/slice2.dcm";
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ASSERT_EQ(bytes.compare(132, 6, std::string("\x02\x00\x00\x00UL", 6)), 0);
+  bytes[140] = static_cast<char>(bytes[140] - 4); // the group length, 4 bytes short
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  const std::string message = readError(folder);
+  EXPECT_EQ(message.rfind("'" + file + "': the DICOM file is corrupt: element (0002,", 0), 0u)
+    << message;
+}
+
+TEST(DicomSeriesFiles, AFileWithoutItsMetaGroupIsRefused)
+{
+  std::string bytes(128, '\0');
+  bytes += "DICM";
+  bytes += std::string("\x08\x00\x60\x00"
+                       "CS\x02\x00"
+                       "CT",
+    10);
+  const std::string path = out + "/no-meta.dcm";
+  std::ofstream(path, std::ios::binary) << bytes;
+  EXPECT_EQ(readError(path),
+    "'" + path + "': the DICOM file has no file meta information group (0002) after 'DICM'");
+}
+
+TEST(DicomSeriesFiles, AnImageAttributeOfTheWrongLengthIsRefused)
+{
+  // GDCM asserted on Rows (0028,0010) of 4 bytes: it reads one 16-bit number.
+  const std::string folder = writeSeries("rows-length", axialSeries(3, 1.0));
+  const std::string file = folder + "/slice1.dcm";
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string rows("\x28\x00\x10\x00US\x02\x00", 8);
+  const std::size_t at = bytes.find(rows);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 6] = 4;
+  bytes.insert(at + 10, 2, '\0');
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  EXPECT_EQ(readError(folder),
+    "'" + file + "': the DICOM file is corrupt: element (0028,0010) at byte " + std::to_string(at) +
+      " holds 4 bytes where one 16-bit number belongs");
 }

@@ -257,6 +257,15 @@ TEST(MeshIO, LegacyVtkCellListsAreWalkedBeforeVTKReadsThem)
     "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 5\nCONNECTIVITY vtktypeint64\n0 1 2\n");
   EXPECT_EQ(readError(offsets),
     "'" + offsets + "': the POLYGONS OFFSETS do not rise from 0 to the 3 ids of the CONNECTIVITY");
+  // Too few coordinates: the next keyword is no coordinate.
+  const std::string few = out + "/few-points.vtk";
+  std::ofstream(few, std::ios::binary) << "# vtk DataFile Version 3.0\nfew\nASCII\n"
+                                       << "DATASET POLYDATA\nPOINTS 4 float\n0 0 0 1 0 0 0 1 0\n"
+                                       << "POLYGONS 1 4\n3 0 1 2\n";
+  EXPECT_EQ(readError(few), "'" + few + "': the POINTS hold 'POLYGONS', which is no number");
+  const std::string stray = write("stray-word.vtk", "2.0", "POLYGONS 1 4\n3 0 1 2\nv 1 2 3\n");
+  EXPECT_EQ(
+    readError(stray), "'" + stray + "': the file holds 'v' where a legacy VTK keyword should be");
   const std::string cut = write("cut-points.vtk", "5.1", "");
   std::filesystem::resize_file(cut, std::filesystem::file_size(cut) - 6);
   EXPECT_EQ(readError(cut), "'" + cut + "': the file ends inside the POINTS (truncated)");
@@ -288,12 +297,20 @@ TEST(MeshIO, AnObjFaceNamesOnlyWhatIsDefinedBeforeIt)
   };
   EXPECT_EQ(toTriangleMesh(readPolyData(write("fine.obj", "f 1/1 2/1 -1/1\n"))).numberOfFaces(), 1);
   // Texture index 0 became -1 inside VTK's reader, read out of bounds.
-  const std::string zero = write("zero-texture.obj", "f 1 2 3/0\n");
+  const std::string zero = write("zero-texture.obj", "f 1/1 2/1 3/0\n");
   EXPECT_EQ(readError(zero),
     "'" + zero + "': line 5 names texture coordinate '0'; 1 are defined before it");
-  const std::string far = write("far-vertex.obj", "f 1 2 4\n");
+  const std::string far = write("far-vertex.obj", "f 1/1 2/1 4/1\n");
   EXPECT_EQ(readError(far), "'" + far + "': line 5 names vertex '4'; 3 are defined before it");
-  const std::string normal = write("no-normal.obj", "f 1//1 2//1 3//1\n");
+  const std::string normal = write("no-normal.obj", "f 1/1/1 2/1/1 3/1/1\n");
   EXPECT_EQ(
     readError(normal), "'" + normal + "': line 5 names normal '1'; 0 are defined before it");
+  // Normals in the file but not at a corner: VTK looked one up out of bounds.
+  const std::string missing = write("corner-without-normal.obj", "vn 0 0 1\nf 1/1/1 2/1/1 3/1\n");
+  EXPECT_EQ(readError(missing),
+    "'" + missing +
+      "': line 6 has a corner '3/1' without the texture coordinate or normal the file defines "
+      "for every corner");
+  const std::string words = write("vertex-words.obj", "v 0 zero 0\nf 1/1 2/1 3/1\n");
+  EXPECT_EQ(readError(words), "'" + words + "': line 5 is a 'v' line without its numbers");
 }
