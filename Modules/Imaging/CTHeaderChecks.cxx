@@ -114,7 +114,8 @@ void checkNiftiHeader(const std::string& path)
   const bool swapped = size != 348;
   // pixdim[8] at 76, quatern_b ... qoffset_z at 256, srow_x/y/z at 280:
   // ITK takes an SVD of the orientation they make, which aborts on a NaN.
-  const auto finiteFloats = [&](int from, int count)
+  // Bounded as well: ITK's SVD of an orientation of 1e38s did not return.
+  const auto within = [&](int from, int count, float limit)
   {
     for (int i = 0; i < count; ++i)
     {
@@ -126,16 +127,20 @@ void checkNiftiHeader(const std::string& path)
       }
       float v = 0.0f;
       std::memcpy(&v, &bits, 4);
-      if (!std::isfinite(v))
+      if (!(std::abs(v) <= limit))
       {
         return false;
       }
     }
     return true;
   };
-  if (!finiteFloats(76, 8) || !finiteFloats(256, 6) || !finiteFloats(280, 12))
+  // pixdim up to 1e4 mm, quatern_b/c/d unit, offsets and sform within 1 km.
+  if (!within(76, 8, 1e4f) || !within(256, 3, 1.001f) || !within(268, 3, 1e6f) ||
+    !within(280, 12, 1e6f))
   {
-    fail(path, "the header's voxel sizes or orientation (pixdim, qform, sform) are not finite");
+    fail(path,
+      "the header's voxel sizes or orientation (pixdim, qform, sform) are not finite or not "
+      "those of a scan");
   }
 }
 
@@ -197,6 +202,18 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
     std::string value = line.substr(equals + 1);
     value.erase(0, value.find_first_not_of(" \t"));
     value.erase(value.find_last_not_of(" \t\r") + 1);
+    if (key == "NDims" || key == "ElementNumberOfChannels")
+    {
+      // MetaIO reads that many numbers per field: a negative count did not end.
+      char* end = nullptr;
+      const long count = std::strtol(value.c_str(), &end, 10);
+      if (value.empty() || *end != '\0' || count < 1 || count > (key == "NDims" ? 4 : 16))
+      {
+        fail(path,
+          "the header's " + key + " is '" + value.substr(0, 20) + "', not a count of " +
+            (key == "NDims" ? "1 to 4 dimensions" : "1 to 16 channels"));
+      }
+    }
     if (key == "CompressedData")
     {
       compressed = value == "True" || value == "true" || value == "TRUE";

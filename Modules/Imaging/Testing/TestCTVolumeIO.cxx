@@ -265,6 +265,12 @@ TEST(CTVolumeIO, AFileIsReadOnlyByTheReaderItsExtensionNames)
     << std::string(16, '\x01');
   EXPECT_EQ(messageOf(unknown),
     "'" + unknown + "': header line 3 has the key 'C', which MetaImage does not define");
+  // A negative dimension count: MetaIO's reading of the sizes did not end.
+  const std::string negative = out + "/negative-ndims.mha";
+  std::ofstream(negative) << "ObjectType = Image\nNDims = -2\nDimSize = 10 10 10\n"
+                          << "ElementType = MET_SHORT\nElementDataFile = LOCAL\n";
+  EXPECT_EQ(messageOf(negative),
+    "'" + negative + "': the header's NDims is '-2', not a count of 1 to 4 dimensions");
   // One data file per slice: MetaIO divided by the pattern's step of 0.
   const std::string pattern = out + "/pattern.mhd";
   std::ofstream(pattern) << "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\n"
@@ -288,7 +294,16 @@ TEST(CTVolumeIO, ANiftiOrientationThatIsNotFiniteIsRefusedBeforeITKReadsIt)
   file.seekp(280); // srow_x[0]
   file.write(reinterpret_cast<const char*>(&nan), sizeof(nan));
   file.close();
+  const std::string huge = out + "/huge-qoffset.nii";
+  writeCTVolume(volume, huge);
+  std::fstream hugeFile(huge, std::ios::binary | std::ios::in | std::ios::out);
+  const float far = 3e38f;
+  hugeFile.seekp(268); // qoffset_x: ITK's SVD of such an orientation did not return
+  hugeFile.write(reinterpret_cast<const char*>(&far), sizeof(far));
+  hugeFile.close();
+  EXPECT_NE(messageOf(huge).find("are not finite or not those of a scan"), std::string::npos);
   EXPECT_EQ(messageOf(path),
     "'" + path +
-      "': the header's voxel sizes or orientation (pixdim, qform, sform) are not finite");
+      "': the header's voxel sizes or orientation (pixdim, qform, sform) are not finite or not "
+      "those of a scan");
 }
