@@ -453,7 +453,15 @@ public:
       const std::uint64_t length = this->Length;
       if (this->u16(at + 2) == 0x0000 && length == 4 && groupEnd == 0)
       {
-        groupEnd = std::min<std::size_t>(value + 4 + this->u32(value), this->Data.size());
+        groupEnd = value + 4 + static_cast<std::size_t>(this->u32(value));
+        if (groupEnd > this->Data.size())
+        {
+          // GDCM read the missing group and asserted on what it found.
+          fail(this->Path,
+            "the file is truncated: its file meta group declares " +
+              std::to_string(this->u32(value)) + " bytes and " +
+              std::to_string(this->Data.size() - value - 4) + " are left");
+        }
       }
       if (this->u16(at + 2) == 0x0010)
       {

@@ -433,6 +433,13 @@ TEST(DicomSeriesFiles, AMetaElementBeyondTheGroupLengthIsRefused)
 
 TEST(DicomSeriesFiles, AFileWithoutItsMetaGroupIsRefused)
 {
+  std::string onlyLength(128, '\0');
+  onlyLength += "DICM";
+  onlyLength += std::string("\x02\x00\x00\x00UL\x04\x00\xe4\x00\x00\x00", 12);
+  const std::string cut = out + "/meta-cut.dcm";
+  std::ofstream(cut, std::ios::binary) << onlyLength;
+  EXPECT_EQ(readError(cut),
+    "'" + cut + "': the file is truncated: its file meta group declares 228 bytes and 0 are left");
   std::string bytes(128, '\0');
   bytes += "DICM";
   bytes += std::string("\x08\x00\x60\x00"
