@@ -44,19 +44,6 @@ void checkNrrdData(const std::string& path, std::uint64_t voxelBytes);
  */
 void checkNrrdHeader(const std::string& path);
 
-/// @brief The file has 'DICM' at byte 128, as DICOM Part 10 files do.
-bool hasDicomPreamble(const std::string& path);
-
-/**
- * @brief A DICOM Part 10 file, walked element by element as GDCM will read
- * it, before GDCM does (built with assertions, it aborts the process on an
- * invalid VR, and it allocates an element's declared length before reading
- * it): 'DICM' at byte 128, valid VRs, every declared length within what its
- * file or sequence has left, items closed by their delimiters, sequences
- * nested at most 16 deep.
- */
-void checkDicomPart10(const std::string& path);
-
 /**
  * @brief Geometry no CT (and no field on a CT's grid) has, whatever the
  * format: spacing not finite, not positive or above 100 mm; origin not

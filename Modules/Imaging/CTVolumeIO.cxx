@@ -6,6 +6,7 @@
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/CTHeaderChecks.h>
+#include <vimlop/Imaging/DicomFileCheck.h>
 #include <vimlop/Imaging/DicomSeriesGeometry.h>
 #include <vimlop/Imaging/ITKImageFiles.h>
 #include <vimlop/Imaging/InVesaliusProjectReader.h>

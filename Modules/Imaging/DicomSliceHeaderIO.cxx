@@ -5,7 +5,7 @@
 #include <vimlop/Imaging/DicomSeriesGeometry.h>
 
 #include <vimlop/Core/Error.h>
-#include <vimlop/Imaging/CTHeaderChecks.h>
+#include <vimlop/Imaging/DicomFileCheck.h>
 
 #include <gdcmDataSet.h>
 #include <gdcmExplicitDataElement.h>

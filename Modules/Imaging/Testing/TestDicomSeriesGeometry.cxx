@@ -259,6 +259,13 @@ std::vector<fixtures::DicomSliceSpec> axialSeries(int count, double stepMm)
   return slices;
 }
 
+/// The whole of a file, to change bytes of it.
+std::string fileBytes(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
 std::string readError(const std::string& folder)
 {
   return fixtures::errorMessageOf([&] { readCTVolume(folder); });
@@ -366,11 +373,7 @@ TEST(DicomSeriesFiles, ACorruptFileMetaGroupIsRefusedBeforeGDCMParsesIt)
   std::vector<fixtures::DicomSliceSpec> slices = axialSeries(3, 1.0);
   const std::string folder = writeSeries("bad-meta", slices);
   const std::string file = folder + "/slice1.dcm";
-  std::string bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  std::string bytes = fileBytes(file);
   const std::string transferSyntax("\x02\x00\x10\x00UI", 6);
   ASSERT_NE(bytes.find(transferSyntax), std::string::npos);
   bytes[bytes.find(transferSyntax) + 4] = '?';
@@ -418,11 +421,7 @@ TEST(DicomSeriesFiles, AMetaElementBeyondTheGroupLengthIsRefused)
   // GDCM asserted when a meta element ran past the group's declared length.
   const std::string folder = writeSeries("group-length", axialSeries(3, 1.0));
   const std::string file = folder + "/slice2.dcm";
-  std::string bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  std::string bytes = fileBytes(file);
   ASSERT_EQ(bytes.compare(132, 6, std::string("\x02\x00\x00\x00UL", 6)), 0);
   bytes[140] = static_cast<char>(bytes[140] - 4); // the group length, 4 bytes short
   std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
@@ -457,11 +456,7 @@ TEST(DicomSeriesFiles, AnImageAttributeOfTheWrongLengthIsRefused)
   // GDCM asserted on Rows (0028,0010) of 4 bytes: it reads one 16-bit number.
   const std::string folder = writeSeries("rows-length", axialSeries(3, 1.0));
   const std::string file = folder + "/slice1.dcm";
-  std::string bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  std::string bytes = fileBytes(file);
   const std::string rows("\x28\x00\x10\x00US\x02\x00", 8);
   const std::size_t at = bytes.find(rows);
   ASSERT_NE(at, std::string::npos);
