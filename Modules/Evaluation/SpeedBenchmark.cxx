@@ -1,8 +1,8 @@
 #include <vimlop/Evaluation/SpeedBenchmark.h>
 
+#include <vimlop/Core/ChildProcess.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/TextFormat.h>
-#include <vimlop/Evaluation/ChildProcess.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,15 +1,15 @@
 // `vimlop evaluate speed` end to end, on the smallest run (6 frames, 1
 // thread): its JSON's layout, and that the stages' times add up.
 
-#include <vimlop/Evaluation/ChildProcess.h>
+#include <vimlop/Core/ChildProcess.h>
+
+#include "TestFolders.h"
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 
 namespace vimlop
 {
@@ -17,12 +17,6 @@ namespace
 {
 
 namespace fs = std::filesystem;
-
-std::string readText(const fs::path& path)
-{
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 TEST(EvaluateSpeed, TimesEachStageOfASixFrameRunAndTheirSumStaysWithinItsWallTime)
 {
@@ -34,18 +28,19 @@ TEST(EvaluateSpeed, TimesEachStageOfASixFrameRunAndTheirSumStaysWithinItsWallTim
                       "--threads", "1", "--seed", "1", "--keep", (dir / "work").string(), "--out",
                       (dir / "speed.json").string() },
       (dir / "stdout.txt").string(), (dir / "stderr.txt").string());
-  ASSERT_EQ(r.exitCode, 0) << readText(dir / "stderr.txt");
+  ASSERT_EQ(r.exitCode, 0) << fixtures::fileBytes(dir / "stderr.txt");
   // Progress on stderr, the table on stdout.
-  EXPECT_NE(readText(dir / "stderr.txt").find("vimlop evaluate speed: 6 frames, 1 thread: "),
+  EXPECT_NE(
+    fixtures::fileBytes(dir / "stderr.txt").find("vimlop evaluate speed: 6 frames, 1 thread: "),
     std::string::npos);
-  const std::string table = readText(dir / "stdout.txt");
+  const std::string table = fixtures::fileBytes(dir / "stdout.txt");
   EXPECT_EQ(table.rfind("frames threads   wall s result s  frames   model", 0), 0u) << table;
   EXPECT_NE(table.find("\n     6       1 "), std::string::npos) << table;
   // The user's files were registered as a user would: a whole result folder.
   EXPECT_TRUE(fs::exists(dir / "work" / "register-6-t1" / "result.json"));
   EXPECT_TRUE(fs::exists(dir / "work" / "register-6-t1" / "report" / "index.html"));
 
-  const nlohmann::json j = nlohmann::json::parse(readText(dir / "speed.json"));
+  const nlohmann::json j = nlohmann::json::parse(fixtures::fileBytes(dir / "speed.json"));
   EXPECT_EQ(j.at("benchmark"), "vimlop evaluate speed");
   EXPECT_EQ(j.at("seed"), 1);
   EXPECT_EQ(j.at("upright_deg"), 10.0);

@@ -1,11 +1,14 @@
 #ifndef vimlop_TestFolders_h
 #define vimlop_TestFolders_h
 
-// Folders that tests write into, under the build's Testing/Temporary.
+// Folders that tests write into, under the build's Testing/Temporary, and
+// the files in them read back.
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace vimlop::fixtures
@@ -31,6 +34,13 @@ inline std::filesystem::path freshTestFolder(const std::string& name, bool perTe
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+/// @brief The whole of a file, its bytes as they are ("" when it cannot be read).
+inline std::string fileBytes(const std::filesystem::path& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 } // namespace vimlop::fixtures

@@ -1,7 +1,7 @@
 #include <vimlop/Evaluation/Peers/ElastixRegistration.h>
 
+#include <vimlop/Core/ChildProcess.h>
 #include <vimlop/Core/Error.h>
-#include <vimlop/Evaluation/ChildProcess.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
 
 #include <cstdio>

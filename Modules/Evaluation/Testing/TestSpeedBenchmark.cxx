@@ -1,4 +1,3 @@
-#include <vimlop/Evaluation/ChildProcess.h>
 #include <vimlop/Evaluation/MachineDescription.h>
 #include <vimlop/Evaluation/SpeedBenchmark.h>
 
@@ -6,18 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
-#include <iterator>
-
-#include <sys/resource.h>
-
 namespace vimlop
 {
 namespace
 {
-
-namespace fs = std::filesystem;
 
 SpeedBenchmarkOptions validOptions()
 {
@@ -253,59 +244,6 @@ TEST(MachineDescription, ReadsTheCpuModelAndTheLoadAverageFromProcTexts)
   EXPECT_EQ(load, (std::array<double, 3>{ 1.5, 0.75, 0.25 }));
   EXPECT_EQ(fixtures::errorMessageOf([] { MachineDescription::loadAverageFromText("busy"); }),
     "load average: expected three non-negative numbers, got 'busy'");
-}
-
-std::string readText(const fs::path& path)
-{
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-TEST(ChildProcess, RunsAProgramWithItsOutputsInFilesAndItsOwnCost)
-{
-  const fs::path dir = fs::path(VIMLOP_TEST_OUTPUT_DIR) / "child-process";
-  fs::create_directories(dir);
-  // About 0.2 s of CPU in the child (a shell loop), nothing in the parent.
-  const ChildProcessResult r = runChildProcess(
-    { "/bin/sh", "-c",
-      "echo out; echo err >&2; i=0; while [ $i -lt 200000 ]; do i=$((i+1)); done; exit 7" },
-    (dir / "out.txt").string(), (dir / "err.txt").string());
-  EXPECT_EQ(r.exitCode, 7);
-  EXPECT_EQ(r.signal, 0);
-  EXPECT_EQ(readText(dir / "out.txt"), "out\n");
-  EXPECT_EQ(readText(dir / "err.txt"), "err\n");
-  EXPECT_GT(r.userCpuS + r.systemCpuS, 0.0);
-  EXPECT_GE(r.wallS, 0.8 * (r.userCpuS + r.systemCpuS));
-  // A shell's peak, bounded by this process's (Linux counts the parent's
-  // memory at the spawn as the child's): not a sum of the two.
-  rusage self{};
-  getrusage(RUSAGE_SELF, &self);
-  EXPECT_GT(r.peakResidentMiB, 0.0);
-  EXPECT_LT(r.peakResidentMiB, self.ru_maxrss / 1024.0 + 32.0);
-}
-
-TEST(ChildProcess, SaysWhenAProgramEndsByASignal)
-{
-  const ChildProcessResult r = runChildProcess({ "/bin/sh", "-c", "kill -TERM $$" });
-  EXPECT_EQ(r.exitCode, -1);
-  EXPECT_EQ(r.signal, 15);
-}
-
-TEST(ChildProcess, RefusesAMissingProgramOrAnUnwritableOutput)
-{
-  EXPECT_EQ(
-    fixtures::errorMessageOf([] { runChildProcess({}); }), "child process: no program given");
-  EXPECT_EQ(fixtures::errorMessageOf([] { runChildProcess({ "/no/such/program" }); }),
-    "'/no/such/program': cannot start it (No such file or directory)");
-  EXPECT_EQ(
-    fixtures::errorMessageOf([] { runChildProcess({ "/bin/true" }, "/no/such/folder/out.txt"); }),
-    "'/no/such/folder/out.txt': cannot write the child's output (No such file or directory)");
-}
-
-TEST(ChildProcess, FindsTheRunningProgram)
-{
-  EXPECT_TRUE(fs::exists(currentExecutablePath()));
-  EXPECT_NE(currentExecutablePath().find("VIMLOPEvaluationTests"), std::string::npos);
 }
 
 } // namespace

@@ -1,6 +1,7 @@
 #ifndef vimlop_ChildProcess_h
 #define vimlop_ChildProcess_h
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,55 @@ struct ChildProcessResult
  */
 ChildProcessResult runChildProcess(const std::vector<std::string>& arguments,
   const std::string& stdoutPath = std::string(), const std::string& stderrPath = std::string());
+
+/**
+ * @brief A child process whose output the parent reads as it comes (a
+ * decoder's frames, say), with a deadline on every wait: its stdout is a
+ * pipe read with read(), its stderr a pipe kept (its last 4 KiB) for the
+ * message when it fails, its stdin /dev/null. It runs in a process group of
+ * its own, killed as a whole; a child still running when the object goes is
+ * killed and reaped.
+ */
+class ChildProcess
+{
+public:
+  /**
+   * @brief Starts `arguments` as runChildProcess() does.
+   * @throws vimlop::Error when there is no program or it cannot be started.
+   */
+  explicit ChildProcess(const std::vector<std::string>& arguments);
+  ~ChildProcess();
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  /**
+   * @brief Reads `bytes` bytes of its stdout into `into`; returns how many
+   * came, fewer only when its stdout ended first.
+   * @throws vimlop::Error "'program': sent nothing for S s" when no byte came
+   * for `idleTimeoutS` seconds (the child is left running: finish() kills it).
+   */
+  std::size_t read(char* into, std::size_t bytes, double idleTimeoutS);
+
+  /// @brief The last 4 KiB it wrote to stderr so far (all of it after finish()).
+  const std::string& errorOutput() const { return this->ErrorText; }
+
+  /**
+   * @brief Closes its stdout, kills it first when `kill` (a reader that has
+   * what it wanted), waits for it to end and says how it ended. Its stderr
+   * is read to its end, 10 s at most; then it is killed.
+   */
+  ChildProcessResult finish(bool kill);
+
+private:
+  void readErrorOutput();
+
+  std::string Program;
+  int Pid = -1;
+  int Output = -1; ///< read end of its stdout
+  int Errors = -1; ///< read end of its stderr
+  std::string ErrorText;
+  double StartS = 0.0;
+};
 
 /**
  * @brief The path of the running program (/proc/self/exe), to start it again
