@@ -21,6 +21,7 @@ libinsighttoolkit5-dev
 libgdcm-dev
 libgdcm-tools
 libopencv-dev
+ffmpeg
 libgtest-dev
 libgmock-dev
 libcli11-dev

@@ -3,10 +3,10 @@
 #include <vimlop/Core/Error.h>
 
 #include "ImageFileHeader.h"
+#include "VideoFileDecoder.h"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -91,19 +91,6 @@ cv::Mat decodeImage(const std::string& file)
     fail(file, "not a readable image");
   }
   return image;
-}
-
-/// The next frame of a video; false at its end.
-bool readFrame(cv::VideoCapture& capture, const std::string& path, cv::Mat& image)
-{
-  try
-  {
-    return capture.read(image) && !image.empty();
-  }
-  catch (const cv::Exception& e)
-  {
-    fail(path, "a frame cannot be decoded (OpenCV: " + e.err + ")");
-  }
 }
 
 cv::Mat toBGR8(const cv::Mat& image)
@@ -281,41 +268,16 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
   }
   else
   {
-    // FFmpeg alone: the camera back ends OpenCV would also try (FireWire,
-    // USB) probe devices, not files, and leak what they list.
-    cv::VideoCapture capture;
-    try
-    {
-      capture.open(path, cv::CAP_FFMPEG);
-    }
-    catch (const cv::Exception& e)
-    {
-      fail(path, "not a readable video file (OpenCV: " + e.err + ")");
-    }
-    if (!capture.isOpened())
-    {
-      fail(path, "not a readable video file or image folder");
-    }
-    // The container's frame size is known before the first frame is decoded;
-    // the memory budget is counted on the frames as they come.
-    std::uint64_t containerBytes = 0;
-    checkFrameSize(path, "frame0",
-      static_cast<std::uint64_t>(std::max(0.0, capture.get(cv::CAP_PROP_FRAME_WIDTH))),
-      static_cast<std::uint64_t>(std::max(0.0, capture.get(cv::CAP_PROP_FRAME_HEIGHT))), 0,
-      containerBytes);
+    // Decoded in a child process; each frame is judged on its size before
+    // its pixels are read, the memory budget on the frames as they come.
     std::uint64_t decodedBytes = 0;
-    cv::Mat image;
-    while (sequence.size() < maxFrames && readFrame(capture, path, image))
+    sequence.Frames = detail::decodeVideoFile(path, maxFrames, detail::videoDecoderProgram(),
+      [&](int index, std::uint64_t width, std::uint64_t height) {
+        checkFrameSize(path, "frame" + std::to_string(index), width, height, index, decodedBytes);
+      });
+    for (int i = 0; i < sequence.size(); ++i)
     {
-      const std::string name = "frame" + std::to_string(sequence.size());
-      checkFrameSize(path, name, static_cast<std::uint64_t>(image.cols),
-        static_cast<std::uint64_t>(image.rows), sequence.size(), decodedBytes);
-      sequence.Frames.push_back(toBGR8(image).clone());
-      sequence.Names.push_back(name);
-    }
-    if (sequence.empty())
-    {
-      fail(path, "the video has no readable frames");
+      sequence.Names.push_back("frame" + std::to_string(i));
     }
   }
   sequence.Ids = idsOf(sequence.Names);

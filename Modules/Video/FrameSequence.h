@@ -15,8 +15,10 @@ namespace vimlop
  *
  * Frames come from a folder of images (`.png`, `.jpg`, `.jpeg`, `.bmp`,
  * `.tif`, `.tiff`, sorted by name with digit runs compared as numbers, so
- * `frame2.png` comes before `frame10.png`) or from a video file read through
- * OpenCV. All frames are 8-bit BGR and share one size. Sequences for
+ * `frame2.png` comes before `frame10.png`) or from a video file, decoded by
+ * FFmpeg's `ffmpeg` program in a child process (`$VIMLOP_FFMPEG` names another
+ * program), so that a decoder's fault on a broken file ends that process with
+ * a message, not this one. All frames are 8-bit BGR and share one size. Sequences for
  * registration are short (about 30 frames), so they are held in memory.
  */
 class FrameSequence
@@ -27,7 +29,10 @@ public:
    * @throws vimlop::Error naming the path and the problem: missing, empty
    * folder, unreadable image or video, frames of different sizes, a frame
    * larger than MaxFramePixels or frames beyond MaxDecodedBytes (both judged
-   * from the file headers of PNG, JPEG and BMP frames before decoding).
+   * from the file headers of PNG, JPEG and BMP frames before decoding, and
+   * from each video frame's header before its pixels are read), a video
+   * decoder that is missing, fails, stops answering for 60 s or ends inside
+   * a frame.
    */
   static FrameSequence load(const std::string& path, int maxFrames = 10000);
 

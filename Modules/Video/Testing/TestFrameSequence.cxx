@@ -116,7 +116,9 @@ TEST(FrameSequence, ErrorsNameThePathAndTheProblem)
   EXPECT_EQ(messageOf(broken), "'" + broken + "/0.png': not a readable image");
   std::ofstream(out + "/movie.mp4") << "not a movie";
   EXPECT_EQ(messageOf(out + "/movie.mp4"),
-    "'" + out + "/movie.mp4': not a readable video file or image folder");
+    "'" + out +
+      "/movie.mp4': not a readable video file (ffmpeg: Invalid data found when "
+      "processing input)");
 }
 
 namespace

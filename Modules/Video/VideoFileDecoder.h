@@ -1,0 +1,46 @@
+#ifndef vimlop_VideoFileDecoder_h
+#define vimlop_VideoFileDecoder_h
+
+// Private to the Video module (not installed): the frames of a video file,
+// decoded in a child process. A decoder's fault (OpenCV 4.6's FFmpeg
+// wrapper overflowed a heap buffer on an 86-byte stream) ends that process
+// with an error message, not this one; its frames arrive as binary PPM
+// images on a pipe, each judged on its header before its pixels are read.
+
+#include <opencv2/core/mat.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vimlop::detail
+{
+
+/// @brief The decoding program: $VIMLOP_FFMPEG when set, else "ffmpeg" on PATH.
+std::string videoDecoderProgram();
+
+/// @brief The decoder's arguments: the first `maxFrames` frames of the first
+/// video stream of the file `path` (the file protocol only), every frame as
+/// it is stored, as 8-bit RGB PPM images on its stdout.
+std::vector<std::string> videoDecoderArguments(
+  const std::string& program, const std::string& path, int maxFrames);
+
+/**
+ * @brief Decodes at most `maxFrames` frames of the video `path` with
+ * `program` (ffmpeg's arguments, as above) into 8-bit BGR images.
+ * `checkSize(index, widthPx, heightPx)` judges each frame from its header
+ * before its pixels are read (it throws to refuse). The decoder is given
+ * `idleTimeoutS` for each piece of output.
+ * @throws vimlop::Error "'path': problem": no decoder, a decoder that fails
+ * or is killed (with the last line it wrote), output that is not PPM frames
+ * or ends inside one, no frame at all.
+ */
+std::vector<cv::Mat> decodeVideoFile(const std::string& path, int maxFrames,
+  const std::string& program,
+  const std::function<void(int, std::uint64_t, std::uint64_t)>& checkSize,
+  double idleTimeoutS = 60.0);
+
+} // namespace vimlop::detail
+
+#endif
