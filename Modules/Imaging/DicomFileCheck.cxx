@@ -25,6 +25,51 @@ namespace
 namespace
 {
 
+/// The standard VR of the attributes GDCM's image reading reads as typed
+/// values (gdcm::Attribute, which asserts, and so aborts, on an explicit VR
+/// other than the standard's or UN), nullptr for the others: geometry,
+/// pixel format, rescale, real-world values, overlays (60xx) and curves (50xx).
+const char* typedAttributeVr(std::uint32_t group, std::uint32_t element)
+{
+  struct Typed
+  {
+    std::uint32_t group;
+    std::uint32_t element;
+    const char* vr;
+  };
+  static const Typed typed[] = { { 0x0008, 0x0010, "SH" }, { 0x0008, 0x0070, "LO" },
+    { 0x0008, 0x0100, "SH" }, { 0x0008, 0x0104, "LO" }, { 0x0018, 0x0050, "DS" },
+    { 0x0018, 0x0088, "DS" }, { 0x0018, 0x1063, "DS" }, { 0x0018, 0x602c, "FD" },
+    { 0x0018, 0x602e, "FD" }, { 0x0020, 0x0030, "DS" }, { 0x0020, 0x0032, "DS" },
+    { 0x0020, 0x0035, "DS" }, { 0x0020, 0x0037, "DS" }, { 0x0028, 0x0002, "US" },
+    { 0x0028, 0x0005, "US" }, { 0x0028, 0x0006, "US" }, { 0x0028, 0x0008, "IS" },
+    { 0x0028, 0x0009, "AT" }, { 0x0028, 0x0010, "US" }, { 0x0028, 0x0011, "US" },
+    { 0x0028, 0x0012, "US" }, { 0x0028, 0x0030, "DS" }, { 0x0028, 0x0034, "IS" },
+    { 0x0028, 0x0100, "US" }, { 0x0028, 0x0101, "US" }, { 0x0028, 0x0102, "US" },
+    { 0x0028, 0x0103, "US" }, { 0x0028, 0x1052, "DS" }, { 0x0028, 0x1053, "DS" },
+    { 0x0028, 0x1054, "LO" }, { 0x0028, 0x2110, "CS" }, { 0x0040, 0x9224, "FD" },
+    { 0x0040, 0x9225, "FD" }, { 0x0048, 0x0006, "UL" }, { 0x0048, 0x0007, "UL" },
+    { 0x3004, 0x000c, "DS" }, { 0x3004, 0x000e, "DS" }, { 0x5400, 0x1004, "US" },
+    { 0x6000, 0x0010, "US" }, { 0x6000, 0x0011, "US" }, { 0x6000, 0x0015, "IS" },
+    { 0x6000, 0x0050, "SS" }, { 0x6000, 0x0051, "US" }, { 0x6000, 0x0100, "US" },
+    { 0x6000, 0x0102, "US" }, { 0x6000, 0x0200, "US" }, { 0x5000, 0x0005, "US" },
+    { 0x5000, 0x0010, "US" }, { 0x5000, 0x0103, "US" }, { 0x5000, 0x0110, "US" },
+    { 0x5000, 0x0112, "US" }, { 0x5000, 0x0114, "US" } };
+  // The repeating groups: 16 overlays and 16 curves, even groups.
+  if ((group & 0xFF01) == 0x6000 || (group & 0xFF01) == 0x5000)
+  {
+    group &= 0xFF00;
+  }
+  for (const Typed& t : typed)
+  {
+    if (t.group == group && t.element == element)
+    {
+      return t.vr;
+    }
+  }
+  return nullptr;
+}
+
 /// The data elements of a DICOM file, walked as GDCM will read them, with
 /// every declared length checked against the bytes its container has left:
 /// GDCM allocates a length before it reads the value.
@@ -96,6 +141,16 @@ public:
           uid.pop_back();
         }
         implicit = uid == "1.2.840.10008.1.2";
+        // The walk reads little-endian elements: a big-endian or deflated data
+        // set would be judged on bytes that GDCM reads otherwise.
+        if (uid == "1.2.840.10008.1.2.2" || uid == "1.2.840.10008.1.2.1.99")
+        {
+          fail(this->Path,
+            "the DICOM file's transfer syntax " + uid + " (" +
+              (uid == "1.2.840.10008.1.2.2" ? "explicit VR big endian, retired"
+                                            : "deflated explicit VR little endian") +
+              ") is not read; convert the series to explicit VR little endian");
+        }
       }
       at = value + static_cast<std::size_t>(length);
     }
@@ -111,13 +166,25 @@ public:
     return at;
   }
 
-  /// Elements from `at` to `end` (or to a delimiter when `end` is undefined).
+  /// The data set from `at` to the end of the file.
+  void dataSet(std::size_t at, bool implicit)
+  {
+    const std::size_t stop = this->elements(at, this->Data.size(), implicit, 0);
+    if (stop != this->Data.size())
+    {
+      this->corrupt(stop, "is an item or delimiter outside any sequence");
+    }
+  }
+
+  /// Elements from `at` to `end`, or to the first item tag or delimiter
+  /// (FFFE,xxxx), which is the caller's: returns where they stopped.
   std::size_t elements(std::size_t at, std::size_t end, bool implicit, int depth)
   {
     if (depth > 16)
     {
       this->corrupt(at, "lies in sequences nested more than 16 deep");
     }
+    PixelFormat format; // of this data set (an item has its own, an icon's)
     while (at + 8 <= end)
     {
       const std::uint32_t group = this->u16(at);
@@ -129,10 +196,19 @@ public:
       const bool isImplicit = implicit;
       const std::size_t value =
         isImplicit ? this->implicitElement(at, end) : this->explicitElement(at, end);
+      const char* const standardVr = typedAttributeVr(group, element);
+      if (standardVr != nullptr && !isImplicit && this->Vr != standardVr && this->Vr != "UN")
+      {
+        this->corrupt(at,
+          "has the value representation '" + this->Vr + "' where the standard has " + standardVr);
+      }
       if (this->Length == Undefined)
       {
-        // A sequence (or encapsulated pixel data) of items up to its delimiter.
-        at = this->items(value, end, implicit, depth + 1);
+        // Items up to their delimiter: a sequence's data sets (in implicit
+        // VR inside a UN, as Part 5 has it) or encapsulated pixel data's
+        // fragments.
+        const bool fragments = group == 0x7FE0 && element == 0x0010;
+        at = this->items(value, end, implicit || this->Vr == "UN", depth + 1, fragments);
         continue;
       }
       // GDCM asserts when an image attribute it reads as one number has
@@ -142,26 +218,30 @@ public:
         0x0103 };
       const bool imageNumber = group == 0x0028 &&
         std::find(std::begin(oneUS), std::end(oneUS), element) != std::end(oneUS);
-      if (imageNumber && !isImplicit && this->Vr != "US")
-      {
-        this->corrupt(
-          at, "has the value representation '" + this->Vr + "' where the standard has US");
-      }
       if (imageNumber && this->Length != 2)
       {
         this->corrupt(
           at, "holds " + std::to_string(this->Length) + " bytes where one 16-bit number belongs");
+      }
+      if (imageNumber)
+      {
+        this->pixelFormat(at, element, this->u16(value), format);
       }
       if (!isImplicit && this->Length % this->ValueSize != 0)
       {
         this->corrupt(
           at, "holds " + std::to_string(this->Length) + " bytes, no whole number of its values");
       }
-      if (this->IsSequence)
+      // A sequence of defined length; in implicit VR, a value that starts
+      // as an item (GDCM reads one so when its dictionary does not know the tag).
+      const std::size_t valueEnd = value + static_cast<std::size_t>(this->Length);
+      const bool startsAnItem =
+        this->Length >= 8 && this->u16(value) == 0xFFFE && this->u16(value + 2) == 0xE000;
+      if (this->IsSequence || (isImplicit && startsAnItem))
       {
-        this->items(value, value + static_cast<std::size_t>(this->Length), implicit, depth + 1);
+        this->items(value, valueEnd, implicit, depth + 1, false);
       }
-      at = value + static_cast<std::size_t>(this->Length);
+      at = valueEnd;
     }
     this->leftover(at, end);
     return at;
@@ -169,6 +249,60 @@ public:
 
 private:
   static constexpr std::uint64_t Undefined = 0xFFFFFFFFu;
+
+  /// The pixel format attributes read so far in one data set.
+  struct PixelFormat
+  {
+    std::uint32_t bitsAllocated = 0; ///< 0: not given (yet)
+    std::uint32_t bitsStored = 0;
+  };
+
+  /// The values of the image attributes that GDCM's pixel format asserts on
+  /// (it aborts the process): they come in tag order, so Bits Stored is
+  /// judged against the Bits Allocated before it, High Bit against Bits Stored.
+  void pixelFormat(std::size_t at, std::uint32_t element, std::uint32_t v, PixelFormat& format)
+  {
+    const std::string value = std::to_string(v);
+    if (element == 0x0002 && v != 1 && v != 3 && v != 4)
+    {
+      this->corrupt(at, "gives Samples per Pixel " + value + ", where DICOM allows 1, 3 or 4");
+    }
+    if (element == 0x0006 && v > 1)
+    {
+      this->corrupt(at, "gives Planar Configuration " + value + ", where DICOM allows 0 or 1");
+    }
+    if (element == 0x0100)
+    {
+      if (v != 8 && v != 16 && v != 32)
+      {
+        this->corrupt(at, "gives Bits Allocated " + value + "; VIMLOP reads 8, 16 or 32");
+      }
+      format.bitsAllocated = v;
+    }
+    if (element == 0x0101)
+    {
+      if (v == 0 || v > format.bitsAllocated)
+      {
+        this->corrupt(at,
+          "gives Bits Stored " + value + ", not from 1 to the Bits Allocated" +
+            (format.bitsAllocated == 0 ? std::string(" (not given before it)")
+                                       : " of " + std::to_string(format.bitsAllocated)));
+      }
+      format.bitsStored = v;
+    }
+    if (element == 0x0102 && v >= format.bitsStored)
+    {
+      this->corrupt(at,
+        "gives High Bit " + value + ", not below the Bits Stored" +
+          (format.bitsStored == 0 ? std::string(" (not given before it)")
+                                  : " of " + std::to_string(format.bitsStored)));
+    }
+    if (element == 0x0103 && v > 1)
+    {
+      this->corrupt(at,
+        "gives Pixel Representation " + value + ", where DICOM allows 0 (unsigned) or 1 (signed)");
+    }
+  }
 
   std::uint32_t u16(std::size_t at) const
   {
@@ -254,15 +388,17 @@ private:
 
   std::size_t implicitElement(std::size_t at, std::size_t end)
   {
-    this->IsSequence = false; // not known without a dictionary: a defined length is skipped whole
+    this->IsSequence = false; // not known without a dictionary (see elements())
+    this->Vr.clear();
     this->ValueSize = 1;
     this->Length = this->u32(at + 4);
     this->bound(at, at + 8, end);
     return at + 8;
   }
 
-  /// Items (FFFE,E000) up to `end` or a sequence delimiter (FFFE,E0DD).
-  std::size_t items(std::size_t at, std::size_t end, bool implicit, int depth)
+  /// Items (FFFE,E000) up to `end` or a sequence delimiter (FFFE,E0DD):
+  /// data sets, walked in turn, or pixel data `fragments`, bounded.
+  std::size_t items(std::size_t at, std::size_t end, bool implicit, int depth, bool fragments)
   {
     while (at + 8 <= end)
     {
@@ -283,6 +419,10 @@ private:
       const std::size_t value = at + 8;
       if (this->Length == Undefined)
       {
+        if (fragments)
+        {
+          this->corrupt(at, "is a pixel data fragment without a length");
+        }
         at = this->elements(value, end, implicit, depth);
         if (at + 8 > end || this->u16(at) != 0xFFFE || this->u16(at + 2) != 0xE00D)
         {
@@ -292,8 +432,14 @@ private:
         continue;
       }
       this->bound(at, value, end);
-      // A fragment of pixel data or an item's elements: both are bounded.
-      at = value + static_cast<std::size_t>(this->Length);
+      const std::size_t itemEnd = value + static_cast<std::size_t>(this->Length);
+      const std::size_t stop =
+        fragments ? itemEnd : this->elements(value, itemEnd, implicit, depth);
+      if (stop != itemEnd)
+      {
+        this->corrupt(stop, "stands inside an item where a data element should");
+      }
+      at = itemEnd;
     }
     this->leftover(at, end);
     return at;
@@ -345,7 +491,12 @@ void checkDicomPart10(const std::string& path)
   DicomWalk walk(path, data);
   bool implicit = false;
   const std::size_t dataSet = walk.metaGroup(implicit);
-  walk.elements(dataSet, data.size(), implicit, 0);
+  if (dataSet + 8 > data.size())
+  {
+    // GDCM asserted reading the data set's first tag.
+    fail(path, "the file is truncated: it ends after its file meta group, without a data set");
+  }
+  walk.dataSet(dataSet, implicit);
 }
 
 } // namespace vimlop::detail

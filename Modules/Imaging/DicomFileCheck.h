@@ -19,7 +19,9 @@ bool hasDicomPreamble(const std::string& path);
  * invalid VR, and it allocates an element's declared length before reading
  * it): 'DICM' at byte 128, valid VRs, every declared length within what its
  * file or sequence has left, items closed by their delimiters, sequences
- * nested at most 16 deep.
+ * nested at most 16 deep, the pixel format values GDCM asserts on (samples
+ * per pixel, bits allocated, stored and high bit, pixel representation) and a
+ * little-endian, not deflated, transfer syntax.
  */
 void checkDicomPart10(const std::string& path);
 
