@@ -87,15 +87,15 @@ void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
   }
 }
 
-void checkNiftiHeader(const std::string& path)
+int checkNiftiHeader(const std::string& path)
 {
   // gzread reads plain and gzip-compressed files alike.
   gzFile file = gzopen(path.c_str(), "rb");
   if (!file)
   {
-    return; // ITK says what it cannot open
+    return 0; // ITK says what it cannot open
   }
-  unsigned char header[348] = {};
+  unsigned char header[540] = {};
   const int got = gzread(file, header, sizeof(header));
   gzclose(file);
   std::uint32_t size = 0;
@@ -107,26 +107,37 @@ void checkNiftiHeader(const std::string& path)
   {
     fail(path, "not a NIfTI-1 or NIfTI-2 header (it does not start with its size, 348 or 540)");
   }
-  if (!is(348) || got < static_cast<int>(sizeof(header)))
+  const bool nifti2 = is(540);
+  if (got < (nifti2 ? 540 : 348))
   {
-    return; // NIfTI-2 (or too short): ITK judges the rest
+    return nifti2 ? 2 : 1; // too short: ITK says so
   }
-  const bool swapped = size != 348;
-  // pixdim[8] at 76, quatern_b ... qoffset_z at 256, srow_x/y/z at 280:
-  // ITK takes an SVD of the orientation they make, which aborts on a NaN.
-  // Bounded as well: ITK's SVD of an orientation of 1e38s did not return.
-  const auto within = [&](int from, int count, float limit)
+  const bool swapped = size != (nifti2 ? 540u : 348u);
+  // ITK takes an SVD of the orientation, which aborts on a NaN; bounded as
+  // well: ITK's SVD of an orientation of 1e38s did not return. NIfTI-1 has
+  // floats, NIfTI-2 doubles, at other places.
+  const auto within = [&](int from, int count, double limit)
   {
+    const int bytes = nifti2 ? 8 : 4;
     for (int i = 0; i < count; ++i)
     {
-      std::uint32_t bits = 0;
-      std::memcpy(&bits, header + from + 4 * i, 4);
+      unsigned char value[8] = {};
+      std::memcpy(value, header + from + bytes * i, static_cast<std::size_t>(bytes));
       if (swapped)
       {
-        bits = __builtin_bswap32(bits);
+        std::reverse(value, value + bytes);
       }
-      float v = 0.0f;
-      std::memcpy(&v, &bits, 4);
+      double v = 0.0;
+      if (nifti2)
+      {
+        std::memcpy(&v, value, 8);
+      }
+      else
+      {
+        float f = 0.0f;
+        std::memcpy(&f, value, 4);
+        v = f;
+      }
       if (!(std::abs(v) <= limit))
       {
         return false;
@@ -134,14 +145,21 @@ void checkNiftiHeader(const std::string& path)
     }
     return true;
   };
-  // pixdim up to 1e4 mm, quatern_b/c/d unit, offsets and sform within 1 km.
-  if (!within(76, 8, 1e4f) || !within(256, 3, 1.001f) || !within(268, 3, 1e6f) ||
-    !within(280, 12, 1e6f))
+  // pixdim[8], quatern_b/c/d, qoffset_x/y/z, srow_x/y/z: at 76, 256, 268,
+  // 280 in NIfTI-1, at 104, 352, 376, 400 in NIfTI-2. pixdim up to 1e4 mm,
+  // quatern_b/c/d unit, offsets and sform within 1 km.
+  const int pixdim = nifti2 ? 104 : 76;
+  const int quatern = nifti2 ? 352 : 256;
+  const int offsets = nifti2 ? 376 : 268;
+  const int srow = nifti2 ? 400 : 280;
+  if (!within(pixdim, 8, 1e4) || !within(quatern, 3, 1.001) || !within(offsets, 3, 1e6) ||
+    !within(srow, 12, 1e6))
   {
     fail(path,
       "the header's voxel sizes or orientation (pixdim, qform, sform) are not finite or not "
       "those of a scan");
   }
+  return nifti2 ? 2 : 1;
 }
 
 /// A MetaImage header names its data file (or LOCAL: the data follow the

@@ -14,9 +14,10 @@
 namespace vimlop::detail
 {
 
-/// @brief A NIfTI-1 header (plain or gzip) has finite voxel sizes and
-/// orientation; checked before ITK reads it.
-void checkNiftiHeader(const std::string& path);
+/// @brief A NIfTI-1 or NIfTI-2 header (plain or gzip) has finite voxel sizes and
+/// orientation; checked before ITK reads it. Returns the version, 1 or 2 (0:
+/// the file cannot be opened).
+int checkNiftiHeader(const std::string& path);
 
 /// @brief An uncompressed NIfTI-1 file holds the voxel bytes its header promises.
 void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes);

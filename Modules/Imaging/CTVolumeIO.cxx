@@ -309,10 +309,8 @@ itk::ImageIOBase::Pointer openCheckedImageFile(
   {
     detail::checkMetaImageData(path, 0); // the header's text, before MetaIO parses it
   }
-  if (format == "NIfTI")
-  {
-    detail::checkNiftiHeader(path); // before ITK takes the orientation's SVD
-  }
+  // Before ITK takes the orientation's SVD; ITK 5.2 reads NIfTI-1 only.
+  const int niftiVersion = format == "NIfTI" ? detail::checkNiftiHeader(path) : 0;
   // The reader of the format the extension names, not ITK's factory: the
   // factory asks every reader whether it can read the file, and GDCM's
   // answer parses a file of any name as DICOM (and aborts on some).
@@ -335,7 +333,11 @@ itk::ImageIOBase::Pointer openCheckedImageFile(
   }
   if (!io->CanReadFile(path.c_str()))
   {
-    fail(path, "not a readable " + format + " file");
+    fail(path,
+      niftiVersion == 2
+        ? "a NIfTI-2 file, which this build's ITK (" + std::string(ITK_VERSION_STRING) +
+          ") does not read; save the volume as NIfTI-1 (.nii, .nii.gz), NRRD or MetaImage"
+        : "not a readable " + format + " file");
   }
   io->SetFileName(path);
   try

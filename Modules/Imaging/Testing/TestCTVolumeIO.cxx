@@ -307,3 +307,60 @@ TEST(CTVolumeIO, ANiftiOrientationThatIsNotFiniteIsRefusedBeforeITKReadsIt)
       "': the header's voxel sizes or orientation (pixdim, qform, sform) are not finite or not "
       "those of a scan");
 }
+
+namespace
+{
+
+/// A NIfTI-2 file of 2 x 2 x 2 int16 voxels of 1 mm, its orientation by
+/// quaternion and sform, with srow_x[0] as given.
+std::string writeNifti2(const std::string& name, double srowX0)
+{
+  std::string header(544, '\0');
+  const auto put = [&](std::size_t at, const void* value, std::size_t bytes)
+  { std::memcpy(&header[at], value, bytes); };
+  const std::int32_t size = 540;
+  put(0, &size, 4);
+  put(4, "n+2\0\r\n\032\n", 8);
+  const std::int16_t datatype = 4; // int16
+  const std::int16_t bitpix = 16;
+  put(12, &datatype, 2);
+  put(14, &bitpix, 2);
+  const std::int64_t dim[8] = { 3, 2, 2, 2, 1, 1, 1, 1 };
+  put(16, dim, sizeof(dim));
+  const double pixdim[8] = { 1, 1, 1, 1, 1, 1, 1, 1 };
+  put(104, pixdim, sizeof(pixdim));
+  const std::int64_t voxOffset = 544;
+  put(168, &voxOffset, 8);
+  const double slope = 1.0;
+  put(176, &slope, 8);
+  const std::int32_t codes[2] = { 1, 1 }; // qform_code, sform_code
+  put(344, codes, sizeof(codes));
+  const double srow[12] = { srowX0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 };
+  put(400, srow, sizeof(srow));
+  const std::string path = out + "/" + name + ".nii";
+  std::ofstream(path, std::ios::binary) << header << std::string(16, '\0');
+  return path;
+}
+
+} // namespace
+
+TEST(CTVolumeIO, ANifti2OrientationThatIsNotFiniteIsRefusedBeforeITKReadsIt)
+{
+  const std::string nan = writeNifti2("nan-sform-2", std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(messageOf(nan),
+    "'" + nan +
+      "': the header's voxel sizes or orientation (pixdim, qform, sform) are not finite or not "
+      "those of a scan");
+  const std::string far = writeNifti2("far-sform-2", 1e300);
+  EXPECT_EQ(messageOf(far),
+    "'" + far +
+      "': the header's voxel sizes or orientation (pixdim, qform, sform) are not finite or not "
+      "those of a scan");
+  // The same header with a scan's values passes the check, and this ITK
+  // says what it cannot read.
+  const std::string finite = writeNifti2("finite-sform-2", 1.0);
+  EXPECT_EQ(messageOf(finite),
+    "'" + finite +
+      "': a NIfTI-2 file, which this build's ITK (5.2) does not read; save the volume as NIfTI-1 "
+      "(.nii, .nii.gz), NRRD or MetaImage");
+}
