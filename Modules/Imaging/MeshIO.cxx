@@ -1,8 +1,10 @@
 #include <vimlop/Imaging/MeshIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/LegacyVtkFileCheck.h>
 #include <vimlop/Imaging/MeshFileChecks.h>
 #include <vimlop/Imaging/PlyMeshReader.h>
+#include <vimlop/Imaging/VtkXmlFileCheck.h>
 
 #include <vtkCellArray.h>
 #include <vtkNew.h>
@@ -119,6 +121,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
       fail(path, "not a VTK XML polydata file");
     }
     detail::checkXmlPolyData(path);
+    detail::checkXmlArrays(path);
     return runReader(reader.Get(), path);
   }
   if (ext == ".vtk")

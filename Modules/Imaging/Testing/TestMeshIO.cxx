@@ -271,6 +271,39 @@ TEST(MeshIO, LegacyVtkCellListsAreWalkedBeforeVTKReadsThem)
   EXPECT_EQ(readError(cut), "'" + cut + "': the file ends inside the POINTS (truncated)");
 }
 
+TEST(MeshIO, LegacyVtkFieldDataIsWalkedBeforeVTKReadsIt)
+{
+  // VTK's reader dereferenced the null it got from field data it could not read.
+  const auto write = [](const std::string& name, const std::string& field)
+  {
+    const std::string path = out + "/" + name;
+    std::ofstream(path, std::ios::binary)
+      << "# vtk DataFile Version 4.2\ntest\nASCII\nDATASET POLYDATA\n"
+      << "POINTS 3 float\n0 0 0 10 0 0 0 10 0\n"
+      << field << "POLYGONS 1 4\n3 0 1 2\n";
+    return path;
+  };
+  EXPECT_EQ(toTriangleMesh(readPolyData(write(
+                             "field.vtk", "FIELD FieldData 2\nlabel 1 2 int\n4 5\nNULL_ARRAY\n")))
+              .numberOfFaces(),
+    1);
+  const std::string noCount = write("field-no-count.vtk", "field\xc0\xd8 \xe1\xc0z\n");
+  EXPECT_EQ(readError(noCount), "'" + noCount + "': the FIELD line has no count");
+  const std::string text = write("field-text.vtk", "FIELD FieldData 1\nnames 1 1 string\nnose\n");
+  EXPECT_EQ(readError(text),
+    "'" + text +
+      "': the FIELD array 'names' has the type 'string'; VIMLOP reads numeric field data only");
+  const std::string few = write("field-few.vtk", "FIELD FieldData 1\nlabel 1 3 int\n4 5\n");
+  EXPECT_EQ(
+    readError(few), "'" + few + "': the FIELD array 'label' hold 'POLYGONS', which is no number");
+  const std::string huge =
+    write("field-huge.vtk", "FIELD FieldData 1\nlabel 100000 100000 int\n4 5\n");
+  EXPECT_EQ(readError(huge),
+    "'" + huge +
+      "': the FIELD array 'label' promises 100000 components of 100000 tuples; at most 20000000 "
+      "values are read");
+}
+
 TEST(MeshIO, ABinaryStlWhoseHeaderSaysSolidIsJudgedByItsSize)
 {
   // VTK's own binary files start "solid" too; the count said 150 million triangles.
@@ -313,4 +346,82 @@ TEST(MeshIO, AnObjFaceNamesOnlyWhatIsDefinedBeforeIt)
       "for every corner");
   const std::string words = write("vertex-words.obj", "v 0 zero 0\nf 1/1 2/1 3/1\n");
   EXPECT_EQ(readError(words), "'" + words + "': line 5 is a 'v' line without its numbers");
+  // "1/" is no corner: VTK's reader took it for one with a texture
+  // coordinate and read a null array.
+  const std::string slash = out + "/trailing-slash.obj";
+  std::ofstream(slash) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/ 2/ 3/\n";
+  EXPECT_EQ(readError(slash), "'" + slash + "': line 4 has a corner '1/' that ends with '/'");
+  const std::string twoSlashes = out + "/normal-slash.obj";
+  std::ofstream(twoSlashes) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/\n";
+  EXPECT_EQ(
+    readError(twoSlashes), "'" + twoSlashes + "': line 6 has a corner '3/1/' that ends with '/'");
+}
+
+namespace
+{
+
+/// A triangle as VTK XML polydata whose points array has the `header` (and
+/// `data`) given: appended raw, or inline base64 (`base64Points`).
+std::string xmlTriangle(const std::string& name, const std::string& compressor,
+  const std::string& header, const std::string& base64Points = std::string())
+{
+  const std::string path = out + "/" + name + ".vtp";
+  std::ofstream file(path, std::ios::binary);
+  file << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+          "byte_order=\"LittleEndian\" header_type=\"UInt32\""
+       << (compressor.empty() ? "" : " compressor=\"" + compressor + "\"")
+       << ">\n<PolyData><Piece NumberOfPoints=\"3\" NumberOfPolys=\"1\">\n<Points>"
+       << (base64Points.empty()
+              ? "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"appended\" "
+                "offset=\"0\"/>"
+              : "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"binary\">" +
+                base64Points + "</DataArray>")
+       << "</Points>\n<Polys><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 1 "
+          "2</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">3</DataArray>"
+          "</Polys>\n</Piece></PolyData>\n<AppendedData encoding=\"raw\">\n_"
+       << header << "\n</AppendedData>\n</VTKFile>\n";
+  return path;
+}
+
+std::string uint32s(std::initializer_list<std::uint32_t> values)
+{
+  std::string bytes;
+  for (std::uint32_t v : values)
+  {
+    for (int i = 0; i < 4; ++i)
+    {
+      bytes.push_back(static_cast<char>(v >> (8 * i) & 0xff));
+    }
+  }
+  return bytes;
+}
+
+} // namespace
+
+TEST(MeshFiles, AVtkXmlArrayHeaderIsJudgedBeforeVTKAllocatesWhatItClaims)
+{
+  // VTK would allocate 2^30 block sizes (8 GB) for this 12-byte header.
+  const std::string blocks =
+    xmlTriangle("xml-blocks", "vtkZLibDataCompressor", uint32s({ 1u << 30, 32768, 0 }));
+  EXPECT_EQ(readError(blocks),
+    "'" + blocks +
+      "': the VTK XML array 0 declares 1073741824 compressed blocks, more than its 28 bytes can "
+      "list");
+  const std::string blockSize =
+    xmlTriangle("xml-block-size", "vtkZLibDataCompressor", uint32s({ 1, 4000000000u, 36, 20 }));
+  EXPECT_EQ(readError(blockSize),
+    "'" + blockSize +
+      "': the VTK XML array 0 declares blocks of 4000000000 bytes (the last of 36); blocks of at "
+      "most 67108864 bytes are read");
+  const std::string compressedSize =
+    xmlTriangle("xml-compressed", "vtkZLibDataCompressor", uint32s({ 1, 36, 36, 900 }));
+  EXPECT_EQ(readError(compressedSize),
+    "'" + compressedSize +
+      "': the VTK XML array 0 declares 900 compressed bytes or more and 28 are left");
+  // Inline base64, not compressed: "AAAAQA==" is 2^30 bytes announced.
+  const std::string inline64 = xmlTriangle("xml-inline", "", "", "AAAAQA==");
+  EXPECT_EQ(readError(inline64),
+    "'" + inline64 + "': the VTK XML array 0 declares 1073741824 bytes and 3 are left");
+  const std::string cut = xmlTriangle("xml-cut", "vtkZLibDataCompressor", "", "AAAA");
+  EXPECT_EQ(readError(cut), "'" + cut + "': the VTK XML array 0 is cut off in its header");
 }
