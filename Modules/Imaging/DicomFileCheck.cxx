@@ -3,6 +3,7 @@
 #include <vimlop/Core/Error.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -202,6 +203,11 @@ public:
         this->corrupt(at,
           "has the value representation '" + this->Vr + "' where the standard has " + standardVr);
       }
+      if (group == 0x0008 && element == 0x0010 && depth == 0 && this->Length != Undefined &&
+        this->Length > 0)
+      {
+        this->recognitionCode(at, value);
+      }
       if (this->Length == Undefined)
       {
         // Items up to their delimiter: a sequence's data sets (in implicit
@@ -249,6 +255,28 @@ public:
 
 private:
   static constexpr std::uint64_t Undefined = 0xFFFFFFFFu;
+
+  /// The retired Recognition Code (0008,0010): GDCM asserts that a file
+  /// with one is ACR-NEMA 1.0 or 2.0 (its old name for DICOM).
+  void recognitionCode(std::size_t at, std::size_t value) const
+  {
+    std::string code = this->Data.substr(value, static_cast<std::size_t>(this->Length));
+    while (!code.empty() && (code.back() == ' ' || code.back() == '\0'))
+    {
+      code.pop_back();
+    }
+    if (code != "ACR-NEMA 1.0" && code != "ACR-NEMA 2.0")
+    {
+      std::string shown = code.substr(0, 24);
+      for (char& c : shown)
+      {
+        c = std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+      }
+      this->corrupt(at,
+        "gives the retired Recognition Code '" + shown +
+          "'; GDCM reads only ACR-NEMA 1.0 or 2.0 there");
+    }
+  }
 
   /// The pixel format attributes read so far in one data set.
   struct PixelFormat

@@ -393,3 +393,21 @@ TEST(DicomSeriesFiles, AFileThatEndsWithItsMetaGroupIsATruncation)
   EXPECT_EQ(readError(folder),
     "'" + file + "': the file is truncated: it ends after its file meta group, without a data set");
 }
+
+TEST(DicomSeriesFiles, ARecognitionCodeOtherThanACRNEMAsIsRefused)
+{
+  // GDCM asserted that a file with the retired (0008,0010) was ACR-NEMA.
+  const std::string folder = writeSeries("recognition-code", axialSeries(3, 1.0));
+  const std::string file = folder + "/slice0.dcm";
+  std::string bytes = fixtures::fileBytes(file);
+  const std::size_t at = bytes.find(std::string("\x08\x00\x16\x00UI", 6)); // SOP Class UID
+  ASSERT_NE(at, std::string::npos);
+  bytes.insert(at, std::string("\x08\x00\x10\x00SH\x04\x00JUNK", 12));
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  EXPECT_EQ(readError(folder),
+    "'" + file + "': the DICOM file is corrupt: element (0008,0010) at byte " + std::to_string(at) +
+      " gives the retired Recognition Code 'JUNK'; GDCM reads only ACR-NEMA 1.0 or 2.0 there");
+  bytes.replace(at + 6, 6, std::string("\x0c\x00", 2) + "ACR-NEMA 2.0");
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  EXPECT_EQ(readCTVolume(folder).dims, (std::array<int, 3>{ 8, 8, 3 }));
+}
