@@ -7,7 +7,6 @@
 
 #include <vtkImageData.h>
 
-#include <cstdio>
 #include <filesystem>
 
 namespace vimlop
@@ -37,8 +36,7 @@ void saveSyntheticTrial(const std::string& folder, const std::string& source,
   for (size_t j = 0; j < trial.data.frames.size(); ++j)
   {
     const VideoFrame& frame = trial.data.frames[j];
-    char name[64];
-    std::snprintf(name, sizeof name, "frames/frame-%04d.png", frame.frameId);
+    const std::string name = resultFrameImageName(frame.frameId);
     writePNG(renderSurfaceView(mesh, frame.intrinsics, trial.trueCamerasCT[j]),
       (std::filesystem::path(folder) / name).string());
     record.frameImages.push_back(name);

@@ -19,7 +19,6 @@
 #include <opencv2/core/version.hpp>
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <ostream>
@@ -31,13 +30,6 @@ namespace fs = std::filesystem;
 
 namespace
 {
-
-std::string frameImageName(int frameId)
-{
-  char name[64];
-  std::snprintf(name, sizeof name, "frames/frame-%04d.png", frameId);
-  return name;
-}
 
 /// Runs one slow output; its error names it and says that the poses are there all the same.
 template <typename Write>
@@ -99,7 +91,7 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
   record.result = outcome.best;
   for (const VideoFrame& frame : record.data.frames)
   {
-    record.frameImages.push_back(frameImageName(frame.frameId));
+    record.frameImages.push_back(resultFrameImageName(frame.frameId));
   }
   record.confidence = RegistrationRecord::Confidence{ outcome.failure, outcome.failureThresholdPx,
     pipeline.startMode() == StartMode::Manual ? "manual" : "canonical",

@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
+
 #include <vtkCellArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
@@ -186,6 +188,13 @@ vtkSmartPointer<vtkPolyData> readPossiblyEmpty(const fs::path& path)
 }
 
 } // namespace
+
+std::string resultFrameImageName(int frameId)
+{
+  char name[64];
+  std::snprintf(name, sizeof name, "frames/frame-%04d.png", frameId);
+  return name;
+}
 
 const char* resultFormatName()
 {

@@ -58,6 +58,10 @@
 namespace vimlop
 {
 
+/// @brief Where a result folder keeps the picture of frame `frameId`, relative
+/// to the folder: "frames/frame-0011.png" (the writers of frameImages use it).
+std::string resultFrameImageName(int frameId);
+
 /// @brief The "format" value of result.json.
 const char* resultFormatName();
 

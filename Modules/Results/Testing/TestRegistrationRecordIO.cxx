@@ -130,6 +130,12 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   EXPECT_FALSE(readRegistrationRecord(freshRecordWithoutConfidence()).confidence.has_value());
 }
 
+TEST(RegistrationRecordIO, FramePicturesAreNamedByTheirFrameIds)
+{
+  EXPECT_EQ(resultFrameImageName(11), "frames/frame-0011.png");
+  EXPECT_EQ(resultFrameImageName(123456), "frames/frame-123456.png");
+}
+
 TEST(RegistrationRecordIO, ReportsFoldersThatAreNotResults)
 {
   expectMessage(
