@@ -319,7 +319,10 @@ bool PoseStreamServer::flush(Client& client)
     client.pending.erase(0, static_cast<size_t>(sent));
     client.lastRead = std::chrono::steady_clock::now();
   }
-  return static_cast<int>(client.pending.size()) <= this->Options.maxPendingBytes;
+  // One publication larger than the limit is still sent whole: a client
+  // falls behind when it has more than that left.
+  return client.pending.size() <=
+    std::max(static_cast<size_t>(this->Options.maxPendingBytes), this->Messages.size());
 }
 
 void PoseStreamServer::drain(Client& client, bool& alive)

@@ -43,7 +43,8 @@ struct PoseStreamServerOptions
    * network, it does not prove who they are.
    */
   std::vector<std::string> allowedClients;
-  /// A client whose unsent data exceeds this is dropped (default 1 MiB).
+  /// A client whose unsent data exceeds this is dropped (default 1 MiB); one
+  /// publication larger than this is still sent whole (the limit is then its size).
   int maxPendingBytes = 1 << 20;
   /// A client that has taken none of the data pending for it for this long
   /// is dropped (default 10 s): the read timeout of a client that stopped reading.

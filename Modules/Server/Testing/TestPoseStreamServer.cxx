@@ -149,6 +149,41 @@ TEST(PoseStreamServer, ARefusedConnectionAndADroppedClientAreToldNotSilent)
   }
 }
 
+TEST(PoseStreamServer, OnePublicationLargerThanThePendingLimitReachesAClientWhole)
+{
+  // A client that connects or reads while a large publication goes out was
+  // dropped at once: that publication alone was above the limit.
+  PoseStreamServerOptions options = anyFreePort();
+  options.maxPendingBytes = 4096;
+  PoseStreamServer server(options);
+  const int reader = connectTo(server.port());
+  serveFor(server, 100);
+  ASSERT_EQ(server.clientCount(), 1);
+  std::vector<FramePose> many(40000); // 4.2 MB, more than a loopback socket takes at once
+  for (int i = 0; i < 40000; ++i)
+  {
+    many[i].frameId = i;
+  }
+  server.publish(nullptr, many);
+  const std::size_t expected = 40000 * (58 + 48); // OpenIGTLink header + TRANSFORM body
+  std::size_t received = 0;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  server.serve(
+    [&]
+    {
+      char buffer[1 << 16];
+      for (ssize_t got = 0; (got = recv(reader, buffer, sizeof(buffer), MSG_DONTWAIT)) > 0;)
+      {
+        received += static_cast<std::size_t>(got);
+      }
+      return received < expected && std::chrono::steady_clock::now() < end;
+    });
+  EXPECT_EQ(received, expected);
+  EXPECT_EQ(server.droppedCount(), 0);
+  EXPECT_EQ(server.clientCount(), 1);
+  close(reader);
+}
+
 TEST(PoseStreamServer, AClientThatStopsReadingIsDroppedAfterTheStallTimeout)
 {
   std::vector<std::string> notices;
