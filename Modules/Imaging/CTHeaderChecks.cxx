@@ -186,7 +186,9 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
   bool compressed = false;
   long long headerBytes = 0; // HeaderSize: bytes to skip in the data file; -1 reads the tail
   std::uint64_t compressedBytes = 0;
-  for (int lines = 0; lines < 200 && std::getline(in, line); ++lines)
+  // Every line up to ElementDataFile, as MetaIO reads them (a limit of 200
+  // lines let MetaIO read on past what was checked, to a buffer overflow).
+  for (int lines = 0; std::getline(in, line); ++lines)
   {
     // MetaIO reads a key up to a NUL byte, so "ElementDataFile\0..." was its
     // data file while this reading passed it by: header text is text.

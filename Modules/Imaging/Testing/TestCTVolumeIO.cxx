@@ -257,6 +257,15 @@ TEST(CTVolumeIO, AFileIsReadOnlyByTheReaderItsExtensionNames)
     << "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_SHORT\n"
     << std::string("ElementDataFile\0 = LOCAL\n", 26) << std::string(16, '\x01');
   EXPECT_EQ(messageOf(nul), "'" + nul + "': header line 5 holds bytes that are not text");
+  // Far down the header too: the check stopped at line 200, MetaIO did not,
+  // and overflowed a buffer splitting a data file name of control bytes.
+  const std::string far = out + "/far-control-bytes.mha";
+  std::ofstream(far, std::ios::binary)
+    << "ObjectType = Image\nNDims = 3\n"
+    << std::string(250, '\n')
+    << "DimSize = 2 2 2\nElementType = MET_SHORT\nElementDataFile = LOC\x19\x19 AL\n"
+    << std::string(16, '\x01');
+  EXPECT_EQ(messageOf(far), "'" + far + "': header line 255 holds bytes that are not text");
   // MetaIO matched an unknown key by its start, and overflowed a buffer copying it.
   const std::string unknown = out + "/unknown-key.mha";
   std::ofstream(unknown, std::ios::binary)
