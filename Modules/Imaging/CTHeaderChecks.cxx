@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iterator>
+#include <set>
 #include <sstream>
 
 #include <zlib.h>
@@ -186,6 +187,7 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
   bool compressed = false;
   long long headerBytes = 0; // HeaderSize: bytes to skip in the data file; -1 reads the tail
   std::uint64_t compressedBytes = 0;
+  std::set<std::string> required = { "DimSize", "ElementType", "NDims" };
   // Every line up to ElementDataFile, as MetaIO reads them (a limit of 200
   // lines let MetaIO read on past what was checked, to a buffer overflow).
   for (int lines = 0; std::getline(in, line); ++lines)
@@ -247,9 +249,18 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
       // MetaIO allocates this many bytes before reading them.
       compressedBytes = std::strtoull(value.c_str(), nullptr, 10);
     }
+    required.erase(key);
     if (key != "ElementDataFile")
     {
       continue;
+    }
+    if (!required.empty())
+    {
+      // MetaIO read on past such an ElementDataFile, into the data, and took
+      // an NDims of 4444... from it (17 GB).
+      fail(path,
+        "the header gives ElementDataFile before its " + *required.begin() +
+          " (ElementDataFile is a MetaImage header's last field)");
     }
     if (value.empty() ||
       !std::all_of(value.begin(), value.end(), [](unsigned char c) { return std::isprint(c); }))

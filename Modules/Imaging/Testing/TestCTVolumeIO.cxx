@@ -266,6 +266,14 @@ TEST(CTVolumeIO, AFileIsReadOnlyByTheReaderItsExtensionNames)
     << "DimSize = 2 2 2\nElementType = MET_SHORT\nElementDataFile = LOC\x19\x19 AL\n"
     << std::string(16, '\x01');
   EXPECT_EQ(messageOf(far), "'" + far + "': header line 255 holds bytes that are not text");
+  // MetaIO read on past an ElementDataFile that came too early, into the data.
+  const std::string early = out + "/early-data-file.mha";
+  std::ofstream(early, std::ios::binary)
+    << "ObjectType = Image\nElementDataFile = LOCAL\nNDims = 44444444444\n";
+  EXPECT_EQ(messageOf(early),
+    "'" + early +
+      "': the header gives ElementDataFile before its DimSize (ElementDataFile is a MetaImage "
+      "header's last field)");
   // MetaIO matched an unknown key by its start, and overflowed a buffer copying it.
   const std::string unknown = out + "/unknown-key.mha";
   std::ofstream(unknown, std::ios::binary)
