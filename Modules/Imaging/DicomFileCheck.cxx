@@ -1,9 +1,9 @@
 #include <vimlop/Imaging/DicomFileCheck.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/DicomAttributeRules.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -19,56 +19,6 @@ namespace
 [[noreturn]] void fail(const std::string& path, const std::string& problem)
 {
   throw Error("'" + path + "': " + problem);
-}
-
-} // namespace
-
-namespace
-{
-
-/// The standard VR of the attributes GDCM's image reading reads as typed
-/// values (gdcm::Attribute, which asserts, and so aborts, on an explicit VR
-/// other than the standard's or UN), nullptr for the others: geometry,
-/// pixel format, rescale, real-world values, overlays (60xx) and curves (50xx).
-const char* typedAttributeVr(std::uint32_t group, std::uint32_t element)
-{
-  struct Typed
-  {
-    std::uint32_t group;
-    std::uint32_t element;
-    const char* vr;
-  };
-  static const Typed typed[] = { { 0x0008, 0x0010, "SH" }, { 0x0008, 0x0070, "LO" },
-    { 0x0008, 0x0100, "SH" }, { 0x0008, 0x0104, "LO" }, { 0x0018, 0x0050, "DS" },
-    { 0x0018, 0x0088, "DS" }, { 0x0018, 0x1063, "DS" }, { 0x0018, 0x602c, "FD" },
-    { 0x0018, 0x602e, "FD" }, { 0x0020, 0x0030, "DS" }, { 0x0020, 0x0032, "DS" },
-    { 0x0020, 0x0035, "DS" }, { 0x0020, 0x0037, "DS" }, { 0x0028, 0x0002, "US" },
-    { 0x0028, 0x0005, "US" }, { 0x0028, 0x0006, "US" }, { 0x0028, 0x0008, "IS" },
-    { 0x0028, 0x0009, "AT" }, { 0x0028, 0x0010, "US" }, { 0x0028, 0x0011, "US" },
-    { 0x0028, 0x0012, "US" }, { 0x0028, 0x0030, "DS" }, { 0x0028, 0x0034, "IS" },
-    { 0x0028, 0x0100, "US" }, { 0x0028, 0x0101, "US" }, { 0x0028, 0x0102, "US" },
-    { 0x0028, 0x0103, "US" }, { 0x0028, 0x1052, "DS" }, { 0x0028, 0x1053, "DS" },
-    { 0x0028, 0x1054, "LO" }, { 0x0028, 0x2110, "CS" }, { 0x0040, 0x9224, "FD" },
-    { 0x0040, 0x9225, "FD" }, { 0x0048, 0x0006, "UL" }, { 0x0048, 0x0007, "UL" },
-    { 0x3004, 0x000c, "DS" }, { 0x3004, 0x000e, "DS" }, { 0x5400, 0x1004, "US" },
-    { 0x6000, 0x0010, "US" }, { 0x6000, 0x0011, "US" }, { 0x6000, 0x0015, "IS" },
-    { 0x6000, 0x0050, "SS" }, { 0x6000, 0x0051, "US" }, { 0x6000, 0x0100, "US" },
-    { 0x6000, 0x0102, "US" }, { 0x6000, 0x0200, "US" }, { 0x5000, 0x0005, "US" },
-    { 0x5000, 0x0010, "US" }, { 0x5000, 0x0103, "US" }, { 0x5000, 0x0110, "US" },
-    { 0x5000, 0x0112, "US" }, { 0x5000, 0x0114, "US" } };
-  // The repeating groups: 16 overlays and 16 curves, even groups.
-  if ((group & 0xFF01) == 0x6000 || (group & 0xFF01) == 0x5000)
-  {
-    group &= 0xFF00;
-  }
-  for (const Typed& t : typed)
-  {
-    if (t.group == group && t.element == element)
-    {
-      return t.vr;
-    }
-  }
-  return nullptr;
 }
 
 /// The data elements of a DICOM file, walked as GDCM will read them, with
@@ -185,14 +135,24 @@ public:
     {
       this->corrupt(at, "lies in sequences nested more than 16 deep");
     }
-    PixelFormat format; // of this data set (an item has its own, an icon's)
+    DicomPixelFormat format; // of this data set (an item has its own, an icon's)
+    // Where the data set ends, its rescale is judged against its pixel format.
+    const auto done = [&](std::size_t stop)
+    {
+      const std::string problem = rescaleProblem(format);
+      if (!problem.empty())
+      {
+        fail(this->Path, "the DICOM file is corrupt: " + problem);
+      }
+      return stop;
+    };
     while (at + 8 <= end)
     {
       const std::uint32_t group = this->u16(at);
       const std::uint32_t element = this->u16(at + 2);
       if (group == 0xFFFE)
       {
-        return at; // an item or delimiter: the caller's
+        return done(at); // an item or delimiter: the caller's
       }
       const bool isImplicit = implicit;
       const std::size_t value =
@@ -203,10 +163,19 @@ public:
         this->corrupt(at,
           "has the value representation '" + this->Vr + "' where the standard has " + standardVr);
       }
-      if (group == 0x0008 && element == 0x0010 && depth == 0 && this->Length != Undefined &&
-        this->Length > 0)
+      const bool text = this->Length != Undefined && this->Length > 0;
+      if (group == 0x0008 && element == 0x0010 && depth == 0 && text)
       {
-        this->recognitionCode(at, value);
+        this->judge(at, recognitionCodeProblem(this->value(value)));
+      }
+      if (group == 0x0028 && element == 0x1052 && text)
+      {
+        this->judge(
+          at, decimalProblem(this->value(value), "Rescale Intercept", format.rescaleIntercept));
+      }
+      if (group == 0x0028 && element == 0x1053 && text)
+      {
+        this->judge(at, decimalProblem(this->value(value), "Rescale Slope", format.rescaleSlope));
       }
       if (this->Length == Undefined)
       {
@@ -231,7 +200,7 @@ public:
       }
       if (imageNumber)
       {
-        this->pixelFormat(at, element, this->u16(value), format);
+        this->judge(at, pixelFormatProblem(element, this->u16(value), format));
       }
       if (!isImplicit && this->Length % this->ValueSize != 0)
       {
@@ -250,87 +219,11 @@ public:
       at = valueEnd;
     }
     this->leftover(at, end);
-    return at;
+    return done(at);
   }
 
 private:
   static constexpr std::uint64_t Undefined = 0xFFFFFFFFu;
-
-  /// The retired Recognition Code (0008,0010): GDCM asserts that a file
-  /// with one is ACR-NEMA 1.0 or 2.0 (its old name for DICOM).
-  void recognitionCode(std::size_t at, std::size_t value) const
-  {
-    std::string code = this->Data.substr(value, static_cast<std::size_t>(this->Length));
-    while (!code.empty() && (code.back() == ' ' || code.back() == '\0'))
-    {
-      code.pop_back();
-    }
-    if (code != "ACR-NEMA 1.0" && code != "ACR-NEMA 2.0")
-    {
-      std::string shown = code.substr(0, 24);
-      for (char& c : shown)
-      {
-        c = std::isprint(static_cast<unsigned char>(c)) ? c : '?';
-      }
-      this->corrupt(at,
-        "gives the retired Recognition Code '" + shown +
-          "'; GDCM reads only ACR-NEMA 1.0 or 2.0 there");
-    }
-  }
-
-  /// The pixel format attributes read so far in one data set.
-  struct PixelFormat
-  {
-    std::uint32_t bitsAllocated = 0; ///< 0: not given (yet)
-    std::uint32_t bitsStored = 0;
-  };
-
-  /// The values of the image attributes that GDCM's pixel format asserts on
-  /// (it aborts the process): they come in tag order, so Bits Stored is
-  /// judged against the Bits Allocated before it, High Bit against Bits Stored.
-  void pixelFormat(std::size_t at, std::uint32_t element, std::uint32_t v, PixelFormat& format)
-  {
-    const std::string value = std::to_string(v);
-    if (element == 0x0002 && v != 1 && v != 3 && v != 4)
-    {
-      this->corrupt(at, "gives Samples per Pixel " + value + ", where DICOM allows 1, 3 or 4");
-    }
-    if (element == 0x0006 && v > 1)
-    {
-      this->corrupt(at, "gives Planar Configuration " + value + ", where DICOM allows 0 or 1");
-    }
-    if (element == 0x0100)
-    {
-      if (v != 8 && v != 16 && v != 32)
-      {
-        this->corrupt(at, "gives Bits Allocated " + value + "; VIMLOP reads 8, 16 or 32");
-      }
-      format.bitsAllocated = v;
-    }
-    if (element == 0x0101)
-    {
-      if (v == 0 || v > format.bitsAllocated)
-      {
-        this->corrupt(at,
-          "gives Bits Stored " + value + ", not from 1 to the Bits Allocated" +
-            (format.bitsAllocated == 0 ? std::string(" (not given before it)")
-                                       : " of " + std::to_string(format.bitsAllocated)));
-      }
-      format.bitsStored = v;
-    }
-    if (element == 0x0102 && v >= format.bitsStored)
-    {
-      this->corrupt(at,
-        "gives High Bit " + value + ", not below the Bits Stored" +
-          (format.bitsStored == 0 ? std::string(" (not given before it)")
-                                  : " of " + std::to_string(format.bitsStored)));
-    }
-    if (element == 0x0103 && v > 1)
-    {
-      this->corrupt(at,
-        "gives Pixel Representation " + value + ", where DICOM allows 0 (unsigned) or 1 (signed)");
-    }
-  }
 
   std::uint32_t u16(std::size_t at) const
   {
@@ -341,6 +234,21 @@ private:
   std::uint64_t u32(std::size_t at) const
   {
     return this->u16(at) | static_cast<std::uint64_t>(this->u16(at + 2)) << 16;
+  }
+
+  /// The bytes of the current element's value at `value`.
+  std::string value(std::size_t value) const
+  {
+    return this->Data.substr(value, static_cast<std::size_t>(this->Length));
+  }
+
+  /// Refuses the element at `at` when a rule found a problem with it.
+  void judge(std::size_t at, const std::string& problem) const
+  {
+    if (!problem.empty())
+    {
+      this->corrupt(at, problem);
+    }
   }
 
   [[noreturn]] void corrupt(std::size_t at, const std::string& problem) const

@@ -411,3 +411,57 @@ TEST(DicomSeriesFiles, ARecognitionCodeOtherThanACRNEMAsIsRefused)
   std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
   EXPECT_EQ(readCTVolume(folder).dims, (std::array<int, 3>{ 8, 8, 3 }));
 }
+
+namespace
+{
+
+/// In `file`, the value of the 2-byte attribute (0028,element), of VR `vr`,
+/// replaced by `value` (2 bytes).
+void setShortAttribute(
+  const std::string& file, std::uint16_t element, const char* vr, const std::string& value)
+{
+  std::string bytes = fixtures::fileBytes(file);
+  const std::string tag = std::string("\x28\x00", 2) + static_cast<char>(element & 0xff) +
+    static_cast<char>(element >> 8) + vr + std::string("\x02\x00", 2);
+  const std::size_t at = bytes.find(tag);
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at + 8, 2, value);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+} // namespace
+
+TEST(DicomSeriesFiles, ARescaleThatNarrowsThePixelTypeIsRefusedBeforeITKAbortsOnIt)
+{
+  // ITK's DICOM reader asserted "Pixel type larger than output type".
+  const std::string zero = withImageAttribute("rescale-zero", 0x0100, 16).first;
+  setShortAttribute(zero, 0x1053, "DS", "0 ");
+  EXPECT_EQ(readError(zero),
+    "'" + zero +
+      "': the DICOM file is corrupt: the Rescale Slope 0 and Intercept 0 of its 16 signed bits "
+      "stored (of 16) map the pixels onto a narrower type, on which ITK's DICOM reader aborts");
+  const std::string six = withImageAttribute("rescale-six-bits", 0x0101, 6).first;
+  setShortAttribute(six, 0x0102, "US", std::string("\x05\x00", 2));
+  setShortAttribute(six, 0x0103, "US", std::string("\x00\x00", 2));
+  setShortAttribute(six, 0x1053, "DS", "2 ");
+  EXPECT_EQ(readError(six),
+    "'" + six +
+      "': the DICOM file is corrupt: the Rescale Slope 2 and Intercept 0 of its 6 unsigned bits "
+      "stored (of 16) map the pixels onto a narrower type, on which ITK's DICOM reader aborts");
+  const std::string text = withImageAttribute("rescale-text", 0x0100, 16).first;
+  setShortAttribute(text, 0x1053, "DS", "x ");
+  const std::string message = readError(text);
+  EXPECT_NE(message.find("gives the Rescale Slope 'x', not a number"), std::string::npos)
+    << message;
+  // A rescale that keeps the type: 12 of 16 bits stored, unsigned, doubled.
+  const std::string folder = writeSeries("rescale-ct", axialSeries(3, 1.0));
+  for (int k = 0; k < 3; ++k)
+  {
+    const std::string slice = folder + "/slice" + std::to_string(k) + ".dcm";
+    setShortAttribute(slice, 0x0101, "US", std::string("\x0c\x00", 2));
+    setShortAttribute(slice, 0x0102, "US", std::string("\x0b\x00", 2));
+    setShortAttribute(slice, 0x0103, "US", std::string("\x00\x00", 2));
+    setShortAttribute(slice, 0x1053, "DS", "2 ");
+  }
+  EXPECT_EQ(readCTVolume(folder).dims, (std::array<int, 3>{ 8, 8, 3 }));
+}
