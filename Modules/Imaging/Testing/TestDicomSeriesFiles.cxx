@@ -249,21 +249,32 @@ TEST(DicomSeriesFiles, AnImageAttributeOfTheWrongLengthIsRefused)
 namespace
 {
 
-/// Slice 1 of a fresh series with image attribute (0028,element) set to
-/// `value`; returns the file and where the element starts.
+/// In `file`, the value of the 2-byte attribute (0028,element), of VR `vr`,
+/// replaced by `value` (2 bytes); returns where the element starts.
+std::size_t setShortAttribute(
+  const std::string& file, std::uint16_t element, const char* vr, const std::string& value)
+{
+  std::string bytes = fixtures::fileBytes(file);
+  const std::string tag = std::string("\x28\x00", 2) + static_cast<char>(element & 0xff) +
+    static_cast<char>(element >> 8) + vr + std::string("\x02\x00", 2);
+  const std::size_t at = bytes.find(tag);
+  EXPECT_NE(at, std::string::npos);
+  if (at != std::string::npos)
+  {
+    bytes.replace(at + 8, 2, value);
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  }
+  return at;
+}
+
+/// Slice 1 of a fresh series with image attribute (0028,element), of VR US,
+/// set to `value`; returns the file and where the element starts.
 std::pair<std::string, std::size_t> withImageAttribute(
   const std::string& name, std::uint16_t element, std::uint16_t value)
 {
   const std::string file = writeSeries(name, axialSeries(3, 1.0)) + "/slice1.dcm";
-  std::string bytes = fixtures::fileBytes(file);
-  const std::string tag = std::string("\x28\x00", 2) + static_cast<char>(element & 0xff) +
-    static_cast<char>(element >> 8) + std::string("US\x02\x00", 4);
-  const std::size_t at = bytes.find(tag);
-  EXPECT_NE(at, std::string::npos);
-  bytes[at + 8] = static_cast<char>(value & 0xff);
-  bytes[at + 9] = static_cast<char>(value >> 8);
-  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
-  return { file, at };
+  const char bytes[2] = { static_cast<char>(value & 0xff), static_cast<char>(value >> 8) };
+  return { file, setShortAttribute(file, element, "US", std::string(bytes, 2)) };
 }
 
 } // namespace
@@ -411,25 +422,6 @@ TEST(DicomSeriesFiles, ARecognitionCodeOtherThanACRNEMAsIsRefused)
   std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
   EXPECT_EQ(readCTVolume(folder).dims, (std::array<int, 3>{ 8, 8, 3 }));
 }
-
-namespace
-{
-
-/// In `file`, the value of the 2-byte attribute (0028,element), of VR `vr`,
-/// replaced by `value` (2 bytes).
-void setShortAttribute(
-  const std::string& file, std::uint16_t element, const char* vr, const std::string& value)
-{
-  std::string bytes = fixtures::fileBytes(file);
-  const std::string tag = std::string("\x28\x00", 2) + static_cast<char>(element & 0xff) +
-    static_cast<char>(element >> 8) + vr + std::string("\x02\x00", 2);
-  const std::size_t at = bytes.find(tag);
-  ASSERT_NE(at, std::string::npos);
-  bytes.replace(at + 8, 2, value);
-  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
-}
-
-} // namespace
 
 TEST(DicomSeriesFiles, ARescaleThatNarrowsThePixelTypeIsRefusedBeforeITKAbortsOnIt)
 {
