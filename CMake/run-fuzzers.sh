@@ -47,7 +47,7 @@ for name in "$@"; do
     -malloc_limit_mb=2048 -timeout=10 -artifact_prefix="$build/fuzz-crashes/$name-" \
     "$build/fuzz-corpus/$name" "$root/Testing/Fuzzing/corpus/$name" >"$log" 2>&1
   rc=$?
-  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
+  runs=$(grep -a -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
   line="fuzz $name: ${runs:-?} executions in $(( $(date +%s) - start )) s, exit code $rc"
   echo "$line"
   echo "$(date -u +%FT%TZ) $line" >>"$build/fuzz-executions.txt"
