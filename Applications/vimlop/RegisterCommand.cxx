@@ -125,18 +125,6 @@ void runRegister(RegisterCommand c)
     std::cout << registrationOptionsJson(c.pipeline).dump(2) << std::endl;
     return;
   }
-  // The result folder is checked and locked before the work: everything is
-  // written beside it and renamed into place at the end, so a failure, Ctrl-C
-  // or kill leaves the old folder or none (Documentation/UserGuide.md).
-  std::string note;
-  ResultFolderTransaction folder(c.out,
-    c.force ? ResultFolderTransaction::Existing::Replace
-            : ResultFolderTransaction::Existing::Refuse,
-    &note);
-  if (!note.empty())
-  {
-    std::cerr << "vimlop: note: " << note << "\n";
-  }
   VideoRegistrationInputs& inputs = c.inputs;
   if (inputs.framesPath.empty())
   {
@@ -147,6 +135,19 @@ void runRegister(RegisterCommand c)
   if (inputs.trackerPath.empty() && !(inputs.initialScale > 0.0))
   {
     throw Error("give --tracker CSV or --scale S: SfM alone has no metric scale");
+  }
+  // The result folder is checked and locked before the work (and after the
+  // flags, so a mistyped flag is reported as such): everything is
+  // written beside it and renamed into place at the end, so a failure, Ctrl-C
+  // or kill leaves the old folder or none (Documentation/UserGuide.md).
+  std::string note;
+  ResultFolderTransaction folder(c.out,
+    c.force ? ResultFolderTransaction::Existing::Replace
+            : ResultFolderTransaction::Existing::Refuse,
+    &note);
+  if (!note.empty())
+  {
+    std::cerr << "vimlop: note: " << note << "\n";
   }
   VideoRegistrationPipeline pipeline(c.pipeline);
   pipeline.setLog(&log);
