@@ -24,6 +24,8 @@ namespace vimlop
 struct CTReadOptions;
 struct EndoscopeSimulationOptions;
 struct PoseServingOptions;
+struct RegistrationRecord;
+struct ServedPoses;
 struct SimulatedWorldOptions;
 struct WorldSettings;
 struct VideoRegistrationOptions;
@@ -82,11 +84,18 @@ void addWorldPresetOption(CLI::App& command, WorldSettings& settings);
 
 /**
  * @brief Adds --host, --port, --allow-remote, --max-clients, --max-clients-per-address,
- * --allow-client and --duration-s
+ * --allow-client, --duration-s, --camera-name, --per-frame-names and --allow-flagged
  * to `command`, stored into `options` (which must outlive the parse): the
  * flags of every subcommand that serves poses (VIMLOP::Server's servePoses).
  */
 void addPoseServingOptions(CLI::App& command, PoseServingOptions& options);
+
+/**
+ * @brief What a pose server sends of a registration record: T, every frame's
+ * camera-to-CT pose with its frame's time (when the record has them) and
+ * the verdict of its confidence (when it has one).
+ */
+ServedPoses servedPosesOf(const RegistrationRecord& record);
 
 /// @brief Prints each of `lines` (a report's summaryLines) to stdout.
 void printLines(const std::vector<std::string>& lines);

@@ -92,6 +92,17 @@ void addPoseServingOptions(CLI::App& command, PoseServingOptions& options)
   command
     .add_option("--duration-s", options.durationS, "stop after this many seconds (0: until Ctrl-C)")
     ->capture_default_str();
+  command
+    .add_option("--camera-name", options.server.cameraName,
+      "device name of the moving camera, one transform updated frame after frame (1-20 "
+      "characters); also the STATUS messages' device")
+    ->capture_default_str();
+  command.add_flag(
+    "--per-frame-names",
+    [&options](std::int64_t) { options.server.cameraNames = CameraDeviceNames::OnePerFrame; },
+    "name each frame's pose VideoCamera_<frame id> instead (one transform per frame)");
+  command.add_flag("--allow-flagged", options.allowFlagged,
+    "serve a result flagged as a failure too (its STATUS message says so); refused by default");
 }
 
 } // namespace vimlop

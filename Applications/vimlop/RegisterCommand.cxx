@@ -192,10 +192,10 @@ void runRegister(RegisterCommand c)
                       "'%s' when complete)\n",
       usableS, posesPath.c_str(), c.out.c_str());
     log.flush();
-    if (c.serve && !pipeline.outcome().failure)
+    if (c.serve && (!pipeline.outcome().failure || c.serving.allowFlagged))
     {
       c.serving.label = "vimlop register";
-      serving.start(c.serving, servedPosesOf(pipeline.result()));
+      serving.start(c.serving, servedPosesOf(record));
     }
   };
   c.outputs.keepGoing = [] { return !interrupted; };
@@ -241,10 +241,12 @@ void runRegister(RegisterCommand c)
   }
   if (pipeline.outcome().failure)
   {
-    if (c.serve)
+    if (c.serve && !c.serving.allowFlagged)
     {
-      std::cerr << "vimlop: warning: not serving poses of a result flagged as a failure\n";
+      std::cerr << "vimlop: warning: not serving poses of a result flagged as a failure (pass "
+                   "--allow-flagged to serve them with a STATUS message that says so)\n";
     }
+    serving.wait();
     throw ExitRequest{ 3 };
   }
   serving.wait();
@@ -305,9 +307,9 @@ void addRegisterCommand(CLI::App& app)
   r->add_flag(
     "--no-report", [c](std::int64_t) { c->outputs.report = false; }, "skip the report");
   r->add_flag("--serve", c->serve,
-    "serve the poses over OpenIGTLink (CTFromSfM and VideoCamera_<frame>, RAS) from the moment "
-    "they are written (while the video and report are written) until Ctrl-C; "
-    "never a result flagged as a failure");
+    "serve the poses over OpenIGTLink (CTFromSfM, the moving camera and a STATUS verdict, RAS) "
+    "from the moment they are written (while the video and report are written) until Ctrl-C; "
+    "a result flagged as a failure only with --allow-flagged");
   addPoseServingOptions(*r, c->serving);
   r->callback(
     [c]

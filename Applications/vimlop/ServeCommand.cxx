@@ -2,12 +2,14 @@
 #include "Commands.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 #include <vimlop/Server/PoseServing.h>
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <memory>
 
 namespace vimlop
@@ -36,12 +38,42 @@ void runServe(const ServeOptions& options)
   }
   else
   {
-    poses = servedPosesOf(readRegistrationRecord(options.result).result);
+    poses = servedPosesOf(readRegistrationRecord(options.result));
   }
   servePoses(options.serving, poses);
 }
 
 } // namespace
+
+ServedPoses servedPosesOf(const RegistrationRecord& record)
+{
+  ServedPoses poses = servedPosesOf(record.result);
+  const std::vector<VideoFrame>& frames = record.data.frames;
+  if (record.frameTimesS.size() == frames.size())
+  {
+    // Result frames are data frames with a pose: matched by id.
+    for (const FramePose& pose : poses.cameraToCT)
+    {
+      const auto at = std::find_if(frames.begin(), frames.end(),
+        [&](const VideoFrame& frame) { return frame.frameId == pose.frameId; });
+      if (at == frames.end())
+      {
+        throw Error("the result's frame " + std::to_string(pose.frameId) +
+          " is not in its frame table: the record has no time for it");
+      }
+      poses.frameTimesS.push_back(record.frameTimesS[static_cast<size_t>(at - frames.begin())]);
+    }
+  }
+  if (const auto& c = record.confidence)
+  {
+    const std::string reason = c->reason.empty() ? "flagged as a failure" : c->reason;
+    poses.verdict = PoseVerdict{ c->failure,
+      c->failure ? reason
+                 : formatText("contour error %.2f px, within the failure threshold %.2f px",
+                     record.result.contourErrorPx, c->failureThresholdPx) };
+  }
+  return poses;
+}
 
 void addServeCommand(CLI::App& app)
 {
@@ -50,10 +82,12 @@ void addServeCommand(CLI::App& app)
     "Send camera poses to navigation software (3D Slicer OpenIGTLinkIF, PLUS, ...) over "
     "OpenIGTLink");
   serve->add_option("--poses", options->poses,
-    "camera poses in CT (JSON, as written by vimlop warp); each becomes VideoCamera_<frame_id>");
+    "camera poses in CT (JSON, as written by vimlop warp), sent in their order as the moving "
+    "camera (or VideoCamera_<frame id> with --per-frame-names)");
   serve->add_option("--result", options->result,
-    "a registration's result folder: each frame's camera-to-CT pose as VideoCamera_<frame id> and "
-    "the SfM-to-CT similarity as CTFromSfM");
+    "a registration's result folder: each frame's camera-to-CT pose stamped with its frame's "
+    "time, the SfM-to-CT similarity as CTFromSfM and the verdict as a STATUS message; a result "
+    "flagged as a failure is refused without --allow-flagged");
   addPoseServingOptions(*serve, options->serving);
   serve->callback([options] { runServe(*options); });
 }

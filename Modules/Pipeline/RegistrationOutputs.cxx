@@ -93,8 +93,9 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
   {
     record.frameImages.push_back(resultFrameImageName(frame.frameId));
   }
+  record.frameTimesS = pipeline.frameTimesS();
   record.confidence = RegistrationRecord::Confidence{ outcome.failure, outcome.failureThresholdPx,
-    pipeline.startMode() == StartMode::Manual ? "manual" : "canonical",
+    outcome.failureReason, pipeline.startMode() == StartMode::Manual ? "manual" : "canonical",
     static_cast<int>(outcome.candidates.size()), outcome.bestCandidate };
   record.versions = { { "vtk", vtkVersion::GetVTKVersion() }, { "opencv", CV_VERSION } };
   for (int f : pipeline.frameOf())

@@ -153,11 +153,11 @@ void VideoRegistrationPipeline::estimateInitialScale(
   {
     throw Error("the frame rate must be positive, got " + std::to_string(fps));
   }
+  d.TimesS = vimlop::frameTimesS(d.idsOf(sfm), fps, timeOffsetS);
   double scale = givenScale;
   if (tracker)
   {
-    const TrackerScaleResult fromTracker =
-      scaleFromTracker(*tracker, sfm, frameTimesS(d.idsOf(sfm), fps, timeOffsetS), d.Log);
+    const TrackerScaleResult fromTracker = scaleFromTracker(*tracker, sfm, d.TimesS, d.Log);
     if (givenScale > 0.0)
     {
       const double ratio = fromTracker.scale / givenScale;
@@ -414,7 +414,7 @@ void VideoRegistrationPipeline::process()
     in.framesPath, readIntrinsics(in.intrinsicsPath), in.maxFrames, in.intrinsicsPath);
   if (tracker)
   {
-    checkTrackerOverlap(*tracker, frameTimesS(d.Ids, in.framesPerSecond, in.timeOffsetS));
+    checkTrackerOverlap(*tracker, vimlop::frameTimesS(d.Ids, in.framesPerSecond, in.timeOffsetS));
   }
   this->loadModel(in.meshPath, in.meshPath.empty() ? in.ctPath : std::string());
   this->detectContours();

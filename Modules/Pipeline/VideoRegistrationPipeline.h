@@ -183,6 +183,10 @@ public:
   const RegistrationData& data() const;
   /// For each data frame, its index in the loaded frames.
   const std::vector<int>& frameOf() const;
+  /// Each data frame's time on the video's clock, s, in the order of
+  /// data().frames, from the frame rate and offset given to
+  /// estimateInitialScale() (empty before it).
+  std::vector<double> frameTimesS() const;
   const std::vector<SimilarityTransform>& starts() const;
   StartMode startMode() const;
   /// For canonical starts: the id of the frame placed at each pose.

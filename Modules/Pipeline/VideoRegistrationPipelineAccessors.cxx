@@ -122,6 +122,20 @@ const std::vector<int>& VideoRegistrationPipeline::frameOf() const
   return this->Impl->FrameOf;
 }
 
+std::vector<double> VideoRegistrationPipeline::frameTimesS() const
+{
+  const Internals& d = *this->Impl;
+  std::vector<double> times;
+  if (!d.TimesS.empty())
+  {
+    for (int loaded : d.FrameOf)
+    {
+      times.push_back(d.TimesS.at(static_cast<size_t>(loaded)));
+    }
+  }
+  return times;
+}
+
 const std::vector<SimilarityTransform>& VideoRegistrationPipeline::starts() const
 {
   return this->Impl->Starts;

@@ -44,6 +44,8 @@ struct VideoRegistrationPipeline::Internals
   std::vector<std::vector<ContourPoint>> Contours;
   std::optional<SfmReconstruction> Sfm;
   double Scale = 0.0;
+  /// The loaded frames' times on the video's clock, s (set with the scale).
+  std::vector<double> TimesS;
   bool DataMade = false;
   RegistrationData Data;
   std::vector<int> FrameOf;

@@ -53,6 +53,10 @@ struct RegistrationRecord
   /// Per frame (in the order of data.frames), the name of the file (or the
   /// frame of a video) it came from, e.g. "frame011.png"; may be empty.
   std::vector<std::string> frameSources;
+  /// Per frame (in the order of data.frames), its time on the video's clock,
+  /// s (from the video, or --fps and --time-offset for a frame folder),
+  /// written as "time_s"; empty when unknown.
+  std::vector<double> frameTimesS;
   /// One input of the run, identified: what it is for ("ct", "frames",
   /// "intrinsics", ...), its path as given, its size in bytes and its SHA-256
   /// (of a folder: of its files' names and bytes, in name order).
@@ -74,6 +78,8 @@ struct RegistrationRecord
     /// True when the contour error exceeds the threshold: do not navigate with it.
     bool failure = false;
     double failureThresholdPx = 0.0;
+    /// Why the result is flagged, for people (empty when it is not); written as "failure_reason".
+    std::string reason;
     /// How the start was found: "manual", "canonical", "perturbed", ...
     std::string init;
     /// Candidates of a multi-start (1 for a single start) and the winner's index.

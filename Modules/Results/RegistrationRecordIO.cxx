@@ -208,6 +208,12 @@ int resultFormatVersion()
 
 void writeRegistrationRecord(const RegistrationRecord& record, const std::string& folder)
 {
+  if (!record.frameTimesS.empty() && record.frameTimesS.size() != record.data.frames.size())
+  {
+    throw Error("a registration record with " + std::to_string(record.frameTimesS.size()) +
+      " frame times for " + std::to_string(record.data.frames.size()) +
+      " frames: one per frame or none");
+  }
   const fs::path dir(folder);
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -256,6 +262,10 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
     if (j < record.frameSources.size() && !record.frameSources[j].empty())
     {
       f["source"] = record.frameSources[j];
+    }
+    if (j < record.frameTimesS.size())
+    {
+      f["time_s"] = record.frameTimesS[j];
     }
     frames.push_back(f);
   }
@@ -307,8 +317,8 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
   {
     const RegistrationRecord::Confidence& c = *record.confidence;
     summary["confidence"] = { { "failure", c.failure },
-      { "failure_threshold_px", c.failureThresholdPx }, { "init", c.init },
-      { "candidates", c.candidates }, { "winner", c.winner } };
+      { "failure_threshold_px", c.failureThresholdPx }, { "failure_reason", c.reason },
+      { "init", c.init }, { "candidates", c.candidates }, { "winner", c.winner } };
   }
   json versions = { { "vimlop", VIMLOP_VERSION } };
   for (const auto& [name, version] : record.versions)
@@ -420,6 +430,15 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
       record.frameSources.push_back(fj.contains("source") && fj.at("source").is_string()
           ? fj.at("source").get<std::string>()
           : std::string());
+      if (fj.contains("time_s"))
+      {
+        const json& time = fj.at("time_s");
+        if (!time.is_number() || !std::isfinite(time.get<double>()))
+        {
+          throw Error("frame " + std::to_string(f) + "'s time_s is not a finite number of seconds");
+        }
+        record.frameTimesS.push_back(time.get<double>());
+      }
       if (!fj.contains("camera_to_ct"))
       {
         continue;
@@ -436,6 +455,11 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
       r.contourErrorInliersPx = fj.value("contour_error_inliers_px", 0.0);
       r.visibleModelSamples = intValue(fj, "visible_model_samples", 0);
       result.frames.push_back(std::move(r));
+    }
+    if (!record.frameTimesS.empty() && record.frameTimesS.size() != frames.size())
+    {
+      throw Error("result.json gives time_s for " + std::to_string(record.frameTimesS.size()) +
+        " of its " + std::to_string(frames.size()) + " frames: on every frame or on none");
     }
     readRegisteredPoints(readPolyData((dir / "registered-points.vtp").string()),
       static_cast<int>(record.data.points.size()), result);
@@ -470,6 +494,7 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
       RegistrationRecord::Confidence c;
       c.failure = cj.at("failure").get<bool>();
       c.failureThresholdPx = cj.value("failure_threshold_px", 0.0);
+      c.reason = cj.value("failure_reason", std::string());
       c.init = cj.value("init", std::string());
       c.candidates = cj.value("candidates", 1);
       c.winner = cj.value("winner", 0);

@@ -1,5 +1,6 @@
 #include <vimlop/Server/PoseServing.h>
 
+#include <vimlop/Core/Error.h>
 #include <vimlop/Core/RegistrationResult.h>
 
 #include <chrono>
@@ -34,16 +35,27 @@ ServedPoses servedPosesOf(const RegistrationResult& result)
 
 void servePoses(const PoseServingOptions& options, const ServedPoses& poses)
 {
+  if (poses.verdict && poses.verdict->flagged && !options.allowFlagged)
+  {
+    throw Error("refusing to serve a result flagged as a failure (" + poses.verdict->text +
+      "): navigation would show it like any other; pass --allow-flagged to serve it anyway "
+      "(clients are told by a STATUS message)");
+  }
   PoseStreamServerOptions serverOptions = options.server;
   serverOptions.onNotice = [&options](const std::string& text)
   { std::fprintf(stderr, "%s: warning: %s\n", options.label.c_str(), text.c_str()); };
   PoseStreamServer server(serverOptions);
-  server.publish(poses.ctFromSfm ? &*poses.ctFromSfm : nullptr, poses.cameraToCT);
+  server.publish(poses);
   stopRequested = 0;
   const auto previousInt = std::signal(SIGINT, requestStop);
   const auto previousTerm = std::signal(SIGTERM, requestStop);
-  std::printf("%s: %zu camera poses%s on %s:%d (OpenIGTLink TRANSFORM, RAS mm); Ctrl-C stops\n",
-    options.label.c_str(), poses.cameraToCT.size(), poses.ctFromSfm ? " and CTFromSfM" : "",
+  const bool oneDevice = options.server.cameraNames == CameraDeviceNames::OneMovingCamera;
+  const std::string devices = oneDevice ? "as " + options.server.cameraName : "as VideoCamera_<id>";
+  std::printf("%s: %zu camera poses %s%s%s on %s:%d (OpenIGTLink TRANSFORM, RAS mm); Ctrl-C "
+              "stops\n",
+    options.label.c_str(), poses.cameraToCT.size(), devices.c_str(),
+    poses.ctFromSfm ? ", CTFromSfM" : "",
+    poses.verdict ? (poses.verdict->flagged ? ", STATUS flagged" : ", STATUS OK") : "",
     options.server.host.c_str(), server.port());
   std::fflush(stdout);
   const auto start = std::chrono::steady_clock::now();

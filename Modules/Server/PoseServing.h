@@ -1,14 +1,11 @@
 #ifndef vimlop_PoseServing_h
 #define vimlop_PoseServing_h
 
-#include <vimlop/Core/FramePose.h>
-#include <vimlop/Core/SimilarityTransform.h>
 #include <vimlop/Server/PoseStreamServer.h>
+#include <vimlop/Server/ServedPoses.h>
 
 #include <functional>
-#include <optional>
 #include <string>
-#include <vector>
 
 namespace vimlop
 {
@@ -32,18 +29,14 @@ struct PoseServingOptions
   std::string label = "vimlop serve";
   /// Also stop when this returns false (asked about every 100 ms); empty: never asked.
   std::function<bool()> keepServing;
+  /// Serve a result the registration flagged as a failure (default false:
+  /// refused, since a navigation display would show it like any other).
+  /// Clients are still told by the STATUS message.
+  bool allowFlagged = false;
 };
 
-/// @brief What is served.
-struct ServedPoses
-{
-  /// T, SfM frame to CT frame, sent as `CTFromSfM`; none when only camera poses are known.
-  std::optional<SimilarityTransform> ctFromSfm;
-  /// Camera-to-CT pose of every frame, each sent as `VideoCamera_<frame id>`.
-  std::vector<FramePose> cameraToCT;
-};
-
-/// @brief T and every frame's camera-to-CT pose of a registration result.
+/// @brief T and every frame's camera-to-CT pose of a registration result
+/// (no frame times, no verdict: RegistrationResult holds neither).
 ServedPoses servedPosesOf(const RegistrationResult& result);
 
 /**
@@ -52,7 +45,8 @@ ServedPoses servedPosesOf(const RegistrationResult& result);
  * returns when Ctrl-C or SIGTERM arrives, the duration has passed or
  * `options.keepServing` says to stop, after a
  * closing line. The signal handlers are restored on return.
- * @throws vimlop::Error when the server cannot listen (see PoseStreamServer).
+ * @throws vimlop::Error when the server cannot listen or publish (see
+ * PoseStreamServer), or for flagged poses without `options.allowFlagged`.
  */
 void servePoses(const PoseServingOptions& options, const ServedPoses& poses);
 

@@ -3,14 +3,18 @@
 #include <vimlop/Core/CoordinateFrames.h>
 #include <vimlop/Core/Error.h>
 
+#include <igtlStatusMessage.h>
+#include <igtlTimeStamp.h>
 #include <igtlTransformMessage.h>
 
 #include <algorithm>
 #include <arpa/inet.h>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
+#include <netdb.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/resource.h>
@@ -28,7 +32,20 @@ void setNonBlocking(int fd)
   fcntl(fd, F_SETFL, fcntl(fd, F_GETFL, 0) | O_NONBLOCK);
 }
 
-std::string packTransform(const std::string& name, const Eigen::Matrix4d& m)
+/// OpenIGTLink's device names are at most 20 bytes: a longer one is cut on the wire.
+constexpr size_t maxDeviceNameLength = 20;
+
+std::string packed(igtl::MessageBase& message, double timeS)
+{
+  igtl::TimeStamp::Pointer stamp = igtl::TimeStamp::New();
+  stamp->SetTime(timeS);
+  message.SetTimeStamp(stamp);
+  message.Pack();
+  return std::string(
+    static_cast<const char*>(message.GetPackPointer()), static_cast<size_t>(message.GetPackSize()));
+}
+
+std::string packTransform(const std::string& name, const Eigen::Matrix4d& m, double timeS)
 {
   igtl::Matrix4x4 matrix;
   for (int i = 0; i < 4; ++i)
@@ -41,9 +58,51 @@ std::string packTransform(const std::string& name, const Eigen::Matrix4d& m)
   igtl::TransformMessage::Pointer message = igtl::TransformMessage::New();
   message->SetDeviceName(name.c_str());
   message->SetMatrix(matrix);
-  message->Pack();
-  return std::string(static_cast<const char*>(message->GetPackPointer()),
-    static_cast<size_t>(message->GetPackSize()));
+  return packed(*message, timeS);
+}
+
+std::string packStatus(const std::string& device, const PoseVerdict& verdict, double timeS)
+{
+  igtl::StatusMessage::Pointer message = igtl::StatusMessage::New();
+  message->SetDeviceName(device.c_str());
+  message->SetCode(
+    verdict.flagged ? igtl::StatusMessage::STATUS_UNKNOWN_ERROR : igtl::StatusMessage::STATUS_OK);
+  message->SetSubCode(0);
+  message->SetErrorName(verdict.flagged ? "RegistrationFlagged" : "");
+  message->SetStatusString(verdict.text.c_str());
+  return packed(*message, timeS);
+}
+
+/// The IPv4 address of `host`: a dotted address, or a name (e.g. localhost) resolved.
+in_addr resolveHost(const std::string& host)
+{
+  in_addr address{};
+  if (inet_pton(AF_INET, host.c_str(), &address) == 1)
+  {
+    return address;
+  }
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  const int status = host.empty() ? EAI_NONAME : getaddrinfo(host.c_str(), nullptr, &hints, &found);
+  if (status != 0 || !found)
+  {
+    throw Error("'" + host + "' is neither an IPv4 address nor a host name with one (" +
+      (host.empty() ? std::string("empty") : gai_strerror(status)) + ")");
+  }
+  address = reinterpret_cast<const sockaddr_in*>(found->ai_addr)->sin_addr;
+  freeaddrinfo(found);
+  return address;
+}
+
+std::string deviceNameOf(const PoseStreamServerOptions& options, int frameId)
+{
+  if (options.cameraNames == CameraDeviceNames::OneMovingCamera)
+  {
+    return options.cameraName;
+  }
+  return "VideoCamera_" + std::to_string(frameId);
 }
 
 std::string addressText(std::uint32_t address);
@@ -91,11 +150,12 @@ std::string addressText(std::uint32_t address)
 PoseStreamServer::PoseStreamServer(const PoseStreamServerOptions& options)
   : Options(options)
 {
-  in_addr address{};
-  if (inet_pton(AF_INET, options.host.c_str(), &address) != 1)
+  if (options.cameraName.empty() || options.cameraName.size() > maxDeviceNameLength)
   {
-    throw Error("'" + options.host + "' is not an IPv4 address to listen on");
+    throw Error("the camera's device name '" + options.cameraName +
+      "' must have 1 to 20 characters (OpenIGTLink's limit)");
   }
+  const in_addr address = resolveHost(options.host);
   const bool loopback = (ntohl(address.s_addr) >> 24) == 127;
   if (!loopback && !options.allowRemote)
   {
@@ -163,32 +223,59 @@ PoseStreamServer::~PoseStreamServer()
   }
 }
 
-void PoseStreamServer::publish(
-  const SimilarityTransform* ctFromSfm, const std::vector<FramePose>& cameraToCT)
+void PoseStreamServer::publish(const ServedPoses& poses)
 {
   // Refused at the source: the float matrices of the protocol would carry an
-  // overflow as -inf, and a repeated id as two poses of one device.
+  // overflow as -inf, a repeated id as two poses of one device, and a cut
+  // device name as another device.
+  const std::vector<FramePose>& cameraToCT = poses.cameraToCT;
+  const std::vector<double>& timesS = poses.frameTimesS;
   try
   {
     checkFramePoses(cameraToCT);
-    if (ctFromSfm &&
-      (!ctFromSfm->isValid() || ctFromSfm->translation.norm() > maxFramePoseDistanceMm ||
-        !(ctFromSfm->scale < maxFramePoseDistanceMm)))
+    const auto& t = poses.ctFromSfm;
+    if (t &&
+      (!t->isValid() || t->translation.norm() > maxFramePoseDistanceMm ||
+        !(t->scale < maxFramePoseDistanceMm)))
     {
       throw Error("CTFromSfM is not a finite similarity within 1 km of the CT origin");
+    }
+    if (!timesS.empty() &&
+      (timesS.size() != cameraToCT.size() ||
+        !std::all_of(timesS.begin(), timesS.end(), [](double v) { return std::isfinite(v); })))
+    {
+      throw Error(std::to_string(timesS.size()) + " frame times for " +
+        std::to_string(cameraToCT.size()) + " poses: one finite time per pose, or none");
+    }
+    for (const FramePose& pose : cameraToCT)
+    {
+      if (deviceNameOf(this->Options, pose.frameId).size() > maxDeviceNameLength)
+      {
+        throw Error("frame " + std::to_string(pose.frameId) + "'s device name VideoCamera_" +
+          std::to_string(pose.frameId) + " is longer than OpenIGTLink's 20 characters");
+      }
     }
   }
   catch (const Error& e)
   {
     throw Error(std::string("pose server: refusing to publish: ") + e.what());
   }
-  std::string messages =
-    ctFromSfm ? packTransform("CTFromSfM", intoRas(ctFromSfm->matrix())) : std::string();
-  for (const FramePose& pose : cameraToCT)
+  // The newest frame is now; the others as long before it as the video says.
+  const double nowS =
+    std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  const double newestS = timesS.empty() ? 0.0 : *std::max_element(timesS.begin(), timesS.end());
+  std::string messages = poses.ctFromSfm
+    ? packTransform("CTFromSfM", intoRas(poses.ctFromSfm->matrix()), nowS)
+    : std::string();
+  for (size_t i = 0; i < cameraToCT.size(); ++i)
   {
-    char name[32];
-    std::snprintf(name, sizeof(name), "VideoCamera_%d", pose.frameId);
-    messages += packTransform(name, intoRas(pose.cameraToWorld.matrix()));
+    const double timeS = timesS.empty() ? nowS : nowS - (newestS - timesS[i]);
+    messages += packTransform(deviceNameOf(this->Options, cameraToCT[i].frameId),
+      intoRas(cameraToCT[i].cameraToWorld.matrix()), timeS);
+  }
+  if (poses.verdict)
+  {
+    messages += packStatus(this->Options.cameraName, *poses.verdict, nowS);
   }
   this->Messages = messages;
   for (size_t i = this->Clients.size(); i-- > 0;)

@@ -1,8 +1,7 @@
 #ifndef vimlop_PoseStreamServer_h
 #define vimlop_PoseStreamServer_h
 
-#include <vimlop/Core/FramePose.h>
-#include <vimlop/Core/SimilarityTransform.h>
+#include <vimlop/Server/ServedPoses.h>
 
 #include <chrono>
 #include <cstdint>
@@ -13,10 +12,23 @@
 namespace vimlop
 {
 
+/// @brief How the camera poses are named on the wire.
+enum class CameraDeviceNames
+{
+  /// One device (`PoseStreamServerOptions::cameraName`) updated frame after
+  /// frame, each message stamped with its frame's time: one moving camera,
+  /// as 3D Slicer and PLUS show a tracked tool.
+  OneMovingCamera,
+  /// One device per frame, `VideoCamera_<frame id>`: every pose stays
+  /// available as its own transform.
+  OnePerFrame
+};
+
 /// @brief Where and how PoseStreamServer listens.
 struct PoseStreamServerOptions
 {
-  /// Address to listen on (default 127.0.0.1, loopback only).
+  /// Address to listen on (default 127.0.0.1, loopback only): an IPv4
+  /// address or a host name that resolves to one (e.g. localhost).
   std::string host = "127.0.0.1";
   /// TCP port (default 18944, OpenIGTLink's); 0 picks a free one.
   int port = 18944;
@@ -55,15 +67,27 @@ struct PoseStreamServerOptions
    * keep up: no pose is lost without a word. Empty: nobody is told.
    */
   std::function<void(const std::string&)> onNotice;
+  /// How camera poses are named (default one moving camera).
+  CameraDeviceNames cameraNames = CameraDeviceNames::OneMovingCamera;
+  /// The moving camera's device name (default CameraToCT; 1 to 20
+  /// characters, OpenIGTLink's limit), also the STATUS messages' device.
+  std::string cameraName = "CameraToCT";
 };
 
 /**
  * @brief Streams registration results to navigation software over OpenIGTLink.
  *
- * Every client that connects receives one TRANSFORM message per pose,
- * then again whenever publish() is called: `CTFromSfM` (the similarity T,
- * mapping the SfM frame into the CT) and `VideoCamera_<frame id>` (each
- * frame's camera-to-CT pose; camera axes x right, y down, z forward). By the
+ * Every client that connects receives the last publication, then every
+ * new one: `CTFromSfM` (the similarity T, mapping the SfM frame into the
+ * CT), one TRANSFORM per frame (each frame's camera-to-CT pose; camera axes
+ * x right, y down, z forward), in the order of the video, named by
+ * `cameraNames`, and, for a registration's poses, a STATUS message with its
+ * verdict (code OK, or error name `RegistrationFlagged` for a result flagged
+ * as a failure). Each message carries a wall-clock timestamp: the newest
+ * frame is stamped with the moment of publication, the others earlier by
+ * their frame times' difference (all with that moment when the times are
+ * unknown), so that times increase along the video and none lies in the
+ * future. By the
  * OpenIGTLink protocol the matrices are in RAS (mm): VIMLOP's LPS CT frame is
  * converted (see CoordinateFrames.h), as 3D Slicer's OpenIGTLinkIF expects.
  *
@@ -96,13 +120,14 @@ public:
   int port() const { return this->Port; }
 
   /**
-   * @brief Sets the poses sent to new clients and sends them to connected
-   * ones; `ctFromSfm` may be null when only camera poses are known.
+   * @brief Sets the poses sent to new clients and sends them to connected ones.
    * @throws vimlop::Error, publishing nothing, for poses checkFramePoses()
-   * refuses or a CTFromSfM that is not a finite similarity within 1 km of
-   * the CT origin.
+   * refuses, a CTFromSfM that is not a finite similarity within 1 km of
+   * the CT origin, frame times that are not one finite number per pose, or
+   * a frame id whose device name would be longer than OpenIGTLink's 20
+   * characters.
    */
-  void publish(const SimilarityTransform* ctFromSfm, const std::vector<FramePose>& cameraToCT);
+  void publish(const ServedPoses& poses);
 
   /// @brief Serves until `keepRunning()` returns false (checked about every 100 ms).
   void serve(const std::function<bool()>& keepRunning);

@@ -8,6 +8,7 @@
 #include <vimlop/Server/PoseStreamServer.h>
 
 #include <igtlMessageHeader.h>
+#include <igtlStatusMessage.h>
 #include <igtlTransformMessage.h>
 #include <igtl_header.h>
 
@@ -27,10 +28,12 @@ namespace
 {
 
 std::unique_ptr<vimlop::PoseStreamServer> server;
-constexpr int publishedMessages = 3;
+/// CTFromSfM, two camera poses and the verdict.
+constexpr int publishedMessages = 4;
 
-/// Counts the messages in `bytes` whose header and body unpack with a valid CRC.
-int validTransforms(const std::string& bytes)
+/// Counts the TRANSFORM and STATUS messages in `bytes` whose header and body
+/// unpack with a valid CRC; -1 when anything else is there.
+int validMessages(const std::string& bytes)
 {
   int count = 0;
   size_t at = 0;
@@ -41,12 +44,21 @@ int validTransforms(const std::string& bytes)
     std::memcpy(header->GetPackPointer(), bytes.data() + at, IGTL_HEADER_SIZE);
     header->Unpack();
     const size_t body = header->GetBodySizeToRead();
-    if (std::strcmp(header->GetDeviceType(), "TRANSFORM") != 0 ||
+    const bool transform = std::strcmp(header->GetDeviceType(), "TRANSFORM") == 0;
+    if ((!transform && std::strcmp(header->GetDeviceType(), "STATUS") != 0) ||
       at + IGTL_HEADER_SIZE + body > bytes.size())
     {
       return -1;
     }
-    igtl::TransformMessage::Pointer message = igtl::TransformMessage::New();
+    igtl::MessageBase::Pointer message;
+    if (transform)
+    {
+      message = igtl::TransformMessage::New();
+    }
+    else
+    {
+      message = igtl::StatusMessage::New();
+    }
     message->SetMessageHeader(header);
     message->AllocatePack();
     std::memcpy(message->GetPackBodyPointer(), bytes.data() + at + IGTL_HEADER_SIZE, body);
@@ -124,7 +136,12 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
   std::vector<vimlop::FramePose> poses(2);
   poses[1].frameId = 12;
   poses[1].cameraToWorld.centre = Eigen::Vector3d(-4.0, 5.0, 6.0);
-  server->publish(&ctFromSfm, poses);
+  vimlop::ServedPoses served;
+  served.ctFromSfm = ctFromSfm;
+  served.cameraToCT = poses;
+  served.frameTimesS = { 0.0, 0.4 };
+  served.verdict = vimlop::PoseVerdict{ false, "contour error 2.0 px" };
+  server->publish(served);
   return 0;
 }
 
@@ -180,7 +197,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     received.append(buffer, static_cast<size_t>(got));
   }
   close(fd);
-  if (validTransforms(received) != publishedMessages)
+  if (validMessages(received) != publishedMessages)
   {
     std::abort();
   }

@@ -2,15 +2,18 @@
 // written against the OpenIGTLink library's client side (not VIMLOP's code).
 // It starts the server, harasses it with hostile clients (garbage bytes, early
 // disconnects, more connections than it serves), then, beside 500 idle
-// connections from 8 addresses, receives every pose as a well-behaved client and checks the
-// matrices against the pose file or the result folder's result.json (in RAS, as the protocol
-// wants), and finally stops the server with SIGINT.
+// connections from 8 addresses, receives every message as a well-behaved client and checks
+// them against the pose file or the result folder's result.json: the devices in the order of
+// the video (one moving camera, or one per frame with --per-frame-names), the matrices (in RAS,
+// as the protocol wants), the timestamps (the frames' times apart, none in the future) and the
+// STATUS verdict; finally it stops the server with SIGINT.
 //
-// Usage: TestPoseReceiver <vimlop> --poses <poses.json>
-//        TestPoseReceiver <vimlop> --result <result folder>
+// Usage: TestPoseReceiver <vimlop> --poses <poses.json> [serve flags...]
+//        TestPoseReceiver <vimlop> --result <result folder> [serve flags...]
 
 #include <igtlClientSocket.h>
 #include <igtlMessageHeader.h>
+#include <igtlStatusMessage.h>
 #include <igtlTransformMessage.h>
 
 #include <nlohmann/json.hpp>
@@ -24,8 +27,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <map>
 #include <netinet/in.h>
+#include <optional>
 #include <random>
 #include <string>
 #include <sys/socket.h>
@@ -69,13 +72,27 @@ int rawConnect(int port, const std::string& from = "127.0.0.1")
   return fd;
 }
 
-/// Receives TRANSFORM messages until `expected` distinct devices arrived or 10 s passed.
-void receivePoses(int port, size_t expected, std::map<std::string, std::vector<float>>& got)
+/// One message as received: its header, and the matrix of a TRANSFORM or the
+/// code, error name and text of a STATUS.
+struct Received
 {
+  std::string type;
+  std::string device;
+  double timeS = 0.0;
+  std::vector<float> matrix;
+  int code = 0;
+  std::string errorName;
+  std::string text;
+};
+
+/// Receives messages until `expected` arrived or 10 s passed.
+std::vector<Received> receiveMessages(int port, size_t expected)
+{
+  std::vector<Received> got;
   igtl::ClientSocket::Pointer socket = igtl::ClientSocket::New();
   if (socket->ConnectToServer("127.0.0.1", port) != 0)
   {
-    return;
+    return got;
   }
   socket->SetReceiveTimeout(10000);
   const auto start = std::chrono::steady_clock::now();
@@ -89,32 +106,58 @@ void receivePoses(int port, size_t expected, std::map<std::string, std::vector<f
       break;
     }
     header->Unpack();
-    if (std::strcmp(header->GetDeviceType(), "TRANSFORM") != 0)
+    Received r;
+    r.type = header->GetDeviceType();
+    r.device = header->GetDeviceName();
+    igtl::TimeStamp::Pointer stamp = igtl::TimeStamp::New();
+    header->GetTimeStamp(stamp);
+    r.timeS = stamp->GetTimeStamp();
+    igtl::MessageBase::Pointer body;
+    igtl::TransformMessage::Pointer transform = igtl::TransformMessage::New();
+    igtl::StatusMessage::Pointer status = igtl::StatusMessage::New();
+    if (r.type == "TRANSFORM")
+    {
+      body = transform;
+    }
+    else if (r.type == "STATUS")
+    {
+      body = status;
+    }
+    else
     {
       socket->Skip(header->GetBodySizeToRead(), 0);
+      got.push_back(r);
       continue;
     }
-    igtl::TransformMessage::Pointer message = igtl::TransformMessage::New();
-    message->SetMessageHeader(header);
-    message->AllocatePack();
-    socket->Receive(message->GetPackBodyPointer(), message->GetPackBodySize());
-    if (!(message->Unpack(1) & igtl::MessageHeader::UNPACK_BODY))
+    body->SetMessageHeader(header);
+    body->AllocatePack();
+    socket->Receive(body->GetPackBodyPointer(), body->GetPackBodySize());
+    if (!(body->Unpack(1) & igtl::MessageHeader::UNPACK_BODY))
     {
       break; // CRC mismatch
     }
-    igtl::Matrix4x4 m;
-    message->GetMatrix(m);
-    std::vector<float> values;
-    for (int i = 0; i < 4; ++i)
+    if (r.type == "TRANSFORM")
     {
-      for (int j = 0; j < 4; ++j)
+      igtl::Matrix4x4 m;
+      transform->GetMatrix(m);
+      for (int i = 0; i < 4; ++i)
       {
-        values.push_back(m[i][j]);
+        for (int j = 0; j < 4; ++j)
+        {
+          r.matrix.push_back(m[i][j]);
+        }
       }
     }
-    got[message->GetDeviceName()] = values;
+    else
+    {
+      r.code = status->GetCode();
+      r.errorName = status->GetErrorName();
+      r.text = status->GetStatusString();
+    }
+    got.push_back(r);
   }
   socket->CloseSocket();
+  return got;
 }
 
 using Matrix = std::array<double, 16>;
@@ -149,41 +192,73 @@ double determinant3(const std::vector<float>& m)
 
 } // namespace
 
+/// What one message must carry, from the files themselves (not VIMLOP's readers).
+struct Expected
+{
+  std::string type;
+  std::string device;
+  Matrix matrix{};
+  /// The frame's time on the video's clock (result.json's time_s), when known.
+  std::optional<double> frameTimeS;
+  int code = 0;
+  std::string errorName;
+};
+
 int main(int argc, char** argv)
 {
-  const std::string mode = argc == 4 ? argv[2] : "";
+  const std::string mode = argc >= 4 ? argv[2] : "";
   if (mode != "--poses" && mode != "--result")
   {
-    std::fprintf(
-      stderr, "usage: %s <vimlop> --poses <poses.json> | --result <result folder>\n", argv[0]);
+    std::fprintf(stderr,
+      "usage: %s <vimlop> --poses <poses.json> | --result <result folder> [serve flags...]\n",
+      argv[0]);
     return 2;
   }
   std::signal(SIGPIPE, SIG_IGN);
-  // What every device must carry, from the files themselves (not VIMLOP's readers).
-  std::map<std::string, Matrix> expected;
+  std::vector<std::string> serveFlags(argv + 4, argv + argc);
+  const bool perFrame =
+    std::find(serveFlags.begin(), serveFlags.end(), "--per-frame-names") != serveFlags.end();
+  const auto named = std::find(serveFlags.begin(), serveFlags.end(), "--camera-name");
+  const std::string camera =
+    named != serveFlags.end() && named + 1 != serveFlags.end() ? *(named + 1) : "CameraToCT";
+  const auto cameraDevice = [perFrame, &camera](int frameId)
+  { return perFrame ? "VideoCamera_" + std::to_string(frameId) : camera; };
+  std::vector<Expected> expected;
   double expectedScale = 0.0;
   if (mode == "--poses")
   {
     const nlohmann::json poses = nlohmann::json::parse(std::ifstream(argv[3]));
     for (const auto& pose : poses["poses"])
     {
-      expected["VideoCamera_" + std::to_string(pose["frame_id"].get<int>())] =
-        intoRas(toMatrix(pose["camera_to_ct"]));
+      expected.push_back({ "TRANSFORM", cameraDevice(pose["frame_id"].get<int>()),
+        intoRas(toMatrix(pose["camera_to_ct"])) });
     }
   }
   else
   {
     const nlohmann::json result =
       nlohmann::json::parse(std::ifstream(std::string(argv[3]) + "/result.json"));
-    expected["CTFromSfM"] = intoRas(toMatrix(result["transform"]["matrix"]));
+    expected.push_back(
+      { "TRANSFORM", "CTFromSfM", intoRas(toMatrix(result["transform"]["matrix"])) });
     expectedScale = result["transform"]["scale"].get<double>();
     for (const auto& frame : result["frames"])
     {
-      expected["VideoCamera_" + std::to_string(frame["id"].get<int>())] =
-        intoRas(toMatrix(frame["camera_to_ct"]));
+      Expected e{ "TRANSFORM", cameraDevice(frame["id"].get<int>()),
+        intoRas(toMatrix(frame["camera_to_ct"])) };
+      if (frame.contains("time_s"))
+      {
+        e.frameTimeS = frame["time_s"].get<double>();
+      }
+      expected.push_back(e);
+    }
+    if (result.contains("confidence"))
+    {
+      const bool failure = result["confidence"]["failure"].get<bool>();
+      expected.push_back({ "STATUS", camera, {}, std::nullopt, failure ? 2 : 1,
+        failure ? "RegistrationFlagged" : "" });
     }
   }
-  std::printf("expecting %zu devices\n", expected.size());
+  std::printf("expecting %zu messages\n", expected.size());
 
   int out[2];
   if (pipe(out) != 0)
@@ -195,8 +270,16 @@ int main(int argc, char** argv)
   {
     dup2(out[1], STDOUT_FILENO);
     close(out[0]);
-    execl(argv[1], argv[1], "serve", argv[2], argv[3], "--port", "0", "--duration-s", "120",
-      static_cast<char*>(nullptr));
+    std::vector<std::string> args = { argv[1], "serve", argv[2], argv[3], "--port", "0",
+      "--duration-s", "120" };
+    args.insert(args.end(), serveFlags.begin(), serveFlags.end());
+    std::vector<char*> pointers;
+    for (std::string& arg : args)
+    {
+      pointers.push_back(arg.data());
+    }
+    pointers.push_back(nullptr);
+    execv(argv[1], pointers.data());
     _exit(127);
   }
   close(out[1]);
@@ -261,18 +344,33 @@ int main(int argc, char** argv)
   const std::vector<int> idle = openCrowd(500, 8);
   check(std::count(idle.begin(), idle.end(), -1) == 0, "500 idle connections open");
 
-  // A well-behaved client receives every pose, in RAS.
-  std::map<std::string, std::vector<float>> got;
-  receivePoses(port, expected.size(), got);
+  // A well-behaved client receives every message in order: the poses in RAS
+  // stamped with their frames' times, then the verdict.
+  const std::vector<Received> got = receiveMessages(port, expected.size());
+  const double receivedS =
+    std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   check(got.size() == expected.size(),
     "received " + std::to_string(got.size()) + " of " + std::to_string(expected.size()) +
-      " devices");
-  for (const auto& [name, matrix] : expected)
+      " messages");
+  std::optional<Received> firstCamera;
+  std::optional<Expected> firstExpected;
+  double previousS = 0.0;
+  for (size_t k = 0; k < std::min(got.size(), expected.size()); ++k)
   {
-    const auto it = got.find(name);
-    if (it == got.end())
+    const Expected& e = expected[k];
+    const Received& r = got[k];
+    const std::string what = "message " + std::to_string(k) + " (" + e.type + " " + e.device + ")";
+    if (r.type != e.type || r.device != e.device)
     {
-      check(false, name + " received");
+      check(false, what + " received, not " + r.type + " " + r.device);
+      continue;
+    }
+    check(r.timeS <= receivedS && r.timeS > receivedS - 300.0,
+      what + " stamped within the server's life, not in the future");
+    if (e.type == "STATUS")
+    {
+      check(r.code == e.code && r.errorName == e.errorName,
+        what + " says code " + std::to_string(r.code) + " '" + r.errorName + "': " + r.text);
       continue;
     }
     double worst = 0.0;
@@ -280,15 +378,32 @@ int main(int argc, char** argv)
     {
       // Floats on the wire: relative to the element's size (translations are up to 10^3 mm).
       worst =
-        std::max(worst, std::abs(matrix[i] - it->second[i]) / std::max(1.0, std::abs(matrix[i])));
+        std::max(worst, std::abs(e.matrix[i] - r.matrix[i]) / std::max(1.0, std::abs(e.matrix[i])));
     }
     check(worst < 1e-5,
-      name + " matches in RAS (worst relative element error " + std::to_string(worst) + ")");
+      what + " matches in RAS (worst relative element error " + std::to_string(worst) + ")");
+    if (e.device == "CTFromSfM")
+    {
+      continue;
+    }
+    check(r.timeS >= previousS, what + " is not stamped before the frame before it");
+    previousS = r.timeS;
+    if (!firstCamera)
+    {
+      firstCamera = r;
+      firstExpected = e;
+    }
+    else if (e.frameTimeS && firstExpected->frameTimeS)
+    {
+      const double apartS = *e.frameTimeS - *firstExpected->frameTimeS;
+      check(std::abs((r.timeS - firstCamera->timeS) - apartS) < 1e-3,
+        what + " stamped " + std::to_string(apartS) + " s after the first frame, as the video");
+    }
   }
-  if (expectedScale > 0.0 && got.count("CTFromSfM"))
+  if (expectedScale > 0.0 && !got.empty() && got[0].device == "CTFromSfM")
   {
     // The similarity keeps its scale in the 3 x 3 block: the cube root of its determinant.
-    const double scale = std::cbrt(determinant3(got["CTFromSfM"]));
+    const double scale = std::cbrt(determinant3(got[0].matrix));
     check(std::abs(scale - expectedScale) < 1e-5 * expectedScale,
       "CTFromSfM carries the scale " + std::to_string(scale) +
         " (result.json: " + std::to_string(expectedScale) + ")");
@@ -300,9 +415,14 @@ int main(int argc, char** argv)
     close(garbage);
   }
   // A second well-behaved client is served too.
-  std::map<std::string, std::vector<float>> again;
-  receivePoses(port, expected.size(), again);
-  check(again == got, "a second client receives the same poses");
+  const std::vector<Received> again = receiveMessages(port, expected.size());
+  bool same = again.size() == got.size();
+  for (size_t k = 0; same && k < got.size(); ++k)
+  {
+    same = again[k].device == got[k].device && again[k].matrix == got[k].matrix &&
+      again[k].timeS == got[k].timeS;
+  }
+  check(same, "a second client receives the same messages");
   // None of the idle connections was closed to serve the clients.
   int closed = 0;
   for (int fd : idle)

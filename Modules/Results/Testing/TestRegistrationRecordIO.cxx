@@ -45,7 +45,9 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   changed.options.minScale = 0.8;
   changed.options.contourMatch.kappa = 150.0;
   changed.options.method = RegistrationMethod::IMLP;
-  changed.confidence = RegistrationRecord::Confidence{ true, 6.5, "canonical", 120, 17 };
+  changed.confidence =
+    RegistrationRecord::Confidence{ true, 6.5, "contour error 7.0 px", "canonical", 120, 17 };
+  changed.frameTimesS = { 0.0, 0.04, 0.12 };
   changed.versions["opencv"] = "4.6.0";
   changed.frameSources.assign(changed.data.frames.size(), "");
   changed.frameSources.back() = "frame011.png";
@@ -123,11 +125,42 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   ASSERT_TRUE(back.confidence.has_value());
   EXPECT_TRUE(back.confidence->failure);
   EXPECT_DOUBLE_EQ(back.confidence->failureThresholdPx, 6.5);
+  EXPECT_EQ(back.confidence->reason, "contour error 7.0 px");
+  EXPECT_EQ(back.frameTimesS, changed.frameTimesS);
   EXPECT_EQ(back.confidence->init, "canonical");
   EXPECT_EQ(back.confidence->candidates, 120);
   EXPECT_EQ(back.confidence->winner, 17);
   EXPECT_EQ(back.versions.at("opencv"), "4.6.0");
   EXPECT_FALSE(readRegistrationRecord(freshRecordWithoutConfidence()).confidence.has_value());
+}
+
+TEST(RegistrationRecordIO, FrameTimesAreOnEveryFrameOrNone)
+{
+  RegistrationRecord record = fixtures::makeReportRecord();
+  ASSERT_EQ(record.data.frames.size(), 3u);
+  const std::string dir = fixtures::freshTestFolder("record-frame-times").string();
+  record.frameTimesS = { 0.0, 0.5 };
+  expectMessage([&] { writeRegistrationRecord(record, dir); },
+    "a registration record with 2 frame times for 3 frames: one per frame or none");
+  EXPECT_TRUE(readRegistrationRecord(freshRecordWithoutConfidence()).frameTimesS.empty());
+
+  record.frameTimesS = { 0.0, 0.5, 1.0 };
+  writeRegistrationRecord(record, dir);
+  const std::string path = dir + "/result.json";
+  std::string text;
+  {
+    std::ifstream in(path);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const auto lastTime = text.rfind("\"time_s\"");
+  ASSERT_NE(lastTime, std::string::npos);
+  std::ofstream(path) << text.substr(0, lastTime) + "\"time_x\"" + text.substr(lastTime + 8);
+  expectMessage([&] { readRegistrationRecord(dir); },
+    "'" + dir + "': result.json gives time_s for 2 of its 3 frames: on every frame or on none");
+  std::ofstream(path) << text.substr(0, lastTime) + "\"time_s\": \"soon\", \"time_x\"" +
+      text.substr(lastTime + 8);
+  expectMessage([&] { readRegistrationRecord(dir); },
+    "'" + dir + "': frame 2's time_s is not a finite number of seconds");
 }
 
 TEST(RegistrationRecordIO, FramePicturesAreNamedByTheirFrameIds)

@@ -32,6 +32,14 @@ std::vector<FramePose> twoPoses()
   return poses;
 }
 
+/// Camera poses alone, as a pose file gives them.
+ServedPoses only(const std::vector<FramePose>& cameraToCT)
+{
+  ServedPoses poses;
+  poses.cameraToCT = cameraToCT;
+  return poses;
+}
+
 } // namespace
 
 TEST(PoseStreamServer, PublishesPosesInsideACT)
@@ -40,8 +48,10 @@ TEST(PoseStreamServer, PublishesPosesInsideACT)
   EXPECT_GT(server.port(), 0);
   SimilarityTransform ctFromSfm;
   ctFromSfm.scale = 0.5;
-  EXPECT_NO_THROW(server.publish(&ctFromSfm, twoPoses()));
-  EXPECT_NO_THROW(server.publish(nullptr, {}));
+  ServedPoses poses = only(twoPoses());
+  poses.ctFromSfm = ctFromSfm;
+  EXPECT_NO_THROW(server.publish(poses));
+  EXPECT_NO_THROW(server.publish(ServedPoses()));
 }
 
 TEST(PoseStreamServer, RefusesToPublishARepeatedIdOrAPoseBeyondFloats)
@@ -49,16 +59,18 @@ TEST(PoseStreamServer, RefusesToPublishARepeatedIdOrAPoseBeyondFloats)
   PoseStreamServer server(anyFreePort());
   std::vector<FramePose> poses = twoPoses();
   poses[1].frameId = 0;
-  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(nullptr, poses); }),
+  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(only(poses)); }),
     "pose server: refusing to publish: pose 1: frame id 0 repeats pose 0's");
   poses = twoPoses();
   poses[0].cameraToWorld.centre.z() = 4e38; // -inf as the protocol's float
-  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(nullptr, poses); }),
+  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(only(poses)); }),
     "pose server: refusing to publish: pose 0: the camera of frame 0 lies 4e+38 mm from the "
     "origin, farther than 1 km: not a pose in a CT");
   SimilarityTransform ctFromSfm;
   ctFromSfm.translation.x() = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(&ctFromSfm, twoPoses()); }),
+  ServedPoses withT = only(twoPoses());
+  withT.ctFromSfm = ctFromSfm;
+  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(withT); }),
     "pose server: refusing to publish: CTFromSfM is not a finite similarity within 1 km of the "
     "CT origin");
 }
@@ -114,7 +126,7 @@ TEST(PoseStreamServer, ARefusedConnectionAndADroppedClientAreToldNotSilent)
   options.maxPendingBytes = 4096;
   options.onNotice = [&](const std::string& text) { notices.push_back(text); };
   PoseStreamServer server(options);
-  server.publish(nullptr, twoPoses());
+  server.publish(only(twoPoses()));
   const int reader = connectTo(server.port());
   serveFor(server, 100);
   std::vector<int> refused;
@@ -136,7 +148,7 @@ TEST(PoseStreamServer, ARefusedConnectionAndADroppedClientAreToldNotSilent)
   // then its 4 KiB of pending poses, and it is dropped with a word.
   for (int i = 0; i < 100000 && server.clientCount() == 1; ++i)
   {
-    server.publish(nullptr, twoPoses());
+    server.publish(only(twoPoses()));
   }
   EXPECT_EQ(server.clientCount(), 0);
   EXPECT_EQ(server.droppedCount(), 1);
@@ -164,7 +176,7 @@ TEST(PoseStreamServer, OnePublicationLargerThanThePendingLimitReachesAClientWhol
   {
     many[i].frameId = i;
   }
-  server.publish(nullptr, many);
+  server.publish(only(many));
   const std::size_t expected = 40000 * (58 + 48); // OpenIGTLink header + TRANSFORM body
   std::size_t received = 0;
   const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
@@ -198,7 +210,7 @@ TEST(PoseStreamServer, AClientThatStopsReadingIsDroppedAfterTheStallTimeout)
   // 40 000 publications (8 MB) overflow the loopback socket buffers.
   for (int i = 0; i < 40000; ++i)
   {
-    server.publish(nullptr, twoPoses());
+    server.publish(only(twoPoses()));
   }
   serveFor(server, 600);
   EXPECT_EQ(server.clientCount(), 0);
@@ -226,7 +238,7 @@ TEST(PoseStreamServer, ManyConnectionsFromOneAddressReplaceItsMostIdleAndLeaveOt
   options.maxClientsPerAddress = 3;
   options.onNotice = [&](const std::string& text) { notices.push_back(text); };
   PoseStreamServer server(options);
-  server.publish(nullptr, twoPoses());
+  server.publish(only(twoPoses()));
   const int navigation = connectTo(server.port(), "127.0.0.1");
   serveFor(server, 100);
   std::vector<int> crowd;
@@ -265,7 +277,7 @@ TEST(PoseStreamServer, OnlyAllowedAddressesConnectWhenAListIsGiven)
   options.allowedClients = { "127.0.0.2", "127.0.1.0/24" };
   options.onNotice = [&](const std::string& text) { notices.push_back(text); };
   PoseStreamServer server(options);
-  server.publish(nullptr, twoPoses());
+  server.publish(only(twoPoses()));
   const int listed = connectTo(server.port(), "127.0.0.2");
   const int inBlock = connectTo(server.port(), "127.0.1.77");
   const int local = connectTo(server.port(), "127.0.0.1");
@@ -302,4 +314,190 @@ TEST(PoseStreamServer, RefusesAnAllowListEntryThatIsNotAnAddressOrBlock)
   EXPECT_EQ(fixtures::errorMessageOf([&] { PoseStreamServer server(none); }),
     "the port must lie in [0, 65535], at least one client (and one per address) must be allowed "
     "and the stall timeout must be positive");
+}
+
+namespace
+{
+
+/// One OpenIGTLink message as a receiver sees it (header fields, body bytes).
+struct WireMessage
+{
+  std::string type;
+  std::string device;
+  double timeS = 0.0;
+  std::string body;
+};
+
+std::uint64_t bigEndian(const std::string& bytes, size_t at, int count)
+{
+  std::uint64_t value = 0;
+  for (int i = 0; i < count; ++i)
+  {
+    value = (value << 8) | static_cast<unsigned char>(bytes[at + static_cast<size_t>(i)]);
+  }
+  return value;
+}
+
+std::string field(const std::string& bytes, size_t at, size_t length)
+{
+  const std::string raw = bytes.substr(at, length);
+  return raw.substr(0, raw.find('\0'));
+}
+
+/// Everything `server` sends one new client within `ms`, cut into messages
+/// by the protocol's 58-byte header (version, type, device, time, body size, CRC).
+std::vector<WireMessage> receiveAll(PoseStreamServer& server, int ms)
+{
+  const int fd = connectTo(server.port());
+  serveFor(server, ms);
+  std::string bytes;
+  char buffer[4096];
+  for (ssize_t got = 0; (got = recv(fd, buffer, sizeof(buffer), MSG_DONTWAIT)) > 0;)
+  {
+    bytes.append(buffer, static_cast<size_t>(got));
+  }
+  close(fd);
+  std::vector<WireMessage> messages;
+  for (size_t at = 0; at + 58 <= bytes.size();)
+  {
+    WireMessage m;
+    m.type = field(bytes, at + 2, 12);
+    m.device = field(bytes, at + 14, 20);
+    m.timeS = static_cast<double>(bigEndian(bytes, at + 34, 4)) +
+      static_cast<double>(bigEndian(bytes, at + 38, 4)) / 4294967296.0;
+    const size_t bodySize = bigEndian(bytes, at + 42, 8);
+    m.body = bytes.substr(at + 58, bodySize);
+    messages.push_back(m);
+    at += 58 + bodySize;
+  }
+  return messages;
+}
+
+double wallClockS()
+{
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+ServedPoses threeFramesOfAVideo()
+{
+  ServedPoses poses;
+  poses.cameraToCT.resize(3);
+  for (int i = 0; i < 3; ++i)
+  {
+    poses.cameraToCT[static_cast<size_t>(i)].frameId = 10 + i;
+  }
+  poses.frameTimesS = { 0.4, 0.44, 0.48 };
+  poses.ctFromSfm = SimilarityTransform();
+  return poses;
+}
+
+} // namespace
+
+TEST(PoseStreamServer, OneMovingCameraCarriesTheVideoTimesEndingAtThePublication)
+{
+  PoseStreamServer server(anyFreePort());
+  const double beforeS = wallClockS();
+  server.publish(threeFramesOfAVideo());
+  const double afterS = wallClockS();
+  const std::vector<WireMessage> got = receiveAll(server, 200);
+  ASSERT_EQ(got.size(), 4u);
+  EXPECT_EQ(got[0].device, "CTFromSfM");
+  for (size_t i = 1; i < 4; ++i)
+  {
+    EXPECT_EQ(got[i].type, "TRANSFORM");
+    EXPECT_EQ(got[i].device, "CameraToCT") << i;
+  }
+  // The newest frame at the moment of publication, the others 40 and 80 ms before it.
+  EXPECT_GE(got[3].timeS, beforeS - 1e-6);
+  EXPECT_LE(got[3].timeS, afterS + 1e-6);
+  EXPECT_NEAR(got[3].timeS - got[2].timeS, 0.04, 1e-6);
+  EXPECT_NEAR(got[2].timeS - got[1].timeS, 0.04, 1e-6);
+  EXPECT_NEAR(got[0].timeS, got[3].timeS, 1e-6);
+}
+
+TEST(PoseStreamServer, PosesWithoutTimesAllCarryTheirPublicationsTime)
+{
+  PoseStreamServer server(anyFreePort());
+  const double beforeS = wallClockS();
+  server.publish(only(twoPoses()));
+  const std::vector<WireMessage> got = receiveAll(server, 200);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_GE(got[0].timeS, beforeS - 1e-6);
+  EXPECT_EQ(got[0].timeS, got[1].timeS);
+}
+
+TEST(PoseStreamServer, PerFrameNamesGiveEachFrameItsOwnDevice)
+{
+  PoseStreamServerOptions options = anyFreePort();
+  options.cameraNames = CameraDeviceNames::OnePerFrame;
+  PoseStreamServer server(options);
+  server.publish(threeFramesOfAVideo());
+  const std::vector<WireMessage> got = receiveAll(server, 200);
+  ASSERT_EQ(got.size(), 4u);
+  EXPECT_EQ(got[1].device, "VideoCamera_10");
+  EXPECT_EQ(got[3].device, "VideoCamera_12");
+}
+
+TEST(PoseStreamServer, TheVerdictFollowsThePosesAsAStatusMessage)
+{
+  PoseStreamServerOptions options = anyFreePort();
+  options.cameraName = "Endoscope";
+  PoseStreamServer server(options);
+  for (const bool flagged : { false, true })
+  {
+    ServedPoses poses = threeFramesOfAVideo();
+    poses.verdict = PoseVerdict{ flagged, flagged ? "contour error 9.0 px" : "ok" };
+    server.publish(poses);
+    const std::vector<WireMessage> got = receiveAll(server, 200);
+    ASSERT_EQ(got.size(), 5u);
+    EXPECT_EQ(got[3].device, "Endoscope");
+    const WireMessage& status = got[4];
+    EXPECT_EQ(status.type, "STATUS");
+    EXPECT_EQ(status.device, "Endoscope");
+    // Body: code (2 bytes), subcode (8), error name (20), status text.
+    EXPECT_EQ(bigEndian(status.body, 0, 2), flagged ? 2u : 1u);
+    EXPECT_EQ(field(status.body, 10, 20), flagged ? "RegistrationFlagged" : "");
+    EXPECT_EQ(
+      field(status.body, 30, status.body.size() - 30), flagged ? "contour error 9.0 px" : "ok");
+  }
+}
+
+TEST(PoseStreamServer, ListensOnAHostNameAndRefusesAnEmptyOne)
+{
+  PoseStreamServerOptions options = anyFreePort();
+  options.host = "localhost";
+  PoseStreamServer server(options);
+  server.publish(only(twoPoses()));
+  EXPECT_EQ(receiveAll(server, 200).size(), 2u);
+  options.host = "";
+  EXPECT_EQ(fixtures::errorMessageOf([&] { PoseStreamServer refused(options); }),
+    "'' is neither an IPv4 address nor a host name with one (empty)");
+}
+
+TEST(PoseStreamServer, RefusesNamesOpenIGTLinkWouldCutAndTimesThatDoNotMatchThePoses)
+{
+  for (const std::string name : { std::string(), std::string(21, 'c') })
+  {
+    PoseStreamServerOptions options = anyFreePort();
+    options.cameraName = name;
+    EXPECT_EQ(fixtures::errorMessageOf([&] { PoseStreamServer server(options); }),
+      "the camera's device name '" + name + "' must have 1 to 20 characters (OpenIGTLink's limit)");
+  }
+  PoseStreamServerOptions options = anyFreePort();
+  options.cameraNames = CameraDeviceNames::OnePerFrame;
+  PoseStreamServer server(options);
+  ServedPoses poses = threeFramesOfAVideo();
+  poses.cameraToCT[2].frameId = 123456789;
+  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(poses); }),
+    "pose server: refusing to publish: frame 123456789's device name VideoCamera_123456789 is "
+    "longer than OpenIGTLink's 20 characters");
+  poses = threeFramesOfAVideo();
+  poses.frameTimesS.pop_back();
+  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(poses); }),
+    "pose server: refusing to publish: 2 frame times for 3 poses: one finite time per pose, or "
+    "none");
+  poses.frameTimesS.push_back(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(poses); }),
+    "pose server: refusing to publish: 3 frame times for 3 poses: one finite time per pose, or "
+    "none");
 }

@@ -1,0 +1,42 @@
+#ifndef vimlop_ServedPoses_h
+#define vimlop_ServedPoses_h
+
+#include <vimlop/Core/FramePose.h>
+#include <vimlop/Core/SimilarityTransform.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vimlop
+{
+
+/// @brief A registration's own judgement of its result (V13), told to
+/// clients as an OpenIGTLink STATUS message after the poses.
+struct PoseVerdict
+{
+  /// True when the registration flagged its result as a failure: do not navigate with it.
+  bool flagged = false;
+  /// For people, e.g. "contour error 2.1 px, within the threshold 6 px" or
+  /// why the result is flagged.
+  std::string text;
+};
+
+/// @brief What a pose server sends: the poses of one registration (or of a pose file).
+struct ServedPoses
+{
+  /// T, SfM frame to CT frame, sent as `CTFromSfM`; none when only camera poses are known.
+  std::optional<SimilarityTransform> ctFromSfm;
+  /// Camera-to-CT pose of every frame, in the order of the video.
+  std::vector<FramePose> cameraToCT;
+  /// Time of each pose's frame on the video's clock, s, in the same order;
+  /// empty when unknown (a pose file): the poses then all carry the time of
+  /// their publication.
+  std::vector<double> frameTimesS;
+  /// The registration's verdict; none for poses that no registration judged.
+  std::optional<PoseVerdict> verdict;
+};
+
+} // namespace vimlop
+
+#endif
