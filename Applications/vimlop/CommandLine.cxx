@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -113,6 +114,80 @@ std::vector<double> parseNumbers(const std::string& text, const std::string& wha
     }
   }
   return numbers;
+}
+
+namespace
+{
+
+/// Edits (insertions, deletions, substitutions) that turn `a` into `b`.
+size_t editDistance(const std::string& a, const std::string& b)
+{
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j)
+  {
+    row[j] = j;
+  }
+  for (size_t i = 1; i <= a.size(); ++i)
+  {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j)
+    {
+      const size_t above = row[j];
+      row[j] = std::min({ row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1]) });
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+} // namespace
+
+std::string unknownSubcommandMessage(const CLI::App& app, int argc, const char* const* argv)
+{
+  const CLI::App* command = &app;
+  std::string path = "vimlop";
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string word = argv[i];
+    const std::vector<const CLI::App*> children =
+      command->get_subcommands([](const CLI::App*) { return true; });
+    if (word.empty() || word[0] == '-' || children.empty())
+    {
+      return std::string(); // options, or a command without subcommands: CLI11 checks them
+    }
+    const CLI::App* match = nullptr;
+    const CLI::App* nearest = nullptr;
+    size_t nearestDistance = word.size();
+    for (const CLI::App* child : children)
+    {
+      const size_t distance = editDistance(word, child->get_name());
+      match = distance == 0 ? child : match;
+      if (distance < nearestDistance)
+      {
+        nearest = child;
+        nearestDistance = distance;
+      }
+    }
+    if (!match)
+    {
+      // At most a third of the word wrong (and 2 edits): a typo, not another word.
+      const bool close = nearest && nearestDistance <= std::max<size_t>(2, word.size() / 3);
+      return "'" + word + "' is not a command of " + path +
+        (close ? "; did you mean '" + nearest->get_name() + "'?" : std::string()) + " (" + path +
+        " --help lists them)";
+    }
+    command = match;
+    path += " " + word;
+  }
+  return std::string();
+}
+
+std::string parseErrorMessage(const CLI::ParseError& error)
+{
+  const std::string text = error.what();
+  return (text == "A subcommand is required" ? std::string("give a command") : text) +
+    " (--help lists the commands and options)";
 }
 
 } // namespace vimlop

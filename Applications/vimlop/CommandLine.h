@@ -16,7 +16,8 @@
 namespace CLI
 {
 class App;
-}
+class ParseError;
+} // namespace CLI
 
 namespace vimlop
 {
@@ -96,6 +97,17 @@ void addPoseServingOptions(CLI::App& command, PoseServingOptions& options);
  * the verdict of its confidence (when it has one).
  */
 ServedPoses servedPosesOf(const RegistrationRecord& record);
+
+/**
+ * @brief For a command line whose command word names no command of `app`
+ * (e.g. `vimlop regster`, `vimlop evaluate speeed`): the error to print,
+ * suggesting the nearest command when the word is a likely typo; empty when
+ * every command word is known (CLI11 would only say that a command is required).
+ */
+std::string unknownSubcommandMessage(const CLI::App& app, int argc, const char* const* argv);
+
+/// @brief A CLI11 parse error in words for `vimlop: error:` (exit code 1, as every error).
+std::string parseErrorMessage(const CLI::ParseError& error);
 
 /// @brief Prints each of `lines` (a report's summaryLines) to stdout.
 void printLines(const std::vector<std::string>& lines);

@@ -1,6 +1,7 @@
 // vimlop: the command-line program. Each subcommand lives in its own file and
-// registers itself here; errors the user can act on are vimlop::Error and end
-// the program with one line on stderr and exit code 1.
+// registers itself here; errors the user can act on (vimlop::Error, and a
+// command line CLI11 cannot parse) end the program with one `vimlop: error:`
+// line on stderr and exit code 1.
 
 #include "CommandLine.h"
 #include "Commands.h"
@@ -35,13 +36,24 @@ int main(int argc, char** argv)
   vimlop::addReportCommand(app);
   vimlop::addRegisterCommand(app);
   vimlop::addCanonicalCommand(app);
+  if (const std::string unknown = vimlop::unknownSubcommandMessage(app, argc, argv);
+      !unknown.empty())
+  {
+    std::cerr << "vimlop: error: " << unknown << "\n";
+    return 1;
+  }
   try
   {
     app.parse(argc, argv);
   }
   catch (const CLI::ParseError& e)
   {
-    return app.exit(e);
+    if (e.get_exit_code() == 0)
+    {
+      return app.exit(e); // --help, --version
+    }
+    std::cerr << "vimlop: error: " << vimlop::parseErrorMessage(e) << "\n";
+    return 1;
   }
   catch (const vimlop::Error& e)
   {

@@ -9,7 +9,7 @@ namespace vimlop
 {
 
 /**
- * @brief The mesh with its normals into the air (DESIGN.md section 4), by
+ * @brief The mesh with its normals into the air (Documentation/Conventions.md), by
  * the one rule every loader applies: a closed surface whose signed volume is
  * positive has normals pointing out of the air it encloses, and is flipped;
  * any other mesh is kept as it is.

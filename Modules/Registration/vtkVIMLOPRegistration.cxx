@@ -343,6 +343,7 @@ int vtkVIMLOPRegistration::RequestData(
       auto callback = [this, maxIterations](const vimlop::IterationRecord& record)
       {
         this->UpdateProgress(std::min(1.0, record.iteration / maxIterations));
+        this->Current = record;
         this->InvokeEvent(IterationEvent, const_cast<vimlop::IterationRecord*>(&record));
         return !this->GetAbortExecute();
       };

@@ -278,6 +278,26 @@ public:
   {
     return this->Result.iterations;
   }
+  ///@{
+  /**
+   * @brief The iteration an IterationEvent reports, for observers that cannot
+   * read its call data (Python): its number, the scale of the estimate it
+   * ended with and its mean contour error (px). GetTransform() changes only
+   * when the execution ends; after it these hold the last iteration's.
+   */
+  int GetCurrentIteration() const
+  {
+    return this->Current.iteration;
+  }
+  double GetCurrentScale() const
+  {
+    return this->Current.updated.scale;
+  }
+  double GetCurrentContourErrorPx() const
+  {
+    return this->Current.contourErrorPx;
+  }
+  ///@}
   double GetResidualErrorMm() const
   {
     return this->Result.residualErrorMm;
@@ -354,6 +374,7 @@ private:
 
   vimlop::RegistrationData Data;
   vimlop::RegistrationResult Result;
+  vimlop::IterationRecord Current; ///< the iteration an IterationEvent reports
   vimlop::MultiStartResult Outcome;
 };
 

@@ -204,6 +204,15 @@ struct Expected
   std::string errorName;
 };
 
+Expected transformOf(const std::string& device, const Matrix& matrix)
+{
+  Expected e;
+  e.type = "TRANSFORM";
+  e.device = device;
+  e.matrix = matrix;
+  return e;
+}
+
 int main(int argc, char** argv)
 {
   const std::string mode = argc >= 4 ? argv[2] : "";
@@ -230,21 +239,20 @@ int main(int argc, char** argv)
     const nlohmann::json poses = nlohmann::json::parse(std::ifstream(argv[3]));
     for (const auto& pose : poses["poses"])
     {
-      expected.push_back({ "TRANSFORM", cameraDevice(pose["frame_id"].get<int>()),
-        intoRas(toMatrix(pose["camera_to_ct"])) });
+      expected.push_back(transformOf(
+        cameraDevice(pose["frame_id"].get<int>()), intoRas(toMatrix(pose["camera_to_ct"]))));
     }
   }
   else
   {
     const nlohmann::json result =
       nlohmann::json::parse(std::ifstream(std::string(argv[3]) + "/result.json"));
-    expected.push_back(
-      { "TRANSFORM", "CTFromSfM", intoRas(toMatrix(result["transform"]["matrix"])) });
+    expected.push_back(transformOf("CTFromSfM", intoRas(toMatrix(result["transform"]["matrix"]))));
     expectedScale = result["transform"]["scale"].get<double>();
     for (const auto& frame : result["frames"])
     {
-      Expected e{ "TRANSFORM", cameraDevice(frame["id"].get<int>()),
-        intoRas(toMatrix(frame["camera_to_ct"])) };
+      Expected e =
+        transformOf(cameraDevice(frame["id"].get<int>()), intoRas(toMatrix(frame["camera_to_ct"])));
       if (frame.contains("time_s"))
       {
         e.frameTimeS = frame["time_s"].get<double>();

@@ -72,12 +72,15 @@ registration.SetStallRelativeDecrease(parameters["stall_relative_decrease"])
 registration.SetStallIterations(parameters["stall_iterations"])
 registration.SetMaxIterations(parameters["max_iterations"])
 
-# One IterationEvent per iteration; the live transform can be read in it.
+# One IterationEvent per iteration; its estimate is read with GetCurrent...()
+# (GetTransform() changes when the execution ends).
 scales = []
+iterations = []
 
 
 def on_iteration(caller, event):
-    scales.append(caller.GetTransform().GetMatrix().Determinant() ** (1.0 / 3.0))
+    scales.append(caller.GetCurrentScale())
+    iterations.append(caller.GetCurrentIteration())
 
 
 registration.AddObserver(vimlop.vtkVIMLOPRegistration.IterationEvent, on_iteration)
@@ -116,6 +119,9 @@ check(tre < 0.5, "the registration is accurate: TRE %.4f mm < 0.5 mm" % tre)
 check(abs(tre - cpp_tre) < 0.01, "Python reproduces the C++ run within 0.01 mm of TRE")
 check(len(scales) > 0 and len(scales) <= registration.GetNumberOfIterations(),
       "one IterationEvent per updating iteration (%d events)" % len(scales))
+check(iterations == sorted(set(iterations)), "the events report successive iterations")
+check(len(set(round(s, 6) for s in scales)) > 1,
+      "the observer sees the scale change: %.4f .. %.4f" % (min(scales), max(scales)))
 poses = registration.GetCameraPoses()
 check(poses.GetNumberOfRows() == len(result["frames"]),
       "camera pose table: %d rows for %d frames" % (poses.GetNumberOfRows(), len(result["frames"])))
