@@ -152,8 +152,8 @@ PoseStreamServer::PoseStreamServer(const PoseStreamServerOptions& options)
 {
   if (options.cameraName.empty() || options.cameraName.size() > maxDeviceNameLength)
   {
-    throw Error("the camera's device name '" + options.cameraName +
-      "' must have 1 to 20 characters (OpenIGTLink's limit)");
+    throw Error("the camera's device name '" + options.cameraName + "' must have 1 to " +
+      std::to_string(maxDeviceNameLength) + " characters (OpenIGTLink's limit)");
   }
   const in_addr address = resolveHost(options.host);
   const bool loopback = (ntohl(address.s_addr) >> 24) == 127;
@@ -249,10 +249,11 @@ void PoseStreamServer::publish(const ServedPoses& poses)
     }
     for (const FramePose& pose : cameraToCT)
     {
-      if (deviceNameOf(this->Options, pose.frameId).size() > maxDeviceNameLength)
+      const std::string name = deviceNameOf(this->Options, pose.frameId);
+      if (name.size() > maxDeviceNameLength)
       {
-        throw Error("frame " + std::to_string(pose.frameId) + "'s device name VideoCamera_" +
-          std::to_string(pose.frameId) + " is longer than OpenIGTLink's 20 characters");
+        throw Error("frame " + std::to_string(pose.frameId) + "'s device name " + name +
+          " is longer than OpenIGTLink's " + std::to_string(maxDeviceNameLength) + " characters");
       }
     }
   }
