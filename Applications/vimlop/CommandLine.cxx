@@ -6,7 +6,9 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -157,30 +159,63 @@ std::string unknownSubcommandMessage(const CLI::App& app, int argc, const char* 
       return std::string(); // options, or a command without subcommands: CLI11 checks them
     }
     const CLI::App* match = nullptr;
-    const CLI::App* nearest = nullptr;
-    size_t nearestDistance = word.size();
+    std::vector<std::string> names;
     for (const CLI::App* child : children)
     {
-      const size_t distance = editDistance(word, child->get_name());
-      match = distance == 0 ? child : match;
-      if (distance < nearestDistance)
-      {
-        nearest = child;
-        nearestDistance = distance;
-      }
+      match = child->get_name() == word ? child : match;
+      names.push_back(child->get_name());
     }
     if (!match)
     {
-      // At most a third of the word wrong (and 2 edits): a typo, not another word.
-      const bool close = nearest && nearestDistance <= std::max<size_t>(2, word.size() / 3);
+      const std::string near = nearestName(word, names);
       return "'" + word + "' is not a command of " + path +
-        (close ? "; did you mean '" + nearest->get_name() + "'?" : std::string()) + " (" + path +
+        (near.empty() ? std::string() : "; did you mean '" + near + "'?") + " (" + path +
         " --help lists them)";
     }
     command = match;
     path += " " + word;
   }
   return std::string();
+}
+
+std::string nearestName(const std::string& word, const std::vector<std::string>& names)
+{
+  std::string nearest;
+  size_t nearestDistance = word.size();
+  for (const std::string& name : names)
+  {
+    const size_t distance = editDistance(word, name);
+    if (distance < nearestDistance)
+    {
+      nearest = name;
+      nearestDistance = distance;
+    }
+  }
+  // At most a third of the word wrong (and 2 edits): a typo, not another word.
+  return !nearest.empty() && nearestDistance <= std::max<size_t>(2, word.size() / 3) ? nearest : "";
+}
+
+namespace
+{
+std::atomic<bool> interruptRequested{ false };
+}
+
+InterruptGuard::InterruptGuard()
+{
+  interruptRequested = false;
+  this->PreviousInt = std::signal(SIGINT, [](int) { interruptRequested = true; });
+  this->PreviousTerm = std::signal(SIGTERM, [](int) { interruptRequested = true; });
+}
+
+InterruptGuard::~InterruptGuard()
+{
+  std::signal(SIGINT, this->PreviousInt);
+  std::signal(SIGTERM, this->PreviousTerm);
+}
+
+bool InterruptGuard::requested()
+{
+  return interruptRequested;
 }
 
 std::string parseErrorMessage(const CLI::ParseError& error)

@@ -106,6 +106,12 @@ ServedPoses servedPosesOf(const RegistrationRecord& record);
  */
 std::string unknownSubcommandMessage(const CLI::App& app, int argc, const char* const* argv);
 
+/**
+ * @brief The name of `names` nearest to `word` when `word` looks like a typo
+ * of it (at most a third of it wrong, and 2 edits); empty otherwise.
+ */
+std::string nearestName(const std::string& word, const std::vector<std::string>& names);
+
 /// @brief A CLI11 parse error in words for `vimlop: error:` (exit code 1, as every error).
 std::string parseErrorMessage(const CLI::ParseError& error);
 
@@ -118,6 +124,26 @@ void printLines(const std::vector<std::string>& lines);
  * @throws vimlop::Error if the file cannot be written.
  */
 void writeJsonFile(const nlohmann::json& json, const std::string& path);
+
+/**
+ * @brief While it lives, Ctrl-C and SIGTERM ask the running command to stop
+ * (requested() turns true) instead of ending the program, so that it can
+ * stop its work cleanly; the previous handlers come back after.
+ */
+class InterruptGuard
+{
+public:
+  InterruptGuard();
+  ~InterruptGuard();
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+  /// @brief Whether Ctrl-C or SIGTERM came since the guard was made.
+  static bool requested();
+
+private:
+  void (*PreviousInt)(int) = nullptr;
+  void (*PreviousTerm)(int) = nullptr;
+};
 
 /**
  * @brief Thrown by a subcommand to end the program with `code` after it has

@@ -1,3 +1,4 @@
+#include "CommandLine.h"
 #include "Commands.h"
 
 #include "TerminalProgress.h"
@@ -10,7 +11,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -60,14 +60,8 @@ void runEvaluateWarp(EvaluateWarpOptions options)
   }
   nlohmann::json json = report.toJson();
   json["ct"] = options.ct;
-  {
-    std::ofstream out(outPath);
-    out << json.dump(2) << "\n";
-    if (!out)
-    {
-      throw Error("'" + options.out + "': could not write the result");
-    }
-  }
+  // Atomically: a cohort takes a result file that exists for a complete one.
+  writeJsonFile(json, options.out);
   std::printf(
     "vimlop evaluate warp: %s -> %s\n", report.summaryText().c_str(), options.out.c_str());
   std::fflush(stdout);

@@ -14,7 +14,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -27,21 +26,6 @@ namespace vimlop
 
 namespace
 {
-
-std::atomic<bool> interrupted{ false };
-
-/// Ctrl-C (or SIGTERM) asks the registration to stop; the previous handlers come back after.
-struct InterruptGuard
-{
-  using Handler = void (*)(int);
-  Handler previousInt = std::signal(SIGINT, [](int) { interrupted = true; });
-  Handler previousTerm = std::signal(SIGTERM, [](int) { interrupted = true; });
-  ~InterruptGuard()
-  {
-    std::signal(SIGINT, this->previousInt);
-    std::signal(SIGTERM, this->previousTerm);
-  }
-};
 
 /// --serve from the moment the result is usable, beside the slow outputs: the
 /// poses are served in a thread of their own until Ctrl-C or --duration-s;
@@ -112,8 +96,7 @@ struct RegisterCommand
 void runRegister(RegisterCommand c)
 {
   const auto start = std::chrono::steady_clock::now();
-  interrupted = false;
-  InterruptGuard guard;
+  const InterruptGuard guard;
   // In --json mode only the JSON reaches stdout, and only warnings and errors stderr.
   std::ostringstream quiet;
   std::ostream& log = c.json ? quiet : std::cerr;
@@ -151,7 +134,7 @@ void runRegister(RegisterCommand c)
   }
   VideoRegistrationPipeline pipeline(c.pipeline);
   pipeline.setLog(&log);
-  pipeline.setProgress([](const std::string&, double) { return !interrupted; });
+  pipeline.setProgress([](const std::string&, double) { return !InterruptGuard::requested(); });
   pipeline.prepare(inputs);
   const std::vector<FramePose> truth =
     c.truth.empty() ? std::vector<FramePose>() : readFramePoses(c.truth);
@@ -162,9 +145,8 @@ void runRegister(RegisterCommand c)
   }
   catch (const PipelineCancelled&)
   {
-    interrupted = true;
   }
-  if (interrupted)
+  if (InterruptGuard::requested())
   {
     std::cerr << "vimlop: interrupted; no result was written\n";
     throw ExitRequest{ 130 };
@@ -198,7 +180,7 @@ void runRegister(RegisterCommand c)
       serving.start(c.serving, servedPosesOf(record));
     }
   };
-  c.outputs.keepGoing = [] { return !interrupted; };
+  c.outputs.keepGoing = [] { return !InterruptGuard::requested(); };
   try
   {
     writeRegistrationOutputs(

@@ -76,4 +76,37 @@ void writeFileAtomically(const std::string& path, const std::string& contents)
   syncToDisk(target.has_parent_path() ? target.parent_path().string() : std::string("."));
 }
 
+std::string readWholeFile(const std::string& path)
+{
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  std::string bytes;
+  int error = fd < 0 ? errno : 0;
+  char buffer[65536];
+  while (error == 0)
+  {
+    const ssize_t n = ::read(fd, buffer, sizeof(buffer));
+    if (n > 0)
+    {
+      bytes.append(buffer, static_cast<size_t>(n));
+    }
+    else if (n == 0)
+    {
+      break;
+    }
+    else if (errno != EINTR)
+    {
+      error = errno; // a folder: EISDIR
+    }
+  }
+  if (fd >= 0)
+  {
+    ::close(fd);
+  }
+  if (error != 0)
+  {
+    throw Error("'" + path + "': cannot read it (" + std::strerror(error) + ")");
+  }
+  return bytes;
+}
+
 } // namespace vimlop

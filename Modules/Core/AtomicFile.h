@@ -24,6 +24,13 @@ void syncToDisk(const std::string& path);
  */
 void writeFileAtomically(const std::string& path, const std::string& contents);
 
+/**
+ * @brief The whole of a file, its bytes as they are (a file written by
+ * writeFileAtomically() is always whole).
+ * @throws vimlop::Error "'path': cannot read it (reason)".
+ */
+std::string readWholeFile(const std::string& path);
+
 } // namespace vimlop
 
 #endif

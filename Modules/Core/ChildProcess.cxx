@@ -8,15 +8,15 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <poll.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-extern char** environ;
 
 namespace vimlop
 {
@@ -34,55 +34,220 @@ double nowS()
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-/// posix_spawn's file actions, destroyed on every path out.
-struct FileActions
+void closeOnce(int& fd)
 {
-  posix_spawn_file_actions_t actions;
-  FileActions() { posix_spawn_file_actions_init(&this->actions); }
-  ~FileActions() { posix_spawn_file_actions_destroy(&this->actions); }
-  FileActions(const FileActions&) = delete;
-  FileActions& operator=(const FileActions&) = delete;
+  if (fd >= 0)
+  {
+    ::close(fd);
+    fd = -1;
+  }
+}
+
+/// A file descriptor closed on every path out.
+struct Descriptor
+{
+  int fd = -1;
+  Descriptor() = default;
+  explicit Descriptor(int d)
+    : fd(d)
+  {
+  }
+  ~Descriptor() { closeOnce(this->fd); }
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
 };
 
-/// Starts the program (searched on PATH when its name has no '/') with its
-/// stdin /dev/null and the file actions given.
-pid_t spawn(const std::vector<std::string>& arguments, FileActions& files,
-  const posix_spawnattr_t* attributes = nullptr)
+/// What a child gets before its program starts: its stdout and stderr
+/// (descriptors of the parent's, -1 to share the parent's own), its folder,
+/// its process group and whether it dies with the thread that started it.
+struct SpawnSettings
+{
+  int stdoutFd = -1;
+  int stderrFd = -1;
+  const std::string* workingDirectory = nullptr;
+  bool ownProcessGroup = false;
+  bool endsWithParent = false;
+};
+
+/// The program's path: searched on PATH (as execvp would) when it has no '/'.
+/// Done in the parent, before the fork, because the child may only make
+/// async-signal-safe calls.
+std::string programPath(const std::string& program)
+{
+  if (program.find('/') != std::string::npos)
+  {
+    return program;
+  }
+  const char* path = std::getenv("PATH");
+  std::string folders = path && *path ? path : "/usr/local/bin:/usr/bin:/bin";
+  size_t begin = 0;
+  while (begin <= folders.size())
+  {
+    const size_t end = std::min(folders.find(':', begin), folders.size());
+    const std::string folder = end > begin ? folders.substr(begin, end - begin) : ".";
+    const std::string candidate = folder + "/" + program;
+    struct stat info
+    {
+    };
+    if (::stat(candidate.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
+      ::access(candidate.c_str(), X_OK) == 0)
+    {
+      return candidate;
+    }
+    begin = end + 1;
+  }
+  return std::string();
+}
+
+/// Why a child could not start: the step that failed and its errno, sent
+/// to the parent through a pipe that closes when its program starts.
+struct SpawnFailure
+{
+  int step = 0; // 1: its folder, 2: its outputs, 3: exec
+  int error = 0;
+};
+
+[[noreturn]] void failInChild(int reportFd, int step)
+{
+  const SpawnFailure failure{ step, errno };
+  [[maybe_unused]] const ssize_t written = ::write(reportFd, &failure, sizeof(failure));
+  ::_exit(127);
+}
+
+/// Starts the program with its stdin /dev/null and the settings given. A
+/// fork and exec rather than posix_spawn: only a forked child can ask for a
+/// parent-death signal before its program starts.
+pid_t spawn(const std::vector<std::string>& arguments, const SpawnSettings& settings)
 {
   if (arguments.empty() || arguments.front().empty())
   {
     throw Error("child process: no program given");
   }
-  posix_spawn_file_actions_addopen(&files.actions, 0, "/dev/null", O_RDONLY, 0);
+  const std::string path = programPath(arguments.front());
+  if (path.empty())
+  {
+    throw Error("'" + arguments.front() + "': cannot start it (" + std::strerror(ENOENT) + ")");
+  }
   std::vector<char*> argv;
   for (const std::string& a : arguments)
   {
     argv.push_back(const_cast<char*>(a.c_str()));
   }
   argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned = arguments.front().find('/') == std::string::npos
-    ? posix_spawnp(&pid, argv[0], &files.actions, attributes, argv.data(), environ)
-    : posix_spawn(&pid, argv[0], &files.actions, attributes, argv.data(), environ);
-  if (spawned != 0)
+  const Descriptor input(::open("/dev/null", O_RDONLY | O_CLOEXEC));
+  int report[2] = { -1, -1 };
+  if (input.fd < 0 || ::pipe2(report, O_CLOEXEC) != 0)
   {
-    throw Error("'" + arguments.front() + "': cannot start it (" + std::strerror(spawned) + ")");
+    throw Error("'" + arguments.front() + "': cannot start it (" + std::strerror(errno) + ")");
+  }
+  const Descriptor reportRead(report[0]);
+  Descriptor reportWrite(report[1]);
+  const pid_t parent = ::getpid();
+  const char* folder = settings.workingDirectory && !settings.workingDirectory->empty()
+    ? settings.workingDirectory->c_str()
+    : nullptr;
+  const pid_t pid = ::fork();
+  if (pid < 0)
+  {
+    throw Error("'" + arguments.front() + "': cannot start it (" + std::strerror(errno) + ")");
+  }
+  if (pid == 0)
+  {
+    // The child: async-signal-safe calls only, until exec.
+    if (settings.endsWithParent)
+    {
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (::getppid() != parent)
+      {
+        ::_exit(127); // the parent ended before the request took hold
+      }
+    }
+    if (settings.ownProcessGroup)
+    {
+      ::setpgid(0, 0);
+    }
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    if (folder && ::chdir(folder) != 0)
+    {
+      failInChild(report[1], 1);
+    }
+    if (::dup2(input.fd, 0) < 0 || (settings.stdoutFd >= 0 && ::dup2(settings.stdoutFd, 1) < 0) ||
+      (settings.stderrFd >= 0 && ::dup2(settings.stderrFd, 2) < 0))
+    {
+      failInChild(report[1], 2);
+    }
+    ::execv(path.c_str(), argv.data());
+    failInChild(report[1], 3);
+  }
+  if (settings.ownProcessGroup)
+  {
+    ::setpgid(pid, pid); // also here: a kill(-pid) right away must find the group
+  }
+  closeOnce(reportWrite.fd);
+  SpawnFailure failure;
+  ssize_t got = 0;
+  do
+  {
+    got = ::read(reportRead.fd, &failure, sizeof(failure));
+  } while (got < 0 && errno == EINTR);
+  if (got == static_cast<ssize_t>(sizeof(failure)))
+  {
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR)
+    {
+    }
+    const std::string why = std::strerror(failure.error);
+    if (failure.step == 1)
+    {
+      throw Error("'" + arguments.front() + "': cannot start it in '" + *settings.workingDirectory +
+        "' (" + why + ")");
+    }
+    throw Error("'" + arguments.front() + "': cannot start it (" + why + ")");
   }
   return pid;
 }
 
-/// Waits for the child with wait4(), which gives its own cost.
-ChildProcessResult waitFor(pid_t pid, const std::string& program, double startS)
+/// Waits for the child with wait4(), which gives its own cost. With
+/// `keepRunning`, the wait polls it and stops the child (its process group)
+/// when it says so: SIGTERM, then SIGKILL after `graceS`.
+ChildProcessResult waitFor(pid_t pid, const std::string& program, double startS,
+  const std::function<bool()>& keepRunning = nullptr, double graceS = 0.0)
 {
   int status = 0;
   rusage usage{};
   pid_t waited = 0;
-  do
+  bool stopped = false;
+  bool killed = false;
+  double stopS = 0.0;
+  for (;;)
   {
-    waited = ::wait4(pid, &status, 0, &usage);
-  } while (waited < 0 && errno == EINTR);
+    waited = ::wait4(pid, &status, keepRunning ? WNOHANG : 0, &usage);
+    if (waited == pid || (waited < 0 && errno != EINTR))
+    {
+      break;
+    }
+    if (waited < 0 || !keepRunning)
+    {
+      continue; // EINTR
+    }
+    if (!stopped && !keepRunning())
+    {
+      stopped = true;
+      stopS = nowS();
+      ::kill(-pid, SIGTERM);
+    }
+    if (stopped && !killed && nowS() - stopS > graceS)
+    {
+      killed = true;
+      ::kill(-pid, SIGKILL);
+    }
+    ::usleep(50000);
+  }
   ChildProcessResult result;
   result.wallS = nowS() - startS;
+  result.stopped = stopped;
   if (waited != pid)
   {
     throw Error("'" + program + "': lost the child process (" + std::strerror(errno) + ")");
@@ -102,13 +267,15 @@ ChildProcessResult waitFor(pid_t pid, const std::string& program, double startS)
   return result;
 }
 
-void closeOnce(int& fd)
+/// Opens (replacing) a file the child writes; the message names the file.
+int openOutput(const std::string& path)
 {
-  if (fd >= 0)
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0)
   {
-    ::close(fd);
-    fd = -1;
+    throw Error("'" + path + "': cannot write the child's output (" + std::strerror(errno) + ")");
   }
+  return fd;
 }
 
 } // namespace
@@ -116,43 +283,34 @@ void closeOnce(int& fd)
 ChildProcessResult runChildProcess(const std::vector<std::string>& arguments,
   const std::string& stdoutPath, const std::string& stderrPath)
 {
-  // Checked here, so that the message names the file (the child could only fail).
-  for (const std::string* path : { &stdoutPath, &stderrPath })
-  {
-    if (!path->empty())
-    {
-      const int fd = ::open(path->c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-      if (fd < 0)
-      {
-        throw Error(
-          "'" + *path + "': cannot write the child's output (" + std::strerror(errno) + ")");
-      }
-      ::close(fd);
-    }
-  }
-  FileActions files;
-  if (!stdoutPath.empty())
-  {
-    posix_spawn_file_actions_addopen(
-      &files.actions, 1, stdoutPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  }
-  if (!stderrPath.empty() && stderrPath == stdoutPath)
-  {
-    // One file for both, as the shell's "> log 2>&1": one open file, so that
-    // neither stream overwrites the other.
-    posix_spawn_file_actions_adddup2(&files.actions, 1, 2);
-  }
-  else if (!stderrPath.empty())
-  {
-    posix_spawn_file_actions_addopen(
-      &files.actions, 2, stderrPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  }
-  const double start = nowS();
-  const pid_t pid = spawn(arguments, files);
-  return waitFor(pid, arguments.front(), start);
+  ChildProcessOptions options;
+  options.stdoutPath = stdoutPath;
+  options.stderrPath = stderrPath;
+  return runChildProcess(arguments, options);
 }
 
-ChildProcess::ChildProcess(const std::vector<std::string>& arguments)
+ChildProcessResult runChildProcess(
+  const std::vector<std::string>& arguments, const ChildProcessOptions& options)
+{
+  // Opened here, so that the message names the file (the child could only fail).
+  const Descriptor output(options.stdoutPath.empty() ? -1 : openOutput(options.stdoutPath));
+  // One file for both, as the shell's "> log 2>&1": one open file, so that
+  // neither stream overwrites the other.
+  const bool shared = !options.stderrPath.empty() && options.stderrPath == options.stdoutPath;
+  const Descriptor errors(
+    options.stderrPath.empty() || shared ? -1 : openOutput(options.stderrPath));
+  SpawnSettings settings;
+  settings.stdoutFd = output.fd;
+  settings.stderrFd = shared ? output.fd : errors.fd;
+  settings.workingDirectory = &options.workingDirectory;
+  settings.ownProcessGroup = static_cast<bool>(options.keepRunning);
+  settings.endsWithParent = options.endsWithParent;
+  const double start = nowS();
+  const pid_t pid = spawn(arguments, settings);
+  return waitFor(pid, arguments.front(), start, options.keepRunning, options.stopGraceS);
+}
+
+ChildProcess::ChildProcess(const std::vector<std::string>& arguments, bool endsWithParent)
 {
   // Both pipes close on exec, so that no other child started meanwhile
   // holds them open; the child's own ends are its dup2() copies.
@@ -170,25 +328,21 @@ ChildProcess::ChildProcess(const std::vector<std::string>& arguments)
     }
     throw Error("child process: cannot make its pipes (" + why + ")");
   }
-  FileActions files;
-  posix_spawn_file_actions_adddup2(&files.actions, output[1], 1);
-  posix_spawn_file_actions_adddup2(&files.actions, errors[1], 2);
   // Its own process group, so that a kill reaches what it started too (a
   // shell's commands), and a terminal's Ctrl-C reaches the parent alone,
   // which ends the child as it unwinds.
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
-  posix_spawnattr_setpgroup(&attributes, 0);
+  SpawnSettings settings;
+  settings.stdoutFd = output[1];
+  settings.stderrFd = errors[1];
+  settings.ownProcessGroup = true;
+  settings.endsWithParent = endsWithParent;
   this->StartS = nowS();
   try
   {
-    this->Pid = spawn(arguments, files, &attributes);
-    posix_spawnattr_destroy(&attributes);
+    this->Pid = spawn(arguments, settings);
   }
   catch (...)
   {
-    posix_spawnattr_destroy(&attributes);
     for (int fd : { output[0], output[1], errors[0], errors[1] })
     {
       ::close(fd);

@@ -2,6 +2,7 @@
 #define vimlop_ChildProcess_h
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,21 +28,58 @@ struct ChildProcessResult
   /// across exec: it is at least the parent's peak when it was spawned
   /// (ProcessMemory.h has the child's own, from inside it).
   double peakResidentMiB = 0.0;
+  /// True when it ended because ChildProcessOptions::keepRunning asked it to stop.
+  bool stopped = false;
+};
+
+/**
+ * @brief How runChildProcess() starts a child and watches it; the defaults
+ * are a child that shares the parent's folder, outputs and process group.
+ */
+struct ChildProcessOptions
+{
+  /// Files its stdout and stderr go to (replaced; both into one file when
+  /// they are the same path); empty: the parent's own.
+  std::string stdoutPath;
+  std::string stderrPath;
+  /// The folder it starts in (relative paths among its arguments are read
+  /// from there); empty: the parent's.
+  std::string workingDirectory;
+  /// Killed (SIGKILL) when the thread that started it ends, e.g. when the
+  /// parent is killed outright: a batch runner killed with kill -9 leaves no
+  /// child working on unseen (Linux's parent-death signal). The thread that
+  /// calls runChildProcess() waits for the child, so it outlives it otherwise.
+  bool endsWithParent = false;
+  /// Asked about every 50 ms while the child runs; when it returns false the
+  /// child's process group gets SIGTERM (a VIMLOP command then stops cleanly,
+  /// as on Ctrl-C), and SIGKILL `stopGraceS` seconds later. With it set the
+  /// child runs in a process group of its own, so that the stop reaches what
+  /// it started too, and a terminal's Ctrl-C reaches the parent alone.
+  std::function<bool()> keepRunning;
+  /// Seconds between the SIGTERM and the SIGKILL of a stop.
+  double stopGraceS = 10.0;
 };
 
 /**
  * @brief Runs `arguments` (the program, found on PATH when it has no '/',
- * then its arguments) as a child process with posix_spawn and waits for it
- * with wait4(), which gives its own peak memory and CPU time (not the
- * parent's, nor those of its earlier siblings). Its stdout and stderr go to
- * the files `stdoutPath` and `stderrPath` (replaced; both into one file when
- * they are the same path), or to the parent's own when empty; its stdin is
- * /dev/null.
+ * then its arguments) as a child process and waits for it with wait4(), which gives its own peak
+ * memory and CPU time (not the parent's, nor those of its earlier siblings). Its stdout and stderr
+ * go to the files `stdoutPath` and `stderrPath` (replaced; both into one file when they are the
+ * same path), or to the parent's own when empty; its stdin is /dev/null.
  * @throws vimlop::Error when there is no program, it cannot be started, or
  * an output file cannot be opened.
  */
 ChildProcessResult runChildProcess(const std::vector<std::string>& arguments,
   const std::string& stdoutPath = std::string(), const std::string& stderrPath = std::string());
+
+/**
+ * @brief runChildProcess() with every setting of `options`: its folder,
+ * outputs, whether it ends with its parent and when to stop it.
+ * @throws vimlop::Error as runChildProcess(), and "cannot start it in
+ * 'folder'" when its working directory cannot be entered.
+ */
+ChildProcessResult runChildProcess(
+  const std::vector<std::string>& arguments, const ChildProcessOptions& options);
 
 /**
  * @brief A child process whose output the parent reads as it comes (a
@@ -55,10 +93,12 @@ class ChildProcess
 {
 public:
   /**
-   * @brief Starts `arguments` as runChildProcess() does.
+   * @brief Starts `arguments` as runChildProcess() does; with
+   * `endsWithParent`, it is killed when the thread that started it ends
+   * (ChildProcessOptions::endsWithParent).
    * @throws vimlop::Error when there is no program or it cannot be started.
    */
-  explicit ChildProcess(const std::vector<std::string>& arguments);
+  explicit ChildProcess(const std::vector<std::string>& arguments, bool endsWithParent = false);
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;

@@ -21,4 +21,30 @@ std::string formatText(const char* format, ...)
   return std::string(text.data(), text.size() - 1);
 }
 
+std::string escapeHtml(const std::string& text)
+{
+  std::string out;
+  for (char c : text)
+  {
+    switch (c)
+    {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
 } // namespace vimlop

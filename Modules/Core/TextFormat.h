@@ -16,6 +16,9 @@ __attribute__((format(printf, 1, 2)))
 std::string
 formatText(const char* format, ...);
 
+/// @brief `text` with &, <, > and " as HTML entities, for the report pages.
+std::string escapeHtml(const std::string& text);
+
 } // namespace vimlop
 
 #endif

@@ -9,6 +9,7 @@
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TaskPool.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/VisibleModelContours.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Rendering/ContourOverlay.h>
@@ -72,32 +73,6 @@ ContourMeasure measureContours(const RegistrationModel& model, const VideoFrame&
   }
   measure.meanPx = measure.matched ? sum / measure.matched : 0.0;
   return measure;
-}
-
-std::string escapeHtml(const std::string& text)
-{
-  std::string out;
-  for (char c : text)
-  {
-    switch (c)
-    {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 std::string number(double value, int decimals = 3)

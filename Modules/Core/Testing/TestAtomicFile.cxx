@@ -93,3 +93,18 @@ TEST(AtomicFile, SyncToDiskNamesAPathItCannotFlush)
   EXPECT_EQ(fixtures::errorMessageOf([&] { syncToDisk(missing); }),
     "'" + missing + "': cannot flush it to disk (No such file or directory)");
 }
+
+TEST(AtomicFile, ReadsAWholeFileAndNamesOneItCannotRead)
+{
+  const fs::path folder = fixtures::freshTestFolder("atomic-read");
+  const std::string bytes = std::string("a\0b\n", 4) + std::string(100000, 'x');
+  writeFileAtomically((folder / "f.bin").string(), bytes);
+  EXPECT_EQ(readWholeFile((folder / "f.bin").string()), bytes);
+  writeFileAtomically((folder / "empty").string(), "");
+  EXPECT_EQ(readWholeFile((folder / "empty").string()), "");
+  const std::string missing = (folder / "missing").string();
+  EXPECT_EQ(fixtures::errorMessageOf([&] { readWholeFile(missing); }),
+    "'" + missing + "': cannot read it (No such file or directory)");
+  EXPECT_EQ(fixtures::errorMessageOf([&] { readWholeFile(folder.string()); }),
+    "'" + folder.string() + "': cannot read it (Is a directory)");
+}

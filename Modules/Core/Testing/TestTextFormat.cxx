@@ -17,3 +17,9 @@ TEST(TextFormat, KeepsTextLongerThanAnyFixedBuffer)
   const std::string longText(5000, 'x');
   EXPECT_EQ(formatText("<%s>", longText.c_str()), "<" + longText + ">");
 }
+
+TEST(TextFormat, EscapesTheCharactersHtmlGivesAMeaning)
+{
+  EXPECT_EQ(escapeHtml("a<b> & \"c\" 'd'"), "a&lt;b&gt; &amp; &quot;c&quot; 'd'");
+  EXPECT_EQ(escapeHtml(""), "");
+}
