@@ -39,12 +39,13 @@ fuzz:
 
 # AddressSanitizer + UndefinedBehaviorSanitizer on the unit tests of the
 # modules that hold the algorithm and every reader of the CLI's inputs: Core,
-# Raycast, Video (frames, video, COLMAP, intrinsics, tracker, SfM files) and
-# Imaging (CT volumes, DICOM series, meshes, displacement fields, poses). The
+# Raycast, Video (frames, video, COLMAP, intrinsics, tracker, SfM files),
+# Imaging (CT volumes, DICOM series, meshes, displacement fields, poses) and
+# Cohort (manifests, row records, Slurm records, the runner's processes). The
 # rendering modules, the VTK face and the CLI executable are left out (their
 # build would double the stage's; rendering needs Mesa under Xvfb).
 ASAN_DIR ?= build-asan
-ASAN_TESTS ?= VIMLOPCoreTests VIMLOPRaycastTests VIMLOPVideoTests VIMLOPImagingTests
+ASAN_TESTS ?= VIMLOPCoreTests VIMLOPRaycastTests VIMLOPVideoTests VIMLOPImagingTests VIMLOPCohortTests
 test-asan: deps
 	cmake -S . -B $(ASAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVIMLOP_ENABLE_SANITIZERS=ON
 	cmake --build $(ASAN_DIR) --parallel $(JOBS) --target $(ASAN_TESTS)
@@ -52,13 +53,15 @@ test-asan: deps
 	  ctest --output-on-failure --parallel $(JOBS) -L '^($(subst $() ,|,$(ASAN_TESTS)))$$'
 
 # ThreadSanitizer on the code that runs threads (Core: task pool, the
-# parallel stages of the registration, the pose update).
+# parallel stages of the registration, the pose update; Cohort: the runner's
+# rows at once, each a child process).
 TSAN_DIR ?= build-tsan
 test-tsan: deps
 	cmake -S . -B $(TSAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVIMLOP_ENABLE_TSAN=ON
-	cmake --build $(TSAN_DIR) --parallel $(JOBS) --target VIMLOPCoreTests
+	cmake --build $(TSAN_DIR) --parallel $(JOBS) --target VIMLOPCoreTests VIMLOPCohortTests
 	cd $(TSAN_DIR) && TSAN_OPTIONS=halt_on_error=1 bin/VIMLOPCoreTests \
 	  --gtest_filter='TaskPool.*:Registration.*:PoseUpdate.*:MultiStartRegistration.*:CorrespondenceSearch.*:PoseEstimator.*'
+	cd $(TSAN_DIR) && TSAN_OPTIONS=halt_on_error=1 bin/VIMLOPCohortTests --gtest_filter='CohortRunner.*'
 
 format:
 	git ls-files '*.h' '*.cxx' | xargs clang-format -i

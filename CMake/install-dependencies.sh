@@ -35,6 +35,11 @@ xauth
 libgl1-mesa-dri
 colmap
 invesalius-examples
+munge
+slurmctld
+slurmd
+slurm-client
+iproute2
 $*
 "
 

@@ -17,6 +17,11 @@ namespace vimlop
 
 /// @brief Adds `vimlop canonical`: canonical camera poses along a (template) airway (V13 b).
 void addCanonicalCommand(CLI::App& app);
+/**
+ * @brief Adds `vimlop cohort run|submit|status|resubmit|merge|task`: a
+ * manifest's rows run on this machine or as Slurm job arrays, and merged.
+ */
+void addCohortCommand(CLI::App& app);
 /// @brief Adds `vimlop contours`: occluding contours with normals in every frame of a sequence.
 void addContoursCommand(CLI::App& app);
 /**
