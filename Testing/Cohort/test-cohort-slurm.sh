@@ -1,5 +1,5 @@
 #!/bin/sh
-# Usage: test-cohort-slurm.sh VIMLOP WORK_DIR SEQUENCE_DIR
+# Usage: test-cohort-slurm.sh VIMLOP WORK_DIR SEQUENCE_DIR CT
 # A cohort on a real one-node Slurm cluster (slurm-cluster.sh, on loopback):
 #  1. eight rows (register with three methods and settings, P1 with two
 #     seeds) submitted with `vimlop cohort submit --slurm` as job arrays split
@@ -7,7 +7,7 @@
 #     manifest run here with `vimlop cohort run`; the two merged tables must
 #     be identical outside their volatile columns (times, hosts, threads:
 #     1 per row on Slurm, 2 here);
-#  2. a manifest with two broken rows (a missing mesh, an unreadable video):
+#  2. a manifest with two broken rows (a missing CT, an unreadable video):
 #     every other row runs, the broken ones are listed with their one-line
 #     errors; after the fix `vimlop cohort resubmit --failed` runs those two
 #     rows only.
@@ -17,6 +17,7 @@ set -eu
 vimlop=$1
 work=$2
 sequence=$3
+ct=$4
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work"
 mkdir -p "$work"
@@ -46,8 +47,8 @@ wait_for_cohort() {
   done
 }
 
-row() { # id, options [, mesh]
-  echo "$1,register,${3:-$sequence/model.vtp},$sequence/frames,$sequence/intrinsics.yaml,$sequence/tracker.csv,manual:$sequence/truth/poses.json,$sequence/truth/poses.json,--no-video --no-report $2"
+row() { # id, options
+  echo "$1,register,$sequence/model.vtp,$sequence/frames,$sequence/intrinsics.yaml,$sequence/tracker.csv,manual:$sequence/truth/poses.json,$sequence/truth/poses.json,--no-video --no-report $2"
 }
 header="id,command,mesh,frames,intrinsics,tracker,init,truth,options"
 {
@@ -82,7 +83,7 @@ printf 'not a video' >"$work/broken.avi"
 {
   echo "$header,video"
   echo "$(row good ""),"
-  echo "$(row no-mesh "" "$work/model-missing.vtp"),"
+  echo "no-ct,register,,$sequence/frames,$sequence/intrinsics.yaml,$sequence/tracker.csv,manual:$sequence/truth/poses.json,,--no-video --no-report --ct $work/ct-missing.inv3,"
   echo "bad-video,register,$sequence/model.vtp,,$sequence/intrinsics.yaml,$sequence/tracker.csv,manual:$sequence/truth/poses.json,,--no-video --no-report,$work/broken.avi"
 } >"$work/broken.csv"
 "$vimlop" cohort submit "$work/broken.csv" --out "$work/broken" --slurm --cpus-per-task 1
@@ -90,13 +91,13 @@ wait_for_cohort "$work/broken"
 "$vimlop" cohort status "$work/broken" | tee "$work/broken-status.txt"
 grep -q "^cohort '.*': 3 rows: 1 complete, 2 failed$" "$work/broken-status.txt" ||
   fail "$work/broken" "expected 1 complete and 2 failed rows"
-grep -q "^cohort: failed no-mesh (attempt 1 on .*, Slurm [0-9]*_[0-9]*): '$work/model-missing.vtp': no such file$" \
-  "$work/broken-status.txt" || fail "$work/broken" "the missing mesh is not said in one line"
+grep -q "^cohort: failed no-ct (attempt 1 on .*, Slurm [0-9]*_[0-9]*): '$work/ct-missing.inv3': no such file or folder$" \
+  "$work/broken-status.txt" || fail "$work/broken" "the missing CT is not said in one line"
 grep -q "^cohort: failed bad-video (attempt 1 on .*): .*broken.avi" "$work/broken-status.txt" ||
   fail "$work/broken" "the unreadable video is not said in one line"
 grep -q '"state": "failed"' "$work/broken/table.json" || fail "$work/broken" "the merged table lists no failure"
 
-cp "$sequence/model.vtp" "$work/model-missing.vtp"
+cp "$ct" "$work/ct-missing.inv3"
 ffmpeg -loglevel error -y -framerate 30 -i "$sequence/frames/frame%03d.png" -c:v mjpeg -q:v 2 "$work/broken.avi"
 "$vimlop" cohort resubmit "$work/broken" --failed | tee "$work/resubmit.txt"
 grep -q "^cohort: submission 2: 2 rows in " "$work/resubmit.txt" || fail "$work/broken" "the resubmission is not of the two failed rows"
