@@ -46,9 +46,9 @@ json attemptJson(const CohortAttempt& a)
 {
   return { { "state", toString(a.state) }, { "host", a.host }, { "pid", a.pid },
     { "slurm_job", a.slurmJob }, { "started", a.startedUtc }, { "ended", a.endedUtc },
-    { "threads", a.threads }, { "wall_s", a.wallS }, { "cpu_s", a.cpuS },
-    { "peak_resident_mib", a.peakResidentMiB }, { "exit_code", a.exitCode }, { "signal", a.signal },
-    { "error", a.error } };
+    { "vimlop_version", a.vimlopVersion }, { "threads", a.threads }, { "wall_s", a.wallS },
+    { "cpu_s", a.cpuS }, { "peak_resident_mib", a.peakResidentMiB }, { "exit_code", a.exitCode },
+    { "signal", a.signal }, { "error", a.error } };
 }
 
 CohortAttempt attemptFrom(const json& j, const std::string& path)
@@ -60,6 +60,7 @@ CohortAttempt attemptFrom(const json& j, const std::string& path)
   a.slurmJob = j.value("slurm_job", "");
   a.startedUtc = j.value("started", "");
   a.endedUtc = j.value("ended", "");
+  a.vimlopVersion = j.value("vimlop_version", "");
   a.threads = j.value("threads", 0);
   a.wallS = j.value("wall_s", 0.0);
   a.cpuS = j.value("cpu_s", 0.0);

@@ -47,6 +47,8 @@ struct CohortAttempt
   /// UTC, ISO 8601 ("2026-12-05T10:33:10Z").
   std::string startedUtc;
   std::string endedUtc;
+  /// The version of the VIMLOP that ran it (the runner's, which runs its own program).
+  std::string vimlopVersion;
   /// Threads its command was given (0: all cores).
   int threads = 0;
   /// Its command's wall time, CPU time (user + system) and peak memory.

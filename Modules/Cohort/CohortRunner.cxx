@@ -140,6 +140,7 @@ CohortRowOutcome runRow(const CohortManifest& manifest, const CohortFolder& fold
   attempt.pid = static_cast<int>(::getpid());
   attempt.slurmJob = options.slurmJob;
   attempt.startedUtc = utcNow();
+  attempt.vimlopVersion = VIMLOP_VERSION;
   std::vector<std::string> arguments = { options.program };
   for (const std::string& word : row.arguments())
   {

@@ -302,6 +302,12 @@ CohortTable mergeCohortTable(const CohortManifest& manifest, const CohortFolder&
     }
     provenance.push_back({ "command_line", joinCommandLine(words) });
     provenance.push_back({ "row_sha256", row.digest() });
+    const bool versioned = std::any_of(provenance.begin(), provenance.end(),
+      [](const Figure& f) { return f.name == "vimlop_version"; });
+    if (last && !versioned && !last->vimlopVersion.empty())
+    {
+      provenance.push_back({ "vimlop_version", last->vimlopVersion });
+    }
     if (last)
     {
       provenance.push_back({ "attempts", status.attempts.size(), true });

@@ -87,6 +87,7 @@ TEST(CohortTable, HoldsEveryRowsStateFiguresAndProvenance)
   EXPECT_EQ(p1.at("command"), "evaluate synthetic");
   EXPECT_DOUBLE_EQ(p1.at("methods.vimlop.tre_mm.median").get<double>(), 0.07);
   EXPECT_EQ(p1.at("seed"), 4);
+  EXPECT_EQ(p1.at("vimlop_version"), VIMLOP_VERSION); // the runner's: P1's report has none
   const json& broken = table.rows[3];
   EXPECT_EQ(broken.at("state"), "failed");
   EXPECT_EQ(broken.at("error"), "'no, such.nii': no such file or folder");
