@@ -461,6 +461,7 @@ void addCohortCommand(CLI::App& app)
       o.rowsPerTask = set("--array-chunk") ? given.rowsPerTask : 0;
       o.maxRunning = set("--max-running") ? given.maxRunning : o.maxRunning;
       o.extraArguments = set("--sbatch-option") ? u->slurm.extra : o.extraArguments;
+      o.program.clear(); // the program resubmitting, which may be a newer one
       requireNoJobsInQueue(folder, o.squeue);
       const std::vector<std::string> ids = rowsToSubmit(manifest, folder, u->failed);
       if (ids.empty())
