@@ -51,6 +51,10 @@ find_package(ITK 5.2 REQUIRED COMPONENTS
   ITKIOMeta
   ITKIONIFTI
   ITKIONRRD
+  ITKIOTransformBase
+  ITKIOTransformHDF5
+  ITKIOTransformInsightLegacy
+  ITKIOTransformMatlab
   ITKLabelMap
   ITKMathematicalMorphology
   ITKMetricsv4

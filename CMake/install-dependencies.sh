@@ -16,6 +16,7 @@ libvtk9-dev
 libx11-dev
 python3-vtk9
 python3-numpy
+python3-h5py
 python3-dev
 libinsighttoolkit5-dev
 libgdcm-dev

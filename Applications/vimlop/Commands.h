@@ -38,6 +38,11 @@ void addEvaluateBudgetCommand(CLI::App& evaluate);
  * `vimlop evaluate` group.
  */
 void addEvaluateSpeedCommand(CLI::App& evaluate);
+/**
+ * @brief Adds `vimlop export`: a result folder as a 3D Slicer scene and ITK
+ * transform files (SlicerSceneExport.h).
+ */
+void addExportCommand(CLI::App& app);
 /// @brief Adds `vimlop info <file>`: what a CT, mesh or intrinsics file holds.
 void addInfoCommand(CLI::App& app);
 /**

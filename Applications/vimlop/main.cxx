@@ -25,6 +25,7 @@ int main(int argc, char** argv)
   vimlop::addInfoCommand(app);
   vimlop::addSegmentCommand(app);
   vimlop::addServeCommand(app);
+  vimlop::addExportCommand(app);
   vimlop::addWarpCommand(app);
   CLI::App* evaluate = vimlop::addEvaluateCommand(app);
   vimlop::addEvaluateWarpCommand(*evaluate);

@@ -173,6 +173,9 @@ void writePolyData(vtkPolyData* mesh, const std::string& path)
     writer->SetInputData(mesh);
     writer->SetFileName(path.c_str());
     writer->SetFileTypeToBinary();
+    // VIMLOP's meshes are in the CT frame, LPS; 3D Slicer reads the frame of
+    // a legacy VTK file from this tag in its header.
+    writer->SetHeader("VIMLOP mesh SPACE=LPS");
     ok = writer->Write();
   }
   else if (ext == ".stl")

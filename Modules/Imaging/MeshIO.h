@@ -20,7 +20,8 @@ namespace vimlop
 VIMLOPIMAGING_EXPORT vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path);
 
 /**
- * @brief Writes a surface mesh as `.vtp`, `.vtk`, `.stl` or `.ply` (binary).
+ * @brief Writes a surface mesh as `.vtp`, `.vtk`, `.stl` or `.ply` (binary);
+ * a `.vtk` file's header says `SPACE=LPS`, the frame of VIMLOP's meshes, for 3D Slicer.
  * @throws vimlop::Error for an unsupported extension or a failed write.
  */
 VIMLOPIMAGING_EXPORT void writePolyData(vtkPolyData* mesh, const std::string& path);

@@ -40,7 +40,8 @@ bool looksLikeAResultFolder(const fs::path& folder)
 {
   std::error_code ec;
   return fs::is_empty(folder, ec) || fs::exists(folder / "result.json", ec) ||
-    fs::exists(folder / "registered-poses.json", ec);
+    fs::exists(folder / "registered-poses.json", ec) ||
+    fs::exists(folder / "vimlop-export.json", ec);
 }
 
 /// The process id the lock's holder wrote into it, or "" when unreadable.
@@ -149,7 +150,8 @@ ResultFolderTransaction::ResultFolderTransaction(
     if (!looksLikeAResultFolder(path))
     {
       fail(this->Folder,
-        "exists and is not a VIMLOP result folder (no result.json or registered-poses.json); "
+        "exists and is not a VIMLOP result folder (no result.json, registered-poses.json or "
+        "vimlop-export.json); "
         "refusing to replace it");
     }
   };

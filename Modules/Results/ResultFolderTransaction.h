@@ -34,6 +34,7 @@ public:
     Refuse,
     /// Replace it whole on commit() (--force). Only an empty folder or a
     /// VIMLOP result folder (it holds result.json or registered-poses.json)
+    /// or export folder (vimlop-export.json)
     /// is replaced; anything else is refused, so a mistyped --out cannot
     /// remove a user's folder.
     Replace

@@ -160,7 +160,8 @@ TEST(ResultFolderTransaction, ExistingFoldersAndBadNamesAreRefusedWithTheReason)
   write(home / "thesis.tex", "years of work");
   EXPECT_EQ(refusal(home.string(), Existing::Replace),
     "'" + home.string() +
-      "': exists and is not a VIMLOP result folder (no result.json or registered-poses.json); "
+      "': exists and is not a VIMLOP result folder (no result.json, registered-poses.json or "
+      "vimlop-export.json); "
       "refusing to replace it");
   EXPECT_EQ(contentsOf(home / "thesis.tex"), "years of work");
   write(root / "file", "x");
