@@ -31,7 +31,7 @@ rm -rf "$out/sim"
 echo "demo: 3/3 registration from canonical poses"
 status=0
 "$display" "$vimlop" register --mesh "$out/airway.vtp" --frames "$out/sim/frames" \
-  --intrinsics "$out/sim/intrinsics.yaml" --tracker "$out/sim/tracker.csv" \
+  --intrinsics "$out/sim/intrinsics.yaml" --tracker "$out/sim/tracker.csv" --fps 30 \
   --truth "$out/sim/truth/poses.json" --init canonical --out "$out/result" --force || status=$?
 if [ "$status" -ne 0 ] && [ "$status" -ne 3 ]; then
   exit "$status"

@@ -115,9 +115,10 @@ void runRegister(RegisterCommand c)
   }
   inputs.setStructureFromMotion(c.sfm, "--sfm");
   inputs.setStart(c.init, "--init");
-  if (inputs.trackerPath.empty() && !(inputs.initialScale > 0.0))
+  if (inputs.trackerPath.empty() && inputs.trackerTransform.empty() && !(inputs.initialScale > 0.0))
   {
-    throw Error("give --tracker CSV or --scale S: SfM alone has no metric scale");
+    throw Error("give --tracker CSV, --tracker-transform NAME (of a tracked sequence) or --scale "
+                "S: SfM alone has no metric scale");
   }
   // The result folder is checked and locked before the work (and after the
   // flags, so a mistyped flag is reported as such): everything is
@@ -183,8 +184,8 @@ void runRegister(RegisterCommand c)
   c.outputs.keepGoing = [] { return !InterruptGuard::requested(); };
   try
   {
-    writeRegistrationOutputs(
-      pipeline, record, folder.stagingFolder(), inputs.framesPerSecond, c.outputs, &log, &timings);
+    writeRegistrationOutputs(pipeline, record, folder.stagingFolder(), pipeline.framesPerSecond(),
+      c.outputs, &log, &timings);
   }
   catch (const PipelineCancelled&)
   {
@@ -246,17 +247,24 @@ void addRegisterCommand(CLI::App& app)
   r->add_option("--ct", in.ctPath, "CT volume (its airway is segmented)")
     ->excludes(
       r->add_option("--mesh", in.meshPath, "airway surface (CT frame, normals into the air)"));
-  r->add_option("--frames", in.framesPath, "folder of frames")
+  r->add_option("--frames", in.framesPath,
+     "folder of frames, or a tracked sequence of PLUS or 3D Slicer (.igs.mha, .seq.mha) with "
+     "its frames' timestamps")
     ->excludes(r->add_option("--video", c->video, "video file"));
   r->add_option("--intrinsics", in.intrinsicsPath, "camera intrinsics (OpenCV YAML/JSON/XML)")
     ->required();
   r->add_option("--sfm", c->sfm, "structure from motion: builtin or colmap:DIR (a sparse model)")
     ->capture_default_str();
-  r->add_option(
-    "--tracker", in.trackerPath, "tracker CSV (time_s,x_mm,y_mm,z_mm): initial scale (V14)");
-  r->add_option(
-     "--fps", in.framesPerSecond, "frame rate, for the frame times on the tracker's clock")
-    ->capture_default_str()
+  r->add_option("--tracker", in.trackerPath,
+    "tracker CSV (time_s,x_mm,y_mm,z_mm), or a tracked sequence with --tracker-transform: "
+    "initial scale (V14)");
+  r->add_option("--tracker-transform", in.trackerTransform,
+    "the transform of a tracked sequence that carries the scope, e.g. ProbeToTracker: read from "
+    "--tracker, or from --frames when it is a tracked sequence and --tracker is not given");
+  r->add_option("--fps", in.framesPerSecond,
+     "frame rate, for the frame times on the tracker's clock; overrides the frames' own "
+     "timestamps (a tracked sequence), with a warning when they disagree (default: the "
+     "timestamps, else 30)")
     ->check(CLI::PositiveNumber);
   r->add_option(
      "--time-offset", in.timeOffsetS, "time of the first frame on the tracker's clock, s")

@@ -25,7 +25,8 @@ struct SfmOptions
   std::string colmap;
   std::string out;
   std::string tracker;
-  double fps = 30.0;
+  std::string trackerTransform;
+  double fps = 0.0;
   double timeOffset = 0.0;
   int threads = 0;
 };
@@ -35,17 +36,23 @@ void runSfm(const SfmOptions& o)
   // The tracker file is checked before the work, so that a bad one fails fast.
   std::vector<std::string> trackerWarnings;
   std::optional<TrackerTrajectory> tracker;
-  if (!o.tracker.empty())
+  if (!o.trackerTransform.empty())
+  {
+    tracker = TrackerTrajectory::readTrackedSequence(
+      o.tracker.empty() ? o.frames : o.tracker, o.trackerTransform, &trackerWarnings);
+  }
+  else if (!o.tracker.empty())
   {
     tracker = TrackerTrajectory::readCsv(o.tracker, &trackerWarnings);
-    for (const std::string& w : trackerWarnings)
-    {
-      std::cerr << "vimlop: warning: " << w << "\n";
-    }
+  }
+  for (const std::string& w : trackerWarnings)
+  {
+    std::cerr << "vimlop: warning: " << w << "\n";
   }
   SfmReconstruction sfm;
-  // The frames' ids (their file numbers) give their times on the tracker's clock.
+  // The frames' ids (their file numbers) or timestamps give their times on the tracker's clock.
   std::vector<int> ids;
+  std::vector<double> timestampsS;
   if (!o.colmap.empty())
   {
     std::vector<std::string> names;
@@ -54,6 +61,7 @@ void runSfm(const SfmOptions& o)
       const FrameSequence sequence = FrameSequence::load(o.frames);
       names = sequence.names();
       ids = sequence.ids();
+      timestampsS = sequence.timestampsS();
     }
     sfm = reconstructFrames({}, names, PinholeCamera(), o.colmap, 0, &std::cerr);
   }
@@ -66,6 +74,7 @@ void runSfm(const SfmOptions& o)
     const PinholeCamera k = readIntrinsics(o.intrinsics);
     const FrameSequence sequence = FrameSequence::load(o.frames);
     ids = sequence.ids();
+    timestampsS = sequence.timestampsS();
     if (!sequence.idGaps().empty())
     {
       std::cerr << "vimlop: warning: missing from the frames' numbering: " << sequence.idGaps()
@@ -73,7 +82,7 @@ void runSfm(const SfmOptions& o)
     }
     if (tracker)
     {
-      checkTrackerOverlap(*tracker, frameTimesS(ids, o.fps, o.timeOffset));
+      checkTrackerOverlap(*tracker, frameTimesS(ids, timestampsS, o.fps, o.timeOffset, nullptr));
     }
     const std::vector<cv::Mat> frames =
       idealFrames(sequence, k, o.frames, o.intrinsics, &std::cerr);
@@ -83,6 +92,7 @@ void runSfm(const SfmOptions& o)
   }
   if (ids.size() != sfm.frames.size())
   {
+    timestampsS.clear();
     ids.resize(sfm.frames.size());
     for (std::size_t f = 0; f < ids.size(); ++f)
     {
@@ -91,8 +101,13 @@ void runSfm(const SfmOptions& o)
   }
   if (tracker)
   {
-    const TrackerScaleResult scale =
-      scaleFromTracker(*tracker, sfm, frameTimesS(ids, o.fps, o.timeOffset), &std::cerr);
+    std::string warning;
+    const std::vector<double> timesS = frameTimesS(ids, timestampsS, o.fps, o.timeOffset, &warning);
+    if (!warning.empty())
+    {
+      std::cerr << "vimlop: warning: " << warning << "\n";
+    }
+    const TrackerScaleResult scale = scaleFromTracker(*tracker, sfm, timesS, &std::cerr);
     sfm.trackerScale = scale.scale;
     std::printf("tracker scale: 1 SfM unit = %.4f mm (tracked %.2f mm over %zu frames)\n",
       scale.scale, scale.trackerLengthMm, scale.framesUsed.size());
@@ -112,15 +127,22 @@ void addSfmCommand(CLI::App& app)
   CLI::App* sfm = app.add_subcommand("sfm",
     "Structure from motion of a frame sequence: points, SfM-frame camera poses and covariances "
     "(built in, or imported from a COLMAP model)");
-  sfm->add_option("--frames", o->frames, "folder of frames or a video file");
+  sfm->add_option("--frames", o->frames,
+    "folder of frames, a video file or a tracked sequence (PLUS/Slicer .igs.mha)");
   sfm->add_option("--intrinsics", o->intrinsics, "camera intrinsics (OpenCV YAML/JSON/XML)");
   sfm->add_option(
     "--colmap", o->colmap, "import this COLMAP sparse model folder (text or binary) instead");
   sfm->add_option("--out", o->out, "result file (VIMLOP SfM JSON)")->required();
-  sfm->add_option(
-    "--tracker", o->tracker, "electromagnetic tracker CSV (time_s,x_mm,y_mm,z_mm): initial scale");
-  sfm->add_option("--fps", o->fps, "frame rate, for the frame times on the tracker's clock")
-    ->capture_default_str()
+  sfm->add_option("--tracker", o->tracker,
+    "electromagnetic tracker CSV (time_s,x_mm,y_mm,z_mm), or a tracked sequence with "
+    "--tracker-transform: initial scale");
+  sfm->add_option("--tracker-transform", o->trackerTransform,
+    "the transform of a tracked sequence that carries the scope (e.g. ProbeToTracker), from "
+    "--tracker or else --frames");
+  sfm
+    ->add_option("--fps", o->fps,
+      "frame rate, for the frame times on the tracker's clock; overrides the frames' own "
+      "timestamps (default: the timestamps, else 30)")
     ->check(CLI::PositiveNumber);
   sfm
     ->add_option(

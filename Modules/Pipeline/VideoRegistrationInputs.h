@@ -23,19 +23,28 @@ struct VideoRegistrationInputs
   /// is empty, a CT volume whose airway is segmented.
   std::string meshPath;
   std::string ctPath;
-  /// The video: a folder of pictures or a video file, at most `maxFrames` of
+  /// The video: a folder of pictures, a video file or a tracked sequence
+  /// (PLUS/Slicer `.igs.mha`, with its timestamps), at most `maxFrames` of
   /// it (default 1000), and its intrinsics (OpenCV YAML/JSON/XML).
   std::string framesPath;
   int maxFrames = 1000;
   std::string intrinsicsPath;
   /// Structure from motion: empty for the built-in one, else a COLMAP sparse model folder.
   std::string colmapFolder;
-  /// V14: the tracker CSV, or the initial scale in mm per SfM unit (wins
-  /// when positive); frame f is at `timeOffsetS + f / framesPerSecond` on
-  /// the tracker's clock (defaults 0 s and 30 fps).
+  /// V14: the tracker (a CSV, or a tracked sequence with `trackerTransform`),
+  /// or the initial scale in mm per SfM unit (wins when positive).
   std::string trackerPath;
+  /// The transform of a tracked sequence that carries the scope (e.g.
+  /// "ProbeToTracker"): read from `trackerPath`, or from the frames' own file
+  /// when `trackerPath` is empty. Empty: the tracker is a CSV.
+  std::string trackerTransform;
   double initialScale = 0.0;
-  double framesPerSecond = 30.0;
+  /// Frame times on the tracker's clock: the frames' own timestamps (a
+  /// tracked sequence) plus `timeOffsetS`; a positive `framesPerSecond`
+  /// overrides them (frame f at `timeOffsetS + f / framesPerSecond`), and
+  /// frames without timestamps are 30 fps apart unless it is given
+  /// (frameTimesS() in VideoInput.h).
+  double framesPerSecond = 0.0;
   double timeOffsetS = 0.0;
   /// V13: canonical starts (generated along the airway, or the poses of
   /// `startPosesPath`), or a manual start (the first pose of `startPosesPath`).

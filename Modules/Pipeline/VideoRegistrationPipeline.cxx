@@ -61,6 +61,7 @@ void VideoRegistrationPipeline::loadFrames(const std::string& path, const Pinhol
   d.Frames = idealFrames(sequence, intrinsics, path, intrinsicsSource, d.Log);
   d.Names = sequence.names();
   d.Ids = sequence.ids();
+  d.TimestampsS = sequence.timestampsS();
   if (const std::string gaps = sequence.idGaps(); !gaps.empty())
   {
     d.Warn("missing from the frames' numbering: " + gaps +
@@ -149,11 +150,9 @@ void VideoRegistrationPipeline::estimateInitialScale(
   {
     throw Error("give a tracker recording or an initial scale: SfM alone has no metric scale");
   }
-  if (!(fps > 0.0))
-  {
-    throw Error("the frame rate must be positive, got " + std::to_string(fps));
-  }
-  d.TimesS = vimlop::frameTimesS(d.idsOf(sfm), fps, timeOffsetS);
+  d.idsOf(sfm); // SfM kept every loaded frame: the times are the loaded frames'
+  d.TimesS = d.frameTimes(fps, timeOffsetS, tracker != nullptr);
+  d.GivenFramesPerSecond = fps;
   double scale = givenScale;
   if (tracker)
   {
@@ -362,8 +361,25 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
   Internals& d = *this->Impl;
   // The small files first, so that a bad one fails before the long work.
   d.Tracker.reset();
-  if (!in.trackerPath.empty())
+  if (!in.trackerTransform.empty())
   {
+    const std::string& file = in.trackerPath.empty() ? in.framesPath : in.trackerPath;
+    std::vector<std::string> warnings;
+    d.Tracker = TrackerTrajectory::readTrackedSequence(file, in.trackerTransform, &warnings);
+    for (const std::string& w : warnings)
+    {
+      d.Warn(w);
+    }
+  }
+  else if (!in.trackerPath.empty())
+  {
+    const std::string extension = std::filesystem::path(in.trackerPath).extension().string();
+    if (extension == ".mha" || extension == ".mhd")
+    {
+      throw Error("'" + in.trackerPath +
+        "' is a tracked sequence: name the transform that "
+        "carries the scope (--tracker-transform, e.g. ProbeToTracker)");
+    }
     std::vector<std::string> warnings;
     d.Tracker = TrackerTrajectory::readCsv(in.trackerPath, &warnings);
     for (const std::string& w : warnings)
@@ -414,7 +430,9 @@ void VideoRegistrationPipeline::process()
     in.framesPath, readIntrinsics(in.intrinsicsPath), in.maxFrames, in.intrinsicsPath);
   if (tracker)
   {
-    checkTrackerOverlap(*tracker, vimlop::frameTimesS(d.Ids, in.framesPerSecond, in.timeOffsetS));
+    // Warned about once, with the scale.
+    checkTrackerOverlap(*tracker,
+      vimlop::frameTimesS(d.Ids, d.TimestampsS, in.framesPerSecond, in.timeOffsetS, nullptr));
   }
   this->loadModel(in.meshPath, in.meshPath.empty() ? in.ctPath : std::string());
   this->detectContours();

@@ -109,7 +109,9 @@ public:
 
   /**
    * 5. The initial scale (V14): from `tracker` over the registered frames
-   * (frame f at `timeOffsetS + f / fps` on its clock) unless `givenScale`
+   * (at their own timestamps plus `timeOffsetS`, or, when `fps` is positive
+   * or the frames have none, frame f at `timeOffsetS + f / fps` on its clock,
+   * fps 30 when 0: frameTimesS() in VideoInput.h) unless `givenScale`
    * is positive, which then wins (with a warning when the tracker disagrees
    * by more than the scale bound).
    * @throws vimlop::Error when neither is given or the tracker does not overlap the frames.
@@ -187,6 +189,12 @@ public:
   /// data().frames, from the frame rate and offset given to
   /// estimateInitialScale() (empty before it).
   std::vector<double> frameTimesS() const;
+  /**
+   * The rate the frames were taken at, frames per second (for the registered
+   * video): the rate given to estimateInitialScale() when positive, else the
+   * mean rate of the frames' own timestamps, else 30 (framesPerSecondOf()).
+   */
+  double framesPerSecond() const;
   const std::vector<SimilarityTransform>& starts() const;
   StartMode startMode() const;
   /// For canonical starts: the id of the frame placed at each pose.

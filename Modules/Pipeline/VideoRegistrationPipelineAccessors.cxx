@@ -122,6 +122,12 @@ const std::vector<int>& VideoRegistrationPipeline::frameOf() const
   return this->Impl->FrameOf;
 }
 
+double VideoRegistrationPipeline::framesPerSecond() const
+{
+  const Internals& d = *this->Impl;
+  return framesPerSecondOf(d.Ids, d.TimestampsS, d.GivenFramesPerSecond);
+}
+
 std::vector<double> VideoRegistrationPipeline::frameTimesS() const
 {
   const Internals& d = *this->Impl;

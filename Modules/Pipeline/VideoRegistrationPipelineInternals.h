@@ -9,6 +9,7 @@
 #include <vimlop/Pipeline/StageTimings.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 #include <vimlop/Video/FieldOfView.h>
+#include <vimlop/Video/VideoInput.h>
 
 #include <opencv2/core/mat.hpp>
 
@@ -38,14 +39,18 @@ struct VideoRegistrationPipeline::Internals
   std::vector<std::string> Names;
   /// The frames' ids (FrameSequence::ids(): their file numbers), one per frame.
   std::vector<int> Ids;
+  /// The frames' own times (FrameSequence::timestampsS()), one per frame, or empty.
+  std::vector<double> TimestampsS;
   /// The frames' field of view (field stop), found with the frames.
   std::optional<FieldOfView> View;
   bool ContoursDetected = false;
   std::vector<std::vector<ContourPoint>> Contours;
   std::optional<SfmReconstruction> Sfm;
   double Scale = 0.0;
-  /// The loaded frames' times on the video's clock, s (set with the scale).
+  /// The loaded frames' times on the video's clock, s, and the rate given
+  /// for them (0: none; both set with the scale).
   std::vector<double> TimesS;
+  double GivenFramesPerSecond = 0.0;
   bool DataMade = false;
   RegistrationData Data;
   std::vector<int> FrameOf;
@@ -98,6 +103,21 @@ struct VideoRegistrationPipeline::Internals
            << this->Scale << "): the tracker's scale may be wrong";
       this->Warn(text.str());
     }
+  }
+
+  /// The loaded frames' times on the tracker's clock (frameTimesS() in
+  /// VideoInput.h); the warnings about the frame rate only when a tracker
+  /// makes the times matter.
+  std::vector<double> frameTimes(double fps, double offsetS, bool tracked) const
+  {
+    std::string warning;
+    std::vector<double> times =
+      vimlop::frameTimesS(this->Ids, this->TimestampsS, fps, offsetS, tracked ? &warning : nullptr);
+    if (!warning.empty())
+    {
+      this->Warn(warning);
+    }
+    return times;
   }
 
   /// The ids of the SfM frames: the loaded frames' (SfM keeps every frame,

@@ -127,6 +127,7 @@ int vtkVIMLOPVideoRegistration::RequestData(
     inputs.colmapFolder = this->ColmapFolder;
     inputs.trackerPath = this->TrackerFileName;
     inputs.initialScale = this->InitialScale;
+    inputs.trackerTransform = this->TrackerTransformName;
     inputs.framesPerSecond = this->FramesPerSecond;
     inputs.timeOffsetS = this->TimeOffset;
     inputs.startMode =
@@ -163,6 +164,7 @@ void vtkVIMLOPVideoRegistration::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IntrinsicsFileName: " << this->IntrinsicsFileName << "\n";
   os << indent << "TrackerFileName: " << this->TrackerFileName << "\n";
   os << indent << "InitialScale: " << this->InitialScale << "\n";
+  os << indent << "TrackerTransformName: " << this->TrackerTransformName << "\n";
   os << indent << "FramesPerSecond: " << this->FramesPerSecond << "\n";
   os << indent << "TimeOffset: " << this->TimeOffset << "\n";
   os << indent << "ColmapFolder: " << this->ColmapFolder << "\n";

@@ -83,9 +83,16 @@ public:
   ///@}
 
   ///@{
-  /// Frame times on the tracker's clock: frame f at TimeOffset + f /
-  /// FramesPerSecond, seconds (defaults 0 and 30).
-  vtkSetClampMacro(FramesPerSecond, double, 1e-3, 1e6);
+  /// The transform of a tracked sequence that carries the scope (e.g.
+  /// "ProbeToTracker"), read from TrackerFileName or, when that is empty,
+  /// from FramesPath; empty (the default): the tracker is a CSV.
+  vtkSetStdStringFromCharMacro(TrackerTransformName);
+  vtkGetCharFromStdStringMacro(TrackerTransformName);
+  /// Frame times on the tracker's clock: the frames' own timestamps (a
+  /// tracked sequence) plus TimeOffset; a positive FramesPerSecond overrides
+  /// them (frame f at TimeOffset + f / FramesPerSecond, s); frames without
+  /// timestamps are 30 fps apart unless it is set (defaults 0 and 0).
+  vtkSetClampMacro(FramesPerSecond, double, 0.0, 1e6);
   vtkGetMacro(FramesPerSecond, double);
   vtkSetMacro(TimeOffset, double);
   vtkGetMacro(TimeOffset, double);
@@ -192,7 +199,8 @@ private:
   std::string StartPosesFileName;
   bool StartFromManualPose = false;
   double InitialScale = 0.0;
-  double FramesPerSecond = 30.0;
+  std::string TrackerTransformName;
+  double FramesPerSecond = 0.0;
   double TimeOffset = 0.0;
   int MaxFrames = 1000;
   vimlop::VideoRegistrationOptions Options;

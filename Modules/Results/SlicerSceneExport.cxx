@@ -4,6 +4,7 @@
 #include <vimlop/Core/CoordinateFrames.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/TextFormat.h>
+#include <vimlop/Core/TransformSequenceFile.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/LinearTransformIO.h>
 #include <vimlop/Imaging/MeshIO.h>
@@ -11,7 +12,6 @@
 #include <vimlop/Registration/RegistrationOutputConversion.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 #include <vimlop/Results/ResultFolderTransaction.h>
-#include <vimlop/Results/TransformSequenceFile.h>
 
 #include <vtkCellArray.h>
 #include <vtkConeSource.h>

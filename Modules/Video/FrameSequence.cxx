@@ -3,6 +3,7 @@
 #include <vimlop/Core/Error.h>
 
 #include "ImageFileHeader.h"
+#include "TrackedSequenceFile.h"
 #include "VideoFileDecoder.h"
 
 #include <opencv2/imgcodecs.hpp>
@@ -265,6 +266,20 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
       sequence.Frames.push_back(toBGR8(image));
       sequence.Names.push_back(names[i]);
     }
+  }
+  else if (detail::isTrackedSequencePath(path))
+  {
+    std::uint64_t decodedBytes = 0;
+    detail::TrackedSequenceFrames tracked = detail::readTrackedSequence(path, maxFrames,
+      [&](int index, std::uint64_t width, std::uint64_t height) {
+        checkFrameSize(path, "frame" + std::to_string(index), width, height, index, decodedBytes);
+      });
+    sequence.Frames = std::move(tracked.frames);
+    for (const int number : tracked.numbers)
+    {
+      sequence.Names.push_back("frame" + std::to_string(number));
+    }
+    sequence.TimestampsS = std::move(tracked.timestampsS);
   }
   else
   {

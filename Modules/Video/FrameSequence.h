@@ -18,7 +18,10 @@ namespace vimlop
  * `frame2.png` comes before `frame10.png`) or from a video file, decoded by
  * FFmpeg's `ffmpeg` program in a child process (`$VIMLOP_FFMPEG` names another
  * program), so that a decoder's fault on a broken file ends that process with
- * a message, not this one. All frames are 8-bit BGR and share one size. Sequences for
+ * a message, not this one, or from a tracked image sequence as PLUS and 3D
+ * Slicer record it (`.igs.mha`, `.seq.mha`, `.mha`, `.mhd`: a MetaImage whose
+ * third axis is time, with a timestamp per frame; frames whose image status
+ * is not OK are left out). All frames are 8-bit BGR and share one size. Sequences for
  * registration are short (about 30 frames), so they are held in memory.
  */
 class FrameSequence
@@ -41,6 +44,12 @@ public:
   const cv::Mat& frame(int i) const { return this->Frames.at(static_cast<size_t>(i)); }
   /// @brief File name of frame i (folder input) or "frame<i>" (video input).
   const std::string& name(int i) const { return this->Names.at(static_cast<size_t>(i)); }
+  /**
+   * @brief The time of each frame (s) as its file records it (a tracked
+   * sequence's timestamps, on the tracker's clock), in order; empty when the
+   * file records none (folders and video files).
+   */
+  const std::vector<double>& timestampsS() const { return this->TimestampsS; }
   /// @brief The names of all frames, in order.
   const std::vector<std::string>& names() const { return this->Names; }
   /**
@@ -48,7 +57,8 @@ public:
    * last run of digits: `frame011.png` is 11) when every name of the folder
    * has one and they increase in the frames' order, so that a missing file is
    * a gap in the ids and not a shift of every later frame; otherwise, and for
-   * a video file, the frame's index.
+   * a video file, the frame's index; for a tracked sequence, the frame's
+   * number in the file (a frame left out is a gap).
    */
   const std::vector<int>& ids() const { return this->Ids; }
   /**
@@ -73,6 +83,7 @@ private:
   std::vector<cv::Mat> Frames;
   std::vector<std::string> Names;
   std::vector<int> Ids;
+  std::vector<double> TimestampsS;
 };
 
 } // namespace vimlop

@@ -1,6 +1,7 @@
 #include <vimlop/Video/TrackerTrajectory.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TransformSequenceFile.h>
 
 #include <algorithm>
 #include <cctype>
@@ -157,6 +158,22 @@ TrackerTrajectory::TrackerTrajectory(
     throw Error("tracker trajectory: needs at least 2 samples with distinct times, got " +
       std::to_string(this->Samples.size()));
   }
+}
+
+TrackerTrajectory TrackerTrajectory::readTrackedSequence(
+  const std::string& path, const std::string& transformName, std::vector<std::string>* warnings)
+{
+  std::vector<Sample> samples;
+  for (const TimedTransform& item : readTransformSequenceFile(path, transformName))
+  {
+    samples.push_back({ item.timeS, item.matrix.topRightCorner<3, 1>() });
+  }
+  if (samples.size() < 2)
+  {
+    throw Error("'" + path + "': the transform '" + transformName + "' has " +
+      std::to_string(samples.size()) + " usable frame; a tracker needs at least 2");
+  }
+  return TrackerTrajectory(std::move(samples), warnings);
 }
 
 TrackerTrajectory TrackerTrajectory::readCsv(

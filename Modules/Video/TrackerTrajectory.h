@@ -53,6 +53,17 @@ public:
   static TrackerTrajectory readCsv(
     const std::string& path, std::vector<std::string>* warnings = nullptr);
 
+  /**
+   * @brief Reads the positions of the transform `transformName` (e.g.
+   * "ProbeToTracker") of a tracked sequence file as PLUS and 3D Slicer write
+   * it (`.igs.mha`, `.seq.mha`: TransformSequenceFile.h): the origin of the
+   * transform's frame, in mm in the tracker's frame, at each frame whose
+   * transform status is OK, at the frame's timestamp.
+   * @throws vimlop::Error as readTransformSequenceFile() does, or for fewer
+   * than 2 usable samples.
+   */
+  static TrackerTrajectory readTrackedSequence(const std::string& path,
+    const std::string& transformName, std::vector<std::string>* warnings = nullptr);
   /// @brief Writes the samples in the layout readCsv() reads.
   void writeCsv(const std::string& path) const;
 

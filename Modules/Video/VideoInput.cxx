@@ -7,8 +7,10 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
 #include <limits>
 #include <ostream>
+#include <sstream>
 
 namespace vimlop
 {
@@ -117,6 +119,69 @@ std::vector<double> frameTimesS(const std::vector<int>& frameIds, double fps, do
     times.push_back(offsetS + static_cast<double>(id - frameIds.front()) / fps);
   }
   return times;
+}
+
+double framesPerSecondOf(
+  const std::vector<int>& frameIds, const std::vector<double>& timestampsS, double fps)
+{
+  if (fps > 0.0)
+  {
+    return fps;
+  }
+  if (timestampsS.size() == frameIds.size() && frameIds.size() > 1 &&
+    timestampsS.back() > timestampsS.front())
+  {
+    return (frameIds.back() - frameIds.front()) / (timestampsS.back() - timestampsS.front());
+  }
+  return defaultFramesPerSecond;
+}
+
+std::vector<double> frameTimesS(const std::vector<int>& frameIds,
+  const std::vector<double>& timestampsS, double fps, double offsetS, std::string* warning)
+{
+  if (!std::isfinite(fps) || fps < 0.0)
+  {
+    throw Error(
+      "the frame rate must be positive (or 0: from the frames), got " + std::to_string(fps));
+  }
+  const bool stamped = !timestampsS.empty() && timestampsS.size() == frameIds.size();
+  if (stamped && fps == 0.0)
+  {
+    std::vector<double> times;
+    for (const double t : timestampsS)
+    {
+      times.push_back(offsetS + t);
+    }
+    return times;
+  }
+  if (stamped && frameIds.size() > 1 && warning)
+  {
+    const double recordedFps = framesPerSecondOf(frameIds, timestampsS, 0.0);
+    if (std::abs(fps / recordedFps - 1.0) > 0.01)
+    {
+      std::ostringstream text;
+      text << "the frame rate given, " << fps << " fps, disagrees with the frames' own timestamps ("
+           << recordedFps << " fps); the frame times follow the rate given";
+      *warning = text.str();
+    }
+  }
+  if (stamped)
+  {
+    // The rate is overridden, not the clock: the first frame keeps its time.
+    return frameTimesS(frameIds, fps, offsetS + timestampsS.front());
+  }
+  if (fps == 0.0)
+  {
+    if (warning && frameIds.size() > 1)
+    {
+      std::ostringstream text;
+      text << "the frames record no times: they are taken " << defaultFramesPerSecond
+           << " fps apart (give the video's frame rate, e.g. --fps 25)";
+      *warning = text.str();
+    }
+    fps = defaultFramesPerSecond;
+  }
+  return frameTimesS(frameIds, fps, offsetS);
 }
 
 TrackerScaleResult scaleFromTracker(const TrackerTrajectory& tracker, const SfmReconstruction& sfm,

@@ -52,6 +52,31 @@ SfmReconstruction reconstructFrames(const std::vector<cv::Mat>& frames,
 /// (a gap in FrameSequence::ids()) is a gap in time.
 std::vector<double> frameTimesS(const std::vector<int>& frameIds, double fps, double offsetS);
 
+/// @brief The frame rate assumed when neither the frames nor the user give one.
+constexpr double defaultFramesPerSecond = 30.0;
+
+/**
+ * @brief The rate the frames were taken at, frames per second: `fps` when it
+ * is positive, else the mean rate of their timestamps (one per id; id gaps
+ * count as frames), else defaultFramesPerSecond.
+ */
+double framesPerSecondOf(
+  const std::vector<int>& frameIds, const std::vector<double>& timestampsS, double fps);
+
+/**
+ * @brief Time of each frame on the tracker's clock, from what the frames
+ * record and what the user gives. `timestampsS` (FrameSequence::timestampsS(),
+ * one per id, or empty) are the frames' own times: with `fps` 0 they are
+ * used, plus `offsetS`. A positive `fps` overrides their rate: frame f at
+ * the first frame's timestamp + offset + (id - first id) / fps, with a
+ * warning in `warning` when it disagrees by more than 1 % with the rate the
+ * timestamps show. Without timestamps and `fps`, the rate
+ * is defaultFramesPerSecond and `warning` says so.
+ * @throws vimlop::Error for a negative or non-finite `fps`.
+ */
+std::vector<double> frameTimesS(const std::vector<int>& frameIds,
+  const std::vector<double>& timestampsS, double fps, double offsetS, std::string* warning);
+
 /**
  * @brief The initial scale (SfM units to mm) from the tracked trajectory over
  * the registered frames; warnings go to `log`.

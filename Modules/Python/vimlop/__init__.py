@@ -33,14 +33,18 @@ class RegistrationError(RuntimeError):
 
 
 def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0.0,
-                   fps=30.0, time_offset_s=0.0, colmap=None, start_poses=None,
-                   manual_start=False, threads=0):
+                   fps=0.0, time_offset_s=0.0, colmap=None, start_poses=None,
+                   manual_start=False, threads=0, tracker_transform=None):
     """Registers a video sequence to a CT: the main job, with `vimlop register`'s defaults.
 
-    frames: a folder of pictures or a video file; intrinsics: OpenCV YAML/JSON/XML;
+    frames: a folder of pictures, a video file or a tracked sequence (PLUS or
+    Slicer .igs.mha, with its timestamps); intrinsics: OpenCV YAML/JSON/XML;
     ct (a CT volume whose airway is segmented) or mesh (the airway surface, CT
-    frame, normals into the air); tracker (CSV time_s,x_mm,y_mm,z_mm) or scale
-    (mm per SfM unit) for the initial scale; colmap: a COLMAP sparse model
+    frame, normals into the air); tracker (CSV time_s,x_mm,y_mm,z_mm, or a
+    tracked sequence with tracker_transform, e.g. "ProbeToTracker", which
+    alone reads the tracker from the frames' file) or scale (mm per SfM unit)
+    for the initial scale; fps overrides the frames' own timestamps (0: them,
+    else 30 fps); colmap: a COLMAP sparse model
     folder instead of the built-in SfM; start_poses: a FramePose JSON file of
     canonical poses (default: generated along the airway) or, with
     manual_start, the camera-to-CT pose of one frame.
@@ -64,6 +68,7 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
     registration.SetMeshFileName(str(mesh) if mesh is not None else "")
     registration.SetCTFileName(str(ct) if ct is not None else "")
     registration.SetTrackerFileName(str(tracker) if tracker is not None else "")
+    registration.SetTrackerTransformName(str(tracker_transform) if tracker_transform else "")
     registration.SetInitialScale(float(scale))
     registration.SetFramesPerSecond(float(fps))
     registration.SetTimeOffset(float(time_offset_s))

@@ -1,11 +1,11 @@
 #include "ReportFixture.h"
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/CoordinateFrames.h>
+#include <vimlop/Core/TransformSequenceFile.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/LinearTransformIO.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 #include <vimlop/Results/SlicerSceneExport.h>
-#include <vimlop/Results/TransformSequenceFile.h>
 
 #include "ErrorMessage.h"
 #include "TestFolders.h"

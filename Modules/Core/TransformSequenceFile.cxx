@@ -1,4 +1,4 @@
-#include <vimlop/Results/TransformSequenceFile.h>
+#include <vimlop/Core/TransformSequenceFile.h>
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>

@@ -1,5 +1,5 @@
 #include <vimlop/Core/Rotation.h>
-#include <vimlop/Results/TransformSequenceFile.h>
+#include <vimlop/Core/TransformSequenceFile.h>
 
 #include "ErrorMessage.h"
 #include "TestFolders.h"
