@@ -263,8 +263,8 @@ void addRegisterCommand(CLI::App& app)
     "--tracker, or from --frames when it is a tracked sequence and --tracker is not given");
   r->add_option("--fps", in.framesPerSecond,
      "frame rate, for the frame times on the tracker's clock; overrides the frames' own "
-     "timestamps (a tracked sequence), with a warning when they disagree (default: the "
-     "timestamps, else 30)")
+     "timestamps (a tracked sequence) or rate (a video file), with a warning when they "
+     "disagree (default: the frames' own, else 30)")
     ->check(CLI::PositiveNumber);
   r->add_option(
      "--time-offset", in.timeOffsetS, "time of the first frame on the tracker's clock, s")

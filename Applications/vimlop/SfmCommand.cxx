@@ -53,6 +53,7 @@ void runSfm(const SfmOptions& o)
   // The frames' ids (their file numbers) or timestamps give their times on the tracker's clock.
   std::vector<int> ids;
   std::vector<double> timestampsS;
+  double recordedFps = 0.0;
   if (!o.colmap.empty())
   {
     std::vector<std::string> names;
@@ -62,6 +63,7 @@ void runSfm(const SfmOptions& o)
       names = sequence.names();
       ids = sequence.ids();
       timestampsS = sequence.timestampsS();
+      recordedFps = sequence.framesPerSecond();
     }
     sfm = reconstructFrames({}, names, PinholeCamera(), o.colmap, 0, &std::cerr);
   }
@@ -75,6 +77,7 @@ void runSfm(const SfmOptions& o)
     const FrameSequence sequence = FrameSequence::load(o.frames);
     ids = sequence.ids();
     timestampsS = sequence.timestampsS();
+    recordedFps = sequence.framesPerSecond();
     if (!sequence.idGaps().empty())
     {
       std::cerr << "vimlop: warning: missing from the frames' numbering: " << sequence.idGaps()
@@ -82,7 +85,8 @@ void runSfm(const SfmOptions& o)
     }
     if (tracker)
     {
-      checkTrackerOverlap(*tracker, frameTimesS(ids, timestampsS, o.fps, o.timeOffset, nullptr));
+      checkTrackerOverlap(
+        *tracker, frameTimesS(ids, timestampsS, recordedFps, o.fps, o.timeOffset, nullptr));
     }
     const std::vector<cv::Mat> frames =
       idealFrames(sequence, k, o.frames, o.intrinsics, &std::cerr);
@@ -102,7 +106,8 @@ void runSfm(const SfmOptions& o)
   if (tracker)
   {
     std::string warning;
-    const std::vector<double> timesS = frameTimesS(ids, timestampsS, o.fps, o.timeOffset, &warning);
+    const std::vector<double> timesS =
+      frameTimesS(ids, timestampsS, recordedFps, o.fps, o.timeOffset, &warning);
     if (!warning.empty())
     {
       std::cerr << "vimlop: warning: " << warning << "\n";
@@ -142,7 +147,7 @@ void addSfmCommand(CLI::App& app)
   sfm
     ->add_option("--fps", o->fps,
       "frame rate, for the frame times on the tracker's clock; overrides the frames' own "
-      "timestamps (default: the timestamps, else 30)")
+      "timestamps or video rate (default: the frames' own, else 30)")
     ->check(CLI::PositiveNumber);
   sfm
     ->add_option(

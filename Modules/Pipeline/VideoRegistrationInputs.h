@@ -40,10 +40,9 @@ struct VideoRegistrationInputs
   std::string trackerTransform;
   double initialScale = 0.0;
   /// Frame times on the tracker's clock: the frames' own timestamps (a
-  /// tracked sequence) plus `timeOffsetS`; a positive `framesPerSecond`
-  /// overrides them (frame f at `timeOffsetS + f / framesPerSecond`), and
-  /// frames without timestamps are 30 fps apart unless it is given
-  /// (frameTimesS() in VideoInput.h).
+  /// tracked sequence) plus `timeOffsetS`, or their video's rate; a positive
+  /// `framesPerSecond` overrides either, and a folder's frames are 30 fps
+  /// apart unless it is given (frameTimesS() in VideoInput.h).
   double framesPerSecond = 0.0;
   double timeOffsetS = 0.0;
   /// V13: canonical starts (generated along the airway, or the poses of

@@ -62,6 +62,7 @@ void VideoRegistrationPipeline::loadFrames(const std::string& path, const Pinhol
   d.Names = sequence.names();
   d.Ids = sequence.ids();
   d.TimestampsS = sequence.timestampsS();
+  d.RecordedFramesPerSecond = sequence.framesPerSecond();
   if (const std::string gaps = sequence.idGaps(); !gaps.empty())
   {
     d.Warn("missing from the frames' numbering: " + gaps +
@@ -432,7 +433,8 @@ void VideoRegistrationPipeline::process()
   {
     // Warned about once, with the scale.
     checkTrackerOverlap(*tracker,
-      vimlop::frameTimesS(d.Ids, d.TimestampsS, in.framesPerSecond, in.timeOffsetS, nullptr));
+      vimlop::frameTimesS(d.Ids, d.TimestampsS, d.RecordedFramesPerSecond, in.framesPerSecond,
+        in.timeOffsetS, nullptr));
   }
   this->loadModel(in.meshPath, in.meshPath.empty() ? in.ctPath : std::string());
   this->detectContours();

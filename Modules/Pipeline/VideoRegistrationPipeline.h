@@ -192,7 +192,7 @@ public:
   /**
    * The rate the frames were taken at, frames per second (for the registered
    * video): the rate given to estimateInitialScale() when positive, else the
-   * mean rate of the frames' own timestamps, else 30 (framesPerSecondOf()).
+   * rate the frames' file records, else 30 (framesPerSecondOf()).
    */
   double framesPerSecond() const;
   const std::vector<SimilarityTransform>& starts() const;

@@ -125,7 +125,7 @@ const std::vector<int>& VideoRegistrationPipeline::frameOf() const
 double VideoRegistrationPipeline::framesPerSecond() const
 {
   const Internals& d = *this->Impl;
-  return framesPerSecondOf(d.Ids, d.TimestampsS, d.GivenFramesPerSecond);
+  return framesPerSecondOf(d.RecordedFramesPerSecond, d.GivenFramesPerSecond);
 }
 
 std::vector<double> VideoRegistrationPipeline::frameTimesS() const

@@ -39,8 +39,10 @@ struct VideoRegistrationPipeline::Internals
   std::vector<std::string> Names;
   /// The frames' ids (FrameSequence::ids(): their file numbers), one per frame.
   std::vector<int> Ids;
-  /// The frames' own times (FrameSequence::timestampsS()), one per frame, or empty.
+  /// The frames' own times (FrameSequence::timestampsS()), one per frame, or
+  /// empty, and the rate their file records (0: none).
   std::vector<double> TimestampsS;
+  double RecordedFramesPerSecond = 0.0;
   /// The frames' field of view (field stop), found with the frames.
   std::optional<FieldOfView> View;
   bool ContoursDetected = false;
@@ -111,8 +113,8 @@ struct VideoRegistrationPipeline::Internals
   std::vector<double> frameTimes(double fps, double offsetS, bool tracked) const
   {
     std::string warning;
-    std::vector<double> times =
-      vimlop::frameTimesS(this->Ids, this->TimestampsS, fps, offsetS, tracked ? &warning : nullptr);
+    std::vector<double> times = vimlop::frameTimesS(this->Ids, this->TimestampsS,
+      this->RecordedFramesPerSecond, fps, offsetS, tracked ? &warning : nullptr);
     if (!warning.empty())
     {
       this->Warn(warning);

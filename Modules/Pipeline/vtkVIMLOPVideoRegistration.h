@@ -89,9 +89,10 @@ public:
   vtkSetStdStringFromCharMacro(TrackerTransformName);
   vtkGetCharFromStdStringMacro(TrackerTransformName);
   /// Frame times on the tracker's clock: the frames' own timestamps (a
-  /// tracked sequence) plus TimeOffset; a positive FramesPerSecond overrides
-  /// them (frame f at TimeOffset + f / FramesPerSecond, s); frames without
-  /// timestamps are 30 fps apart unless it is set (defaults 0 and 0).
+  /// tracked sequence) plus TimeOffset, or their video's rate; a positive
+  /// FramesPerSecond overrides either (frame f at TimeOffset + f /
+  /// FramesPerSecond, s); a folder's frames are 30 fps apart unless it is
+  /// set (defaults 0 and 0).
   vtkSetClampMacro(FramesPerSecond, double, 0.0, 1e6);
   vtkGetMacro(FramesPerSecond, double);
   vtkSetMacro(TimeOffset, double);

@@ -280,6 +280,12 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
       sequence.Names.push_back("frame" + std::to_string(number));
     }
     sequence.TimestampsS = std::move(tracked.timestampsS);
+    const std::vector<double>& t = sequence.TimestampsS;
+    if (t.size() > 1 && t.back() > t.front())
+    {
+      sequence.FramesPerSecond =
+        (tracked.numbers.back() - tracked.numbers.front()) / (t.back() - t.front());
+    }
   }
   else
   {
@@ -294,6 +300,7 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
     {
       sequence.Names.push_back("frame" + std::to_string(i));
     }
+    sequence.FramesPerSecond = detail::videoFramesPerSecond(path);
   }
   sequence.Ids = idsOf(sequence.Names);
   for (int i = 1; i < sequence.size(); ++i)

@@ -50,6 +50,13 @@ public:
    * file records none (folders and video files).
    */
   const std::vector<double>& timestampsS() const { return this->TimestampsS; }
+  /**
+   * @brief The rate the file records, frames per second: a video stream's
+   * average frame rate (read by `ffprobe`), a tracked sequence's mean rate
+   * over its timestamps (a frame left out counts); 0 when it records none
+   * (a folder, or a video whose rate cannot be read).
+   */
+  double framesPerSecond() const { return this->FramesPerSecond; }
   /// @brief The names of all frames, in order.
   const std::vector<std::string>& names() const { return this->Names; }
   /**
@@ -84,6 +91,7 @@ private:
   std::vector<std::string> Names;
   std::vector<int> Ids;
   std::vector<double> TimestampsS;
+  double FramesPerSecond = 0.0;
 };
 
 } // namespace vimlop

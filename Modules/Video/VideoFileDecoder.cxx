@@ -6,6 +6,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -154,6 +156,33 @@ std::vector<std::string> videoDecoderArguments(
     "-i", "file:" + std::filesystem::absolute(path).string(), "-map", "0:v:0", "-frames:v",
     std::to_string(maxFrames), "-fps_mode", "passthrough", "-f", "image2pipe", "-c:v", "ppm",
     "-pix_fmt", "rgb24", "pipe:1" };
+}
+
+double videoFramesPerSecond(const std::string& path)
+{
+  const char* given = std::getenv("VIMLOP_FFPROBE");
+  const std::string program = given != nullptr && *given != '\0' ? given : "ffprobe";
+  try
+  {
+    ChildProcess probe({ program, "-v", "error", "-protocol_whitelist", "file", "-select_streams",
+      "v:0", "-show_entries", "stream=avg_frame_rate", "-of", "default=noprint_wrappers=1:nokey=1",
+      "file:" + std::filesystem::absolute(path).string() });
+    char text[64] = {};
+    const std::size_t got = probe.read(text, sizeof(text) - 1, 10.0);
+    probe.finish(true);
+    // "25/1", "30000/1001"; "0/0" when the container has no rate.
+    double numerator = 0.0;
+    double denominator = 0.0;
+    if (got > 0 && std::sscanf(text, "%lf/%lf", &numerator, &denominator) == 2 && numerator > 0.0 &&
+      denominator > 0.0 && std::isfinite(numerator / denominator))
+    {
+      return numerator / denominator;
+    }
+  }
+  catch (const Error&)
+  {
+  }
+  return 0.0;
 }
 
 std::vector<cv::Mat> decodeVideoFile(const std::string& path, int maxFrames,

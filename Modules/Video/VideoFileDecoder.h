@@ -27,6 +27,15 @@ std::vector<std::string> videoDecoderArguments(
   const std::string& program, const std::string& path, int maxFrames);
 
 /**
+ * @brief The average frame rate of the first video stream of `path`, frames
+ * per second, as FFmpeg's `ffprobe` (beside `ffmpeg`; $VIMLOP_FFPROBE names
+ * another) reads it from the container; 0 when it cannot tell (no ffprobe,
+ * no rate in the file, an answer that is not a positive rate). Never throws:
+ * the rate is a default, the decoder reports what is wrong with the file.
+ */
+double videoFramesPerSecond(const std::string& path);
+
+/**
  * @brief Decodes at most `maxFrames` frames of the video `path` with
  * `program` (ffmpeg's arguments, as above) into 8-bit BGR images.
  * `checkSize(index, widthPx, heightPx)` judges each frame from its header

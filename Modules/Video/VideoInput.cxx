@@ -121,23 +121,14 @@ std::vector<double> frameTimesS(const std::vector<int>& frameIds, double fps, do
   return times;
 }
 
-double framesPerSecondOf(
-  const std::vector<int>& frameIds, const std::vector<double>& timestampsS, double fps)
+double framesPerSecondOf(double recordedFps, double fps)
 {
-  if (fps > 0.0)
-  {
-    return fps;
-  }
-  if (timestampsS.size() == frameIds.size() && frameIds.size() > 1 &&
-    timestampsS.back() > timestampsS.front())
-  {
-    return (frameIds.back() - frameIds.front()) / (timestampsS.back() - timestampsS.front());
-  }
-  return defaultFramesPerSecond;
+  return fps > 0.0 ? fps : (recordedFps > 0.0 ? recordedFps : defaultFramesPerSecond);
 }
 
 std::vector<double> frameTimesS(const std::vector<int>& frameIds,
-  const std::vector<double>& timestampsS, double fps, double offsetS, std::string* warning)
+  const std::vector<double>& timestampsS, double recordedFps, double fps, double offsetS,
+  std::string* warning)
 {
   if (!std::isfinite(fps) || fps < 0.0)
   {
@@ -154,34 +145,24 @@ std::vector<double> frameTimesS(const std::vector<int>& frameIds,
     }
     return times;
   }
-  if (stamped && frameIds.size() > 1 && warning)
+  if (warning && fps > 0.0 && recordedFps > 0.0 && std::abs(fps / recordedFps - 1.0) > 0.01)
   {
-    const double recordedFps = framesPerSecondOf(frameIds, timestampsS, 0.0);
-    if (std::abs(fps / recordedFps - 1.0) > 0.01)
-    {
-      std::ostringstream text;
-      text << "the frame rate given, " << fps << " fps, disagrees with the frames' own timestamps ("
-           << recordedFps << " fps); the frame times follow the rate given";
-      *warning = text.str();
-    }
+    std::ostringstream text;
+    text << "the frame rate given, " << fps << " fps, disagrees with the "
+         << (stamped ? "frames' own timestamps" : "video's") << " (" << recordedFps
+         << " fps); the frame times follow the rate given";
+    *warning = text.str();
   }
-  if (stamped)
+  if (warning && fps == 0.0 && recordedFps == 0.0 && frameIds.size() > 1)
   {
-    // The rate is overridden, not the clock: the first frame keeps its time.
-    return frameTimesS(frameIds, fps, offsetS + timestampsS.front());
+    std::ostringstream text;
+    text << "the frames record no times: they are taken " << defaultFramesPerSecond
+         << " fps apart (give the video's frame rate, e.g. --fps 25)";
+    *warning = text.str();
   }
-  if (fps == 0.0)
-  {
-    if (warning && frameIds.size() > 1)
-    {
-      std::ostringstream text;
-      text << "the frames record no times: they are taken " << defaultFramesPerSecond
-           << " fps apart (give the video's frame rate, e.g. --fps 25)";
-      *warning = text.str();
-    }
-    fps = defaultFramesPerSecond;
-  }
-  return frameTimesS(frameIds, fps, offsetS);
+  // An overridden rate keeps the clock: the first frame keeps its time.
+  return frameTimesS(
+    frameIds, framesPerSecondOf(recordedFps, fps), offsetS + (stamped ? timestampsS.front() : 0.0));
 }
 
 TrackerScaleResult scaleFromTracker(const TrackerTrajectory& tracker, const SfmReconstruction& sfm,

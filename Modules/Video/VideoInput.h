@@ -56,26 +56,26 @@ std::vector<double> frameTimesS(const std::vector<int>& frameIds, double fps, do
 constexpr double defaultFramesPerSecond = 30.0;
 
 /**
- * @brief The rate the frames were taken at, frames per second: `fps` when it
- * is positive, else the mean rate of their timestamps (one per id; id gaps
- * count as frames), else defaultFramesPerSecond.
+ * @brief The rate the frames were taken at, frames per second: `fps` (the
+ * user's) when it is positive, else `recordedFps` (the file's,
+ * FrameSequence::framesPerSecond()) when it is, else defaultFramesPerSecond.
  */
-double framesPerSecondOf(
-  const std::vector<int>& frameIds, const std::vector<double>& timestampsS, double fps);
+double framesPerSecondOf(double recordedFps, double fps);
 
 /**
- * @brief Time of each frame on the tracker's clock, from what the frames
- * record and what the user gives. `timestampsS` (FrameSequence::timestampsS(),
- * one per id, or empty) are the frames' own times: with `fps` 0 they are
- * used, plus `offsetS`. A positive `fps` overrides their rate: frame f at
- * the first frame's timestamp + offset + (id - first id) / fps, with a
- * warning in `warning` when it disagrees by more than 1 % with the rate the
- * timestamps show. Without timestamps and `fps`, the rate
- * is defaultFramesPerSecond and `warning` says so.
+ * @brief Time of each frame on the tracker's clock, from what the frames'
+ * file records and what the user gives. `timestampsS`
+ * (FrameSequence::timestampsS(), one per id, or empty) are the frames' own
+ * times: with `fps` 0 they are used, plus `offsetS`. Frames without them are
+ * at offset + (id - first id) / rate, the rate framesPerSecondOf(): `fps`,
+ * else `recordedFps` (the video's), else 30 fps, which `warning` then says.
+ * A positive `fps` overrides the file's rate (the first frame keeps its
+ * timestamp), with a warning when they disagree by more than 1 %.
  * @throws vimlop::Error for a negative or non-finite `fps`.
  */
 std::vector<double> frameTimesS(const std::vector<int>& frameIds,
-  const std::vector<double>& timestampsS, double fps, double offsetS, std::string* warning);
+  const std::vector<double>& timestampsS, double recordedFps, double fps, double offsetS,
+  std::string* warning);
 
 /**
  * @brief The initial scale (SfM units to mm) from the tracked trajectory over

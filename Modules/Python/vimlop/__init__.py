@@ -43,8 +43,8 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
     frame, normals into the air); tracker (CSV time_s,x_mm,y_mm,z_mm, or a
     tracked sequence with tracker_transform, e.g. "ProbeToTracker", which
     alone reads the tracker from the frames' file) or scale (mm per SfM unit)
-    for the initial scale; fps overrides the frames' own timestamps (0: them,
-    else 30 fps); colmap: a COLMAP sparse model
+    for the initial scale; fps overrides the frames' own timestamps or video
+    rate (0: them, else 30 fps); colmap: a COLMAP sparse model
     folder instead of the built-in SfM; start_poses: a FramePose JSON file of
     canonical poses (default: generated along the airway) or, with
     manual_start, the camera-to-CT pose of one frame.

@@ -98,6 +98,26 @@ TEST(FrameSequence, LoadsAVideoFile)
   EXPECT_EQ(sequence.name(3), "frame3");
   EXPECT_EQ(sequence.ids(), (std::vector<int>{ 0, 1, 2, 3, 4, 5, 6 }));
   EXPECT_EQ(sequence.widthPx(), 64);
+  EXPECT_DOUBLE_EQ(sequence.framesPerSecond(), 10.0) << "the stream's rate, read by ffprobe";
+  EXPECT_TRUE(sequence.timestampsS().empty());
+}
+
+TEST(FrameSequence, AVideoWhoseRateCannotBeReadRecordsNone)
+{
+  const std::string path = out + "/clip-rate.avi";
+  cv::VideoWriter writer(path, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 25.0, cv::Size(64, 48));
+  ASSERT_TRUE(writer.isOpened()) << "OpenCV cannot write MJPG here";
+  for (int i = 0; i < 3; ++i)
+  {
+    writer.write(numberedFrame(i));
+  }
+  writer.release();
+  EXPECT_DOUBLE_EQ(FrameSequence::load(path).framesPerSecond(), 25.0);
+  ::setenv("VIMLOP_FFPROBE", "/no/such/ffprobe", 1);
+  const FrameSequence sequence = FrameSequence::load(path);
+  ::unsetenv("VIMLOP_FFPROBE");
+  EXPECT_EQ(sequence.size(), 3) << "the frames do not depend on the rate";
+  EXPECT_EQ(sequence.framesPerSecond(), 0.0);
 }
 
 TEST(FrameSequence, ErrorsNameThePathAndTheProblem)

@@ -109,6 +109,7 @@ TEST(TrackedSequence, LoadsTheFramesOfAPlusRecordingWithTheirTimestamps)
     ASSERT_EQ(sequence.size(), 2);
     EXPECT_EQ(sequence.ids(), (std::vector<int>{ 0, 2 }));
     EXPECT_EQ(sequence.timestampsS(), (std::vector<double>{ 100.0, 100.08 }));
+    EXPECT_NEAR(sequence.framesPerSecond(), 25.0, 1e-9) << "frame 1, left out, counts";
     EXPECT_EQ(sequence.widthPx(), 8);
     EXPECT_EQ(sequence.heightPx(), 6);
     // RGB in the file, BGR in memory; rows as stored.
@@ -188,25 +189,32 @@ TEST(TrackedSequence, FrameTimesComeFromTheTimestampsUnlessAFrameRateOverridesTh
   const std::vector<int> ids = { 0, 1, 2, 4 };
   const std::vector<double> stamps = { 100.0, 100.04, 100.08, 100.16 };
   std::string warning;
-  EXPECT_EQ(frameTimesS(ids, stamps, 0.0, 0.5, &warning),
+  EXPECT_EQ(frameTimesS(ids, stamps, 25.0, 0.0, 0.5, &warning),
     (std::vector<double>{ 100.5, 100.54, 100.58, 100.66 }));
   EXPECT_EQ(warning, "");
 
-  const std::vector<double> overridden = frameTimesS(ids, stamps, 30.0, 0.0, &warning);
+  const std::vector<double> overridden = frameTimesS(ids, stamps, 25.0, 30.0, 0.0, &warning);
   EXPECT_DOUBLE_EQ(overridden[0], 100.0) << "the rate is overridden, not the clock";
   EXPECT_DOUBLE_EQ(overridden[3], 100.0 + 4.0 / 30.0);
   EXPECT_EQ(warning,
     "the frame rate given, 30 fps, disagrees with the frames' own timestamps (25 fps); the "
     "frame times follow the rate given");
   warning.clear();
-  frameTimesS(ids, stamps, 25.1, 0.0, &warning);
+  frameTimesS(ids, stamps, 25.0, 25.1, 0.0, &warning);
   EXPECT_EQ(warning, "") << "within 1 %";
 
-  const std::vector<double> assumed = frameTimesS(ids, {}, 0.0, 0.0, &warning);
+  // A video's own rate, then the user's against it, then none at all.
+  EXPECT_DOUBLE_EQ(frameTimesS(ids, {}, 25.0, 0.0, 0.0, &warning)[3], 4.0 / 25.0);
+  EXPECT_EQ(warning, "");
+  frameTimesS(ids, {}, 25.0, 30.0, 0.0, &warning);
+  EXPECT_EQ(warning,
+    "the frame rate given, 30 fps, disagrees with the video's (25 fps); the frame times follow "
+    "the rate given");
+  const std::vector<double> assumed = frameTimesS(ids, {}, 0.0, 0.0, 0.0, &warning);
   EXPECT_DOUBLE_EQ(assumed[3], 4.0 / 30.0);
   EXPECT_EQ(warning,
     "the frames record no times: they are taken 30 fps apart (give the video's frame rate, e.g. "
     "--fps 25)");
-  EXPECT_EQ(errorMessageOf([&] { frameTimesS(ids, stamps, -1.0, 0.0, nullptr); }),
+  EXPECT_EQ(errorMessageOf([&] { frameTimesS(ids, stamps, 25.0, -1.0, 0.0, nullptr); }),
     "the frame rate must be positive (or 0: from the frames), got -1.000000");
 }
