@@ -57,6 +57,24 @@ void PinholeCamera::validate() const
   {
     problem << "image size must be positive (" << widthPx << "x" << heightPx << ")";
   }
+  // Units: an endoscope's focal length is about 0.3 to 1.5 image widths in
+  // pixels. One in mm or normalised (fx = 2.8, 0.9) is under a twentieth of
+  // the width (a field of view over 168 deg); one for a ten times larger
+  // image or in micrometres, over twenty widths (under 3 deg).
+  else if (fx < 0.05 * widthPx || fy < 0.05 * heightPx)
+  {
+    problem << "focal lengths (fx=" << fx << ", fy=" << fy << ") are far too small for a "
+            << widthPx << "x" << heightPx
+            << " image (a field of view over 168 deg): intrinsics are in pixels, not mm or "
+               "normalised";
+  }
+  else if (fx > 20.0 * widthPx || fy > 20.0 * heightPx)
+  {
+    problem << "focal lengths (fx=" << fx << ", fy=" << fy << ") are far too large for a "
+            << widthPx << "x" << heightPx
+            << " image (a field of view under 3 deg): are they for a larger image, or in other "
+               "units than pixels?";
+  }
   else if (cx < -widthPx || cx > 2.0 * widthPx || cy < -heightPx || cy > 2.0 * heightPx)
   {
     problem << "principal point (" << cx << ", " << cy << ") is far outside the " << widthPx << "x"

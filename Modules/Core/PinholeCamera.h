@@ -89,8 +89,10 @@ struct PinholeCamera
   /**
    * @brief Checks that the intrinsics are usable.
    * @throws vimlop::Error naming the first problem (non-positive focal length
-   * or image size, non-finite value, principal point far outside the image,
-   * a fisheye lens without exactly 4 coefficients).
+   * or image size, non-finite value, a focal length under 1/20 or over 20
+   * times the image size, which is one in other units than pixels, a
+   * principal point far outside the image, a fisheye lens without exactly 4
+   * coefficients).
    */
   void validate() const;
 };

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 namespace vimlop
 {
@@ -104,6 +105,17 @@ TrackerScaleResult estimateTrackerScale(const TrackerTrajectory& tracker,
     throw Error("tracker scale: the " +
       std::string(result.trackerLengthMm > 0.0 ? "SfM" : "tracked") +
       " trajectory has no length (the endoscope did not move)");
+  }
+  // A tracker in metres moves a thousandth of what it should: the scale
+  // would be 1000 times too small, and every start outside the anatomy.
+  if (result.trackerLengthMm < 1.0)
+  {
+    std::ostringstream text;
+    text << "tracker scale: the tracked trajectory is only " << result.trackerLengthMm
+         << " mm long over " << tracked.size()
+         << " frames, too short for a scale: are the tracker's positions in metres? They are "
+            "read as mm (or give the initial scale)";
+    throw Error(text.str());
   }
   if (result.trackerLengthMm < 2.0 * options.minChordMm)
   {

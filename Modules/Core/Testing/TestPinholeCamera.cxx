@@ -90,6 +90,23 @@ TEST(PinholeCamera, ValidateNamesTheProblem)
   EXPECT_THROW(camera.validate(), Error);
 }
 
+TEST(PinholeCamera, IntrinsicsInOtherUnitsThanPixelsAreRefusedWithTheUnitsNamed)
+{
+  // The simulated endoscope's 200 px focal length as mm of a 2.8 mm lens,
+  // and as the focal length of an image ten times larger in micrometres.
+  PinholeCamera k = PinholeCamera::simulatedEndoscope();
+  k.fx = k.fy = 2.8;
+  EXPECT_EQ(vimlop::fixtures::errorMessageOf([&] { k.validate(); }),
+    "focal lengths (fx=2.8, fy=2.8) are far too small for a 320x240 image (a field of view over "
+    "168 deg): intrinsics are in pixels, not mm or normalised");
+  k.fx = k.fy = 7000.0;
+  EXPECT_EQ(vimlop::fixtures::errorMessageOf([&] { k.validate(); }),
+    "focal lengths (fx=7000, fy=7000) are far too large for a 320x240 image (a field of view "
+    "under 3 deg): are they for a larger image, or in other units than pixels?");
+  k.fx = k.fy = 0.3 * 320.0; // a wide-angle scope: 118 deg across
+  EXPECT_NO_THROW(k.validate());
+}
+
 TEST(PinholeCamera, TheSimulatedEndoscopeIsValidWithItsPrincipalPointAtTheCentre)
 {
   const PinholeCamera k = PinholeCamera::simulatedEndoscope();

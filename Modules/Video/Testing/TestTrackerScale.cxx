@@ -152,6 +152,25 @@ TEST(TrackerScale, FailsWithoutTimeOverlapOrMotion)
     "tracker scale: the SfM trajectory has no length (the endoscope did not move)");
 }
 
+TEST(TrackerScale, ATrackerInMetresIsRefusedWithTheUnitNamed)
+{
+  std::vector<double> times;
+  std::vector<Eigen::Vector3d> centres;
+  frames(0.5, times, centres);
+  std::vector<TrackerTrajectory::Sample> metres;
+  for (double t = -0.2; t <= 1.2; t += 1.0 / 40.0)
+  {
+    metres.push_back({ t, tip(t) / 1000.0 });
+  }
+  const std::string message =
+    messageOf([&] { estimateTrackerScale(TrackerTrajectory(metres), times, centres); });
+  EXPECT_EQ(message.rfind("tracker scale: the tracked trajectory is only 0.014", 0), 0u) << message;
+  EXPECT_NE(message.find("mm long over 30 frames, too short for a scale: are the tracker's "
+                         "positions in metres? They are read as mm (or give the initial scale)"),
+    std::string::npos)
+    << message;
+}
+
 TEST(TrackerTrajectory, SmoothingFollowsTheTipToTheEnds)
 {
   // A local line fit, unlike a moving average, does not lag at the ends.
