@@ -4,6 +4,7 @@
 #include <vimlop/Cohort/CohortRowCommand.h>
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 
 #include <nlohmann/json.hpp>
 
@@ -101,12 +102,7 @@ std::string CohortFolder::recordPath() const
 
 std::string CohortFolder::manifestCopyPath(const std::string& manifestPath) const
 {
-  std::string extension = fs::path(manifestPath).extension().string();
-  for (char& c : extension)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return this->Root + "/manifest" + extension;
+  return this->Root + "/manifest" + lowerCaseExtension(manifestPath);
 }
 
 std::string CohortFolder::slurmFolder() const

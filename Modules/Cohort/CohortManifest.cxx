@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Sha256.h>
+#include <vimlop/Core/TextFormat.h>
 
 #include <nlohmann/json.hpp>
 
@@ -52,8 +53,7 @@ std::string where(const std::string& path, const CohortRow& row, bool csv)
 /// A true/false text of a flag column; throws for anything else.
 bool flagValue(const std::string& value, const std::string& context, const std::string& name)
 {
-  std::string v = value;
-  std::transform(v.begin(), v.end(), v.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string v = lowerCase(value);
   if (v == "true" || v == "yes" || v == "1")
   {
     return true;
@@ -568,9 +568,7 @@ CohortManifest readCohortManifest(const std::string& path, const CohortCommandCa
   {
     throw Error("'" + path + "': cannot read it");
   }
-  std::string extension = fs::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-    [](unsigned char c) { return std::tolower(c); });
+  const std::string extension = lowerCaseExtension(path);
   CohortManifest manifest;
   manifest.path = fs::absolute(path).lexically_normal().string();
   manifest.folder = fs::path(manifest.path).parent_path().string();

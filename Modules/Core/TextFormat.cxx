@@ -1,7 +1,9 @@
 #include <vimlop/Core/TextFormat.h>
 
+#include <cctype>
 #include <cstdarg>
 #include <cstdio>
+#include <filesystem>
 #include <vector>
 
 namespace vimlop
@@ -19,6 +21,20 @@ std::string formatText(const char* format, ...)
   std::vsnprintf(text.data(), text.size(), format, args);
   va_end(args);
   return std::string(text.data(), text.size() - 1);
+}
+
+std::string lowerCase(std::string text)
+{
+  for (char& c : text)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return text;
+}
+
+std::string lowerCaseExtension(const std::string& path)
+{
+  return lowerCase(std::filesystem::path(path).extension().string());
 }
 
 std::string escapeHtml(const std::string& text)

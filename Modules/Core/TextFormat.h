@@ -19,6 +19,13 @@ formatText(const char* format, ...);
 /// @brief `text` with &, <, > and " as HTML entities, for the report pages.
 std::string escapeHtml(const std::string& text);
 
+/// @brief `text` with its ASCII letters in lower case, for names compared without case.
+std::string lowerCase(std::string text);
+
+/// @brief The extension of the file name `path` in lower case, with its dot
+/// (".mha"), or "" when it has none: how the readers tell formats apart.
+std::string lowerCaseExtension(const std::string& path);
+
 } // namespace vimlop
 
 #endif

@@ -93,6 +93,75 @@ void writeTransformSequenceFile(
   writeFileAtomically(path, header.str());
 }
 
+std::optional<double> SequenceMetafileHeader::timestampS(long frame, const std::string& path) const
+{
+  const auto fieldsOfFrame = this->frames.find(frame);
+  if (fieldsOfFrame == this->frames.end())
+  {
+    return std::nullopt;
+  }
+  const auto value = fieldsOfFrame->second.find("Timestamp");
+  if (value == fieldsOfFrame->second.end())
+  {
+    return std::nullopt;
+  }
+  std::istringstream number(value->second);
+  double t = 0.0;
+  if (!(number >> t) || !std::isfinite(t))
+  {
+    fail(path,
+      "frame " + std::to_string(frame) + "'s timestamp '" + value->second + "' is not a number");
+  }
+  return t;
+}
+
+SequenceMetafileHeader readSequenceMetafileHeader(std::istream& in, const std::string& path)
+{
+  SequenceMetafileHeader header;
+  std::string line;
+  int lineNumber = 0;
+  std::streamoff read = 0;
+  while (std::getline(in, line))
+  {
+    ++lineNumber;
+    read += static_cast<std::streamoff>(line.size()) + 1;
+    if (read > (std::streamoff(64) << 20))
+    {
+      fail(path, "its header goes on for over 64 MiB: not a sequence metafile");
+    }
+    const size_t equals = line.find('=');
+    if (equals == std::string::npos)
+    {
+      fail(path, "line " + std::to_string(lineNumber) + " is not 'name = value'");
+    }
+    const std::string key = trimmed(line.substr(0, equals));
+    const std::string value = trimmed(line.substr(equals + 1));
+    if (key.compare(0, framePrefix.size(), framePrefix) != 0)
+    {
+      header.fields[key] = value;
+      if (key == "ElementDataFile")
+      {
+        header.complete = true;
+        header.dataOffset = in.tellg();
+        break;
+      }
+      continue;
+    }
+    const size_t underscore = key.find('_', framePrefix.size());
+    char* end = nullptr;
+    const std::string number = underscore == std::string::npos
+      ? std::string()
+      : key.substr(framePrefix.size(), underscore - framePrefix.size());
+    const long frame = std::strtol(number.c_str(), &end, 10);
+    if (number.empty() || *end != '\0' || frame < 0)
+    {
+      fail(path, "line " + std::to_string(lineNumber) + ": '" + key + "' has no frame number");
+    }
+    header.frames[frame][key.substr(underscore + 1)] = value;
+  }
+  return header;
+}
+
 std::vector<TimedTransform> readTransformSequenceFile(
   const std::string& path, const std::string& name)
 {
@@ -101,106 +170,44 @@ std::vector<TimedTransform> readTransformSequenceFile(
   {
     fail(path, "no such file, or it cannot be read");
   }
-  struct Frame
-  {
-    std::optional<Eigen::Matrix4d> matrix;
-    std::optional<double> timeS;
-    bool ok = true;
-  };
-  std::map<long, Frame> frames;
-  const std::string transformField = name + "Transform";
-  bool sawObjectType = false;
-  std::string line;
-  int lineNumber = 0;
-  while (std::getline(file, line))
-  {
-    ++lineNumber;
-    const size_t equals = line.find('=');
-    if (equals == std::string::npos)
-    {
-      fail(path, "line " + std::to_string(lineNumber) + " is not 'name = value'");
-    }
-    const std::string key = trimmed(line.substr(0, equals));
-    const std::string value = trimmed(line.substr(equals + 1));
-    if (key == "ObjectType")
-    {
-      sawObjectType = true;
-    }
-    if (key == "ElementDataFile")
-    {
-      break; // the voxels (if any) follow; the header ends here
-    }
-    if (key.compare(0, framePrefix.size(), framePrefix) != 0)
-    {
-      continue;
-    }
-    const size_t underscore = key.find('_', framePrefix.size());
-    if (underscore == std::string::npos)
-    {
-      continue;
-    }
-    char* end = nullptr;
-    const std::string number = key.substr(framePrefix.size(), underscore - framePrefix.size());
-    const long index = std::strtol(number.c_str(), &end, 10);
-    if (number.empty() || *end != '\0' || index < 0)
-    {
-      fail(path, "line " + std::to_string(lineNumber) + ": '" + key + "' has no frame number");
-    }
-    const std::string field = key.substr(underscore + 1);
-    Frame& frame = frames[index];
-    if (field == transformField)
-    {
-      std::istringstream numbers(value);
-      Eigen::Matrix4d matrix;
-      int count = 0;
-      double v = 0.0;
-      while (numbers >> v)
-      {
-        if (count < 16)
-        {
-          matrix(count / 4, count % 4) = v;
-        }
-        ++count;
-      }
-      if (count != 16 || !numbers.eof() || !matrix.allFinite())
-      {
-        fail(path, "line " + std::to_string(lineNumber) + ": '" + key + "' is not 16 numbers");
-      }
-      frame.matrix = matrix;
-    }
-    else if (field == transformField + "Status")
-    {
-      frame.ok = value == "OK";
-    }
-    else if (field == "Timestamp")
-    {
-      std::istringstream number(value);
-      double t = 0.0;
-      if (!(number >> t) || !std::isfinite(t))
-      {
-        fail(path,
-          "line " + std::to_string(lineNumber) + ": the timestamp '" + value + "' is not a number");
-      }
-      frame.timeS = t;
-    }
-  }
-  if (!sawObjectType)
+  const SequenceMetafileHeader header = readSequenceMetafileHeader(file, path);
+  if (header.fields.count("ObjectType") == 0)
   {
     fail(path, "not a sequence metafile (no ObjectType line)");
   }
+  const std::string transformField = name + "Transform";
   std::vector<TimedTransform> items;
-  for (const auto& [index, frame] : frames)
+  for (const auto& [frame, fields] : header.frames)
   {
-    if (!frame.matrix || !frame.ok)
+    const auto value = fields.find(transformField);
+    const auto status = fields.find(transformField + "Status");
+    if (value == fields.end() || (status != fields.end() && status->second != "OK"))
     {
       continue;
     }
-    if (!frame.timeS)
+    std::istringstream numbers(value->second);
+    Eigen::Matrix4d matrix;
+    int count = 0;
+    double v = 0.0;
+    while (numbers >> v)
+    {
+      if (count < 16)
+      {
+        matrix(count / 4, count % 4) = v;
+      }
+      ++count;
+    }
+    if (count != 16 || !numbers.eof() || !matrix.allFinite())
+    {
+      fail(path, "frame " + std::to_string(frame) + "'s " + transformField + " is not 16 numbers");
+    }
+    const std::optional<double> timeS = header.timestampS(frame, path);
+    if (!timeS)
     {
       fail(
-        path, "frame " + std::to_string(index) + " has a " + transformField + " but no timestamp");
+        path, "frame " + std::to_string(frame) + " has a " + transformField + " but no timestamp");
     }
-    items.push_back({ *frame.timeS, *frame.matrix });
+    items.push_back({ *timeS, matrix });
   }
   if (items.empty())
   {

@@ -3,6 +3,9 @@
 
 #include <Eigen/Core>
 
+#include <iosfwd>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +38,38 @@ struct TimedTransform
 };
 
 /**
+ * @brief The header of a sequence metafile (the transforms' and, in Video's
+ * TrackedSequenceFile.h, the frames' reader): its own fields, the fields of
+ * each frame (`Seq_Frame0003_Timestamp` is frame 3's "Timestamp"), and
+ * where its data begin.
+ */
+struct SequenceMetafileHeader
+{
+  std::map<std::string, std::string> fields;
+  std::map<long, std::map<std::string, std::string>> frames;
+  /// True when an ElementDataFile line ended the header; its data (if
+  /// LOCAL) begin at `dataOffset` in the stream.
+  bool complete = false;
+  std::streamoff dataOffset = 0;
+
+  /**
+   * @brief Frame `frame`'s Timestamp, s; empty when it has none.
+   * @throws vimlop::Error "'path': frame 3's timestamp 'x' is not a number".
+   */
+  std::optional<double> timestampS(long frame, const std::string& path) const;
+};
+
+/**
+ * @brief Reads the header of a sequence metafile from `in` up to its
+ * ElementDataFile line (or the end of `in`), so that binary data after it
+ * are never read as text.
+ * @throws vimlop::Error "'path': line N ..." for a line that is not
+ * `name = value` or a frame field without a frame number, or a header over
+ * 64 MiB.
+ */
+SequenceMetafileHeader readSequenceMetafileHeader(std::istream& in, const std::string& path);
+
+/**
  * @brief Writes the items as the sequence of the transform `name` (letters
  * and digits, e.g. "CameraToCT"), atomically, numbers written so that they
  * read back exactly.
@@ -50,9 +85,9 @@ void writeTransformSequenceFile(
  * @brief Reads the sequence of the transform `name` from a sequence metafile
  * (written above, by Slicer or by PLUS), items in frame order; frames whose
  * status is not OK are left out.
- * @throws vimlop::Error naming the file: missing, not a sequence metafile, no
- * item of that transform, a matrix that is not 16 numbers or a frame without
- * a timestamp.
+ * @throws vimlop::Error naming the file: missing, not a sequence metafile (no
+ * ObjectType), no item of that transform, a matrix that is not 16 numbers, a
+ * frame without a timestamp, or as readSequenceMetafileHeader().
  */
 std::vector<TimedTransform> readTransformSequenceFile(
   const std::string& path, const std::string& name);

@@ -5,6 +5,7 @@
 #include <vimlop/Imaging/CTVolumeIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/CTHeaderChecks.h>
 #include <vimlop/Imaging/DicomFileCheck.h>
 #include <vimlop/Imaging/DicomSeriesGeometry.h>
@@ -49,12 +50,6 @@ constexpr std::uint64_t MaxVoxels = std::uint64_t(1) << 31;
 [[noreturn]] void fail(const std::string& path, const std::string& problem)
 {
   throw Error("'" + path + "': " + problem);
-}
-
-std::string lowerCase(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
 }
 
 bool endsWith(const std::string& s, const std::string& suffix)

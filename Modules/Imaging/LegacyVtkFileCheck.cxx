@@ -3,6 +3,7 @@
 #include <vimlop/Imaging/MeshFileChecks.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 
 #include <algorithm>
 #include <cctype>
@@ -151,9 +152,7 @@ private:
 /// the word, lower-cased, so "POLYGONS!" and "polygons" are POLYGONS too.
 std::string legacyKeyword(const std::string& word)
 {
-  std::string lower = word;
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string lower = lowerCase(word);
   for (const char* keyword : { "dataset", "points", "vertices", "lines", "polygons",
          "triangle_strips", "point_data", "cell_data", "field", "metadata" })
   {

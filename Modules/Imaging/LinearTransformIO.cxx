@@ -2,6 +2,7 @@
 #include <vimlop/Imaging/LinearTransformIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/ITKImageFiles.h>
 
 #include <itkAffineTransform.h>
@@ -28,13 +29,6 @@ namespace
 [[noreturn]] void fail(const std::string& path, const std::string& problem)
 {
   throw Error("'" + path + "': " + problem);
-}
-
-std::string lowerCase(std::string text)
-{
-  std::transform(
-    text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-  return text;
 }
 
 /// ITK's transform IO factories and transform classes, registered once: we do
@@ -67,7 +61,7 @@ const char* const extensionsText = ".tfm, .txt, .h5, .hdf5 or .mat";
 
 bool isLinearTransformPath(const std::string& path)
 {
-  const std::string ext = lowerCase(std::filesystem::path(path).extension().string());
+  const std::string ext = lowerCaseExtension(path);
   return ext == ".tfm" || ext == ".txt" || ext == ".h5" || ext == ".hdf5" || ext == ".mat";
 }
 

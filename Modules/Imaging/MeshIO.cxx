@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/MeshIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/LegacyVtkFileCheck.h>
 #include <vimlop/Imaging/MeshFileChecks.h>
 #include <vimlop/Imaging/PlyMeshReader.h>
@@ -32,14 +33,6 @@ namespace vimlop
 
 namespace
 {
-
-std::string extensionOf(const std::string& path)
-{
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(
-    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem)
 {
@@ -93,13 +86,13 @@ vtkSmartPointer<vtkPolyData> toPolyData(const std::string& path, const detail::P
 
 bool isMeshPath(const std::string& path)
 {
-  const std::string ext = extensionOf(path);
+  const std::string ext = lowerCaseExtension(path);
   return ext == ".vtp" || ext == ".vtk" || ext == ".stl" || ext == ".ply" || ext == ".obj";
 }
 
 bool isWritableMeshPath(const std::string& path)
 {
-  const std::string ext = extensionOf(path);
+  const std::string ext = lowerCaseExtension(path);
   return ext == ".vtp" || ext == ".vtk" || ext == ".stl" || ext == ".ply";
 }
 
@@ -110,7 +103,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
   {
     fail(path, "no such file");
   }
-  const std::string ext = extensionOf(path);
+  const std::string ext = lowerCaseExtension(path);
   if (ext == ".vtp")
   {
     vtkNew<vtkXMLPolyDataReader> reader;
@@ -156,7 +149,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
 
 void writePolyData(vtkPolyData* mesh, const std::string& path)
 {
-  const std::string ext = extensionOf(path);
+  const std::string ext = lowerCaseExtension(path);
   int ok = 0;
   if (ext == ".vtp")
   {

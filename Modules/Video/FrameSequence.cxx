@@ -1,6 +1,7 @@
 #include <vimlop/Video/FrameSequence.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 
 #include "ImageFileHeader.h"
 #include "TrackedSequenceFile.h"
@@ -206,9 +207,7 @@ std::string FrameSequence::idGaps() const
 
 bool FrameSequence::isImageFileName(const std::string& name)
 {
-  std::string ext = std::filesystem::path(name).extension().string();
-  std::transform(
-    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lowerCaseExtension(name);
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".tif" ||
     ext == ".tiff";
 }

@@ -1,6 +1,7 @@
 #include <vimlop/Video/IntrinsicsIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 
 #include <opencv2/core.hpp>
 
@@ -21,14 +22,6 @@ namespace
 [[noreturn]] void fail(const std::string& path, const std::string& problem)
 {
   throw Error("'" + path + "': " + problem);
-}
-
-std::string extensionOf(const std::string& path)
-{
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(
-    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
 }
 
 double readNumber(const cv::FileNode& root, const char* key, const std::string& path)
@@ -202,7 +195,7 @@ int firstUnsupportedYamlLine(const std::string& text)
 
 bool isIntrinsicsPath(const std::string& path)
 {
-  const std::string ext = extensionOf(path);
+  const std::string ext = lowerCaseExtension(path);
   return ext == ".yaml" || ext == ".yml" || ext == ".json" || ext == ".xml";
 }
 

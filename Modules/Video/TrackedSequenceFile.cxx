@@ -1,6 +1,8 @@
 #include "TrackedSequenceFile.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
+#include <vimlop/Core/TransformSequenceFile.h>
 #include <vimlop/Video/FrameSequence.h>
 
 #include <opencv2/imgproc.hpp>
@@ -12,8 +14,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <map>
-#include <sstream>
 
 namespace vimlop::detail
 {
@@ -26,94 +26,7 @@ namespace
   throw Error("'" + path + "': " + problem);
 }
 
-std::string trimmed(const std::string& text)
-{
-  const size_t first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos)
-  {
-    return "";
-  }
-  return text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
-}
-
-std::string lowerCase(std::string text)
-{
-  std::transform(
-    text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-  return text;
-}
-
-/// The header: its fields, and the per-frame ones by frame number.
-struct Header
-{
-  std::map<std::string, std::string> fields;
-  std::map<long, double> timestampsS;
-  std::map<long, std::string> imageStatus;
-  std::streamoff dataOffset = 0;
-};
-
-Header readHeader(std::ifstream& file, const std::string& path)
-{
-  Header header;
-  std::string line;
-  // A header is a few kB per 100 frames; 64 MiB of lines without the
-  // ElementDataFile line is no MetaImage.
-  std::streamoff read = 0;
-  while (std::getline(file, line))
-  {
-    read += static_cast<std::streamoff>(line.size()) + 1;
-    if (read > (std::streamoff(64) << 20))
-    {
-      break;
-    }
-    const size_t equals = line.find('=');
-    if (equals == std::string::npos)
-    {
-      fail(path, "not a MetaImage header (a line without '=' before ElementDataFile)");
-    }
-    const std::string key = trimmed(line.substr(0, equals));
-    const std::string value = trimmed(line.substr(equals + 1));
-    if (key.rfind("Seq_Frame", 0) == 0)
-    {
-      const size_t underscore = key.find('_', 9);
-      char* end = nullptr;
-      const std::string number =
-        key.substr(9, underscore == std::string::npos ? 0 : underscore - 9);
-      const long frame = std::strtol(number.c_str(), &end, 10);
-      if (underscore == std::string::npos || number.empty() || *end != '\0' || frame < 0)
-      {
-        continue;
-      }
-      const std::string field = key.substr(underscore + 1);
-      if (field == "Timestamp")
-      {
-        std::istringstream text(value);
-        double t = 0.0;
-        if (!(text >> t) || !std::isfinite(t))
-        {
-          fail(path,
-            "the timestamp of frame " + std::to_string(frame) + " ('" + value +
-              "') is not a number");
-        }
-        header.timestampsS[frame] = t;
-      }
-      else if (field == "ImageStatus")
-      {
-        header.imageStatus[frame] = value;
-      }
-      continue;
-    }
-    header.fields[key] = value;
-    if (key == "ElementDataFile")
-    {
-      header.dataOffset = file.tellg();
-      return header;
-    }
-  }
-  fail(path, "not a MetaImage (no ElementDataFile line ends its header)");
-}
-
-std::vector<long> dimensionsOf(const Header& header, const std::string& path)
+std::vector<long> dimensionsOf(const SequenceMetafileHeader& header, const std::string& path)
 {
   const auto field = header.fields.find("DimSize");
   const auto dims = header.fields.find("NDims");
@@ -136,8 +49,8 @@ std::vector<long> dimensionsOf(const Header& header, const std::string& path)
 }
 
 /// The pixel bytes of the whole sequence, inflated when compressed.
-std::string dataOf(
-  std::ifstream& file, const Header& header, const std::string& path, std::uint64_t expectedBytes)
+std::string dataOf(std::ifstream& file, const SequenceMetafileHeader& header,
+  const std::string& path, std::uint64_t expectedBytes)
 {
   const std::string where = header.fields.at("ElementDataFile");
   const auto compressed = header.fields.find("CompressedData");
@@ -189,7 +102,7 @@ std::string dataOf(
 
 bool isTrackedSequencePath(const std::string& path)
 {
-  const std::string ext = lowerCase(std::filesystem::path(path).extension().string());
+  const std::string ext = lowerCaseExtension(path);
   std::error_code error;
   return (ext == ".mha" || ext == ".mhd") && std::filesystem::is_regular_file(path, error);
 }
@@ -202,7 +115,11 @@ TrackedSequenceFrames readTrackedSequence(const std::string& path, int maxFrames
   {
     fail(path, "cannot be read");
   }
-  const Header header = readHeader(file, path);
+  const SequenceMetafileHeader header = readSequenceMetafileHeader(file, path);
+  if (!header.complete)
+  {
+    fail(path, "not a MetaImage (no ElementDataFile line ends its header)");
+  }
   const std::vector<long> sizes = dimensionsOf(header, path);
   const auto type = header.fields.find("ElementType");
   if (type == header.fields.end() || type->second != "MET_UCHAR")
@@ -225,12 +142,16 @@ TrackedSequenceFrames readTrackedSequence(const std::string& path, int maxFrames
   std::vector<long> kept;
   for (long frame = 0; frame < sizes[2] && static_cast<int>(kept.size()) < maxFrames; ++frame)
   {
-    const auto status = header.imageStatus.find(frame);
-    if (status != header.imageStatus.end() && status->second != "OK")
+    const auto fields = header.frames.find(frame);
+    if (fields != header.frames.end())
     {
-      continue;
+      const auto status = fields->second.find("ImageStatus");
+      if (status != fields->second.end() && status->second != "OK")
+      {
+        continue;
+      }
     }
-    if (header.timestampsS.count(frame) == 0)
+    if (!header.timestampS(frame, path))
     {
       fail(path,
         "frame " + std::to_string(frame) + " has no Seq_Frame" + std::to_string(frame) +
@@ -265,7 +186,7 @@ TrackedSequenceFrames readTrackedSequence(const std::string& path, int maxFrames
   TrackedSequenceFrames sequence;
   for (const long frame : kept)
   {
-    const double timeS = header.timestampsS.at(frame);
+    const double timeS = *header.timestampS(frame, path);
     if (!sequence.timestampsS.empty() && !(timeS > sequence.timestampsS.back()))
     {
       fail(path,

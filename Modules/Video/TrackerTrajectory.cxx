@@ -1,6 +1,7 @@
 #include <vimlop/Video/TrackerTrajectory.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/TransformSequenceFile.h>
 
 #include <algorithm>
@@ -39,12 +40,6 @@ std::vector<std::string> splitCsv(const std::string& line)
     fields.emplace_back();
   }
   return fields;
-}
-
-std::string lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
 }
 
 bool parseNumber(const std::string& text, double& value)
@@ -206,7 +201,7 @@ TrackerTrajectory TrackerTrajectory::readCsv(
     std::map<std::string, int> m;
     for (size_t i = 0; i < header.size(); ++i)
     {
-      m[lower(header[i])] = static_cast<int>(i);
+      m[lowerCase(header[i])] = static_cast<int>(i);
     }
     return m;
   }();

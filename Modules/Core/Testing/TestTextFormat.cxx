@@ -23,3 +23,11 @@ TEST(TextFormat, EscapesTheCharactersHtmlGivesAMeaning)
   EXPECT_EQ(escapeHtml("a<b> & \"c\" 'd'"), "a&lt;b&gt; &amp; &quot;c&quot; 'd'");
   EXPECT_EQ(escapeHtml(""), "");
 }
+
+TEST(TextFormat, LowerCasesNamesAndTheExtensionsReadersTellFormatsBy)
+{
+  EXPECT_EQ(lowerCase("ProbeToTracker 25FPS"), "probetotracker 25fps");
+  EXPECT_EQ(lowerCaseExtension("/data/Scope.IGS.MHA"), ".mha");
+  EXPECT_EQ(lowerCaseExtension("ct.nii.gz"), ".gz");
+  EXPECT_EQ(lowerCaseExtension("/data/frames"), "");
+}

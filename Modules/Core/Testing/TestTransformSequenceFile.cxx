@@ -141,15 +141,16 @@ TEST(TransformSequenceFile, RefusesFilesThatAreNotASequenceOfTheTransform)
   const std::string shortMatrix = write(dir, "short.seq.mha",
     "ObjectType = Image\nSeq_Frame0000_CameraToCTTransform = 1 0 0 0 0 1 0 0 0 0 1 0\n");
   EXPECT_EQ(errorMessageOf([&] { readTransformSequenceFile(shortMatrix, "CameraToCT"); }),
-    "'" + shortMatrix + "': line 2: 'Seq_Frame0000_CameraToCTTransform' is not 16 numbers");
+    "'" + shortMatrix + "': frame 0's CameraToCTTransform is not 16 numbers");
 
   const std::string untimed = write(dir, "untimed.seq.mha",
     "ObjectType = Image\nSeq_Frame0000_CameraToCTTransform = 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n");
   EXPECT_EQ(errorMessageOf([&] { readTransformSequenceFile(untimed, "CameraToCT"); }),
     "'" + untimed + "': frame 0 has a CameraToCTTransform but no timestamp");
 
-  const std::string badTime =
-    write(dir, "bad-time.seq.mha", "ObjectType = Image\nSeq_Frame0000_Timestamp = soon\n");
+  const std::string badTime = write(dir, "bad-time.seq.mha",
+    "ObjectType = Image\nSeq_Frame0000_CameraToCTTransform = 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"
+    "Seq_Frame0000_Timestamp = soon\n");
   EXPECT_EQ(errorMessageOf([&] { readTransformSequenceFile(badTime, "CameraToCT"); }),
-    "'" + badTime + "': line 2: the timestamp 'soon' is not a number");
+    "'" + badTime + "': frame 0's timestamp 'soon' is not a number");
 }
