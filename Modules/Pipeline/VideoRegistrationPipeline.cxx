@@ -4,6 +4,7 @@
 #include <vimlop/Core/CanonicalStarts.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Registration.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Pipeline/VideoRegistrationData.h>
@@ -374,7 +375,7 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
   }
   else if (!in.trackerPath.empty())
   {
-    const std::string extension = std::filesystem::path(in.trackerPath).extension().string();
+    const std::string extension = lowerCaseExtension(in.trackerPath);
     if (extension == ".mha" || extension == ".mhd")
     {
       throw Error("'" + in.trackerPath +

@@ -111,7 +111,8 @@ public:
    * 5. The initial scale (V14): from `tracker` over the registered frames
    * (at their own timestamps plus `timeOffsetS`, or, when `fps` is positive
    * or the frames have none, frame f at `timeOffsetS + f / fps` on its clock,
-   * fps 30 when 0: frameTimesS() in VideoInput.h) unless `givenScale`
+   * with, when `fps` is 0, the video's own rate or else 30: frameTimesS() in
+   * VideoInput.h) unless `givenScale`
    * is positive, which then wins (with a warning when the tracker disagrees
    * by more than the scale bound).
    * @throws vimlop::Error when neither is given or the tracker does not overlap the frames.

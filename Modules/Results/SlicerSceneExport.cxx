@@ -133,8 +133,11 @@ std::string modelNodes(const std::string& id, const std::string& name, const std
  */
 std::string slicerSceneXml(const SceneContent& content)
 {
+  // A Slicer 5 scene: Slicer reads the meshes of an older one (version
+  // "Slicer4.4.0", or none) as RAS unless their files say otherwise (ours
+  // say SPACE=LPS anyway).
   std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                    "<MRML version=\"Slicer4.4.0\" userTags=\"\">\n";
+                    "<MRML version=\"Slicer 5.0.0 1\" userTags=\"\">\n";
   if (!content.ctFile.empty())
   {
     xml += node("VolumeArchetypeStorage",
