@@ -2,13 +2,11 @@
 #include "Commands.h"
 
 #include <vimlop/Core/Error.h>
-#include <vimlop/Results/RegistrationRecordIO.h>
 #include <vimlop/Results/SlicerSceneExport.h>
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 
 namespace vimlop
@@ -27,20 +25,6 @@ struct ExportOptions
   bool force = false;
 };
 
-/// The CT the result was registered to, as its result.json names it, when that file is still there.
-std::string recordedCT(const std::string& resultFolder)
-{
-  for (const RegistrationRecord::InputFile& input : readRegistrationRecord(resultFolder).inputs)
-  {
-    std::error_code error;
-    if (input.role == "ct" && std::filesystem::exists(input.path, error))
-    {
-      return input.path;
-    }
-  }
-  return "";
-}
-
 void runExport(const ExportOptions& o)
 {
   if (o.noCT && !o.ct.empty())
@@ -49,7 +33,8 @@ void runExport(const ExportOptions& o)
   }
   SlicerSceneOptions options;
   options.transformExtension = "." + o.transformFormat;
-  options.ctPath = o.noCT ? "" : (o.ct.empty() ? recordedCT(o.result) : o.ct);
+  options.ctPath = o.ct;
+  options.ctFromResult = !o.noCT;
   options.onProgress = [](const std::string& step)
   { std::fprintf(stderr, "export: %s\n", step.c_str()); };
   const SlicerSceneFiles files = exportResultForSlicer(o.result, o.out, o.force, options);

@@ -23,6 +23,16 @@ std::string formatText(const char* format, ...)
   return std::string(text.data(), text.size() - 1);
 }
 
+std::string trimmed(const std::string& text)
+{
+  const size_t first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos)
+  {
+    return std::string();
+  }
+  return text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
+}
+
 std::string lowerCase(std::string text)
 {
   for (char& c : text)

@@ -19,6 +19,9 @@ formatText(const char* format, ...);
 /// @brief `text` with &, <, > and " as HTML entities, for the report pages.
 std::string escapeHtml(const std::string& text);
 
+/// @brief `text` without the spaces, tabs and line ends at its start and end.
+std::string trimmed(const std::string& text);
+
 /// @brief `text` with its ASCII letters in lower case, for names compared without case.
 std::string lowerCase(std::string text);
 

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 
 #include <algorithm>
 #include <cctype>
@@ -21,23 +22,6 @@ namespace
 [[noreturn]] void fail(const std::string& path, const std::string& problem)
 {
   throw Error("'" + path + "': " + problem);
-}
-
-std::string trimmed(const std::string& text)
-{
-  const size_t first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos)
-  {
-    return "";
-  }
-  return text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
-}
-
-std::string exact(double value)
-{
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.17g", value);
-  return text;
 }
 
 const std::string framePrefix = "Seq_Frame";
@@ -67,7 +51,7 @@ void writeTransformSequenceFile(
     {
       fail(path,
         "the times of items " + std::to_string(i - 1) + " and " + std::to_string(i) + " (" +
-          exact(items[i - 1].timeS) + " s, " + exact(items[i].timeS) +
+          formatText("%.17g", items[i - 1].timeS) + " s, " + formatText("%.17g", items[i].timeS) +
           " s) do not increase by at least 1 ms");
     }
   }
@@ -84,10 +68,10 @@ void writeTransformSequenceFile(
     header << frame << name << "Transform =";
     for (int k = 0; k < 16; ++k)
     {
-      header << ' ' << exact(items[i].matrix(k / 4, k % 4));
+      header << ' ' << formatText("%.17g", items[i].matrix(k / 4, k % 4));
     }
     header << '\n' << frame << name << "TransformStatus = OK\n";
-    header << frame << "Timestamp = " << exact(items[i].timeS) << '\n';
+    header << frame << "Timestamp = " << formatText("%.17g", items[i].timeS) << '\n';
   }
   header << "ElementDataFile = LOCAL\n";
   writeFileAtomically(path, header.str());

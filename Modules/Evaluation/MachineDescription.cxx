@@ -1,6 +1,7 @@
 #include <vimlop/Evaluation/MachineDescription.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 
 #include <fstream>
 #include <iterator>
@@ -17,16 +18,6 @@ std::string readText(const char* path)
 {
   std::ifstream in(path);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-std::string trimmed(const std::string& text)
-{
-  const size_t first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos)
-  {
-    return std::string();
-  }
-  return text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
 }
 
 } // namespace

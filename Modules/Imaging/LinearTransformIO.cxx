@@ -46,9 +46,15 @@ void registerTransformIOs()
     });
 }
 
-const AffineMatrix4& checkedFinite(const AffineMatrix4& pointMap, const std::string& path)
+bool allFinite(const AffineMatrix4& pointMap)
 {
-  if (!std::all_of(pointMap.begin(), pointMap.end(), [](double v) { return std::isfinite(v); }))
+  return std::all_of(pointMap.begin(), pointMap.end(), [](double v) { return std::isfinite(v); });
+}
+
+/// What the reader returns: the map, refused when a value is not finite.
+AffineMatrix4 finiteOrFail(const AffineMatrix4& pointMap, const std::string& path)
+{
+  if (!allFinite(pointMap))
   {
     fail(path, "holds a transform with a value that is not finite");
   }
@@ -71,7 +77,7 @@ void writeLinearTransformFile(const AffineMatrix4& pointMap, const std::string& 
   {
     fail(path, std::string("not an ITK transform file name (expected ") + extensionsText + ")");
   }
-  if (!std::all_of(pointMap.begin(), pointMap.end(), [](double v) { return std::isfinite(v); }))
+  if (!allFinite(pointMap))
   {
     fail(path, "the transform to write has a value that is not finite");
   }
@@ -169,7 +175,7 @@ AffineMatrix4 readLinearTransformFile(const std::string& path)
       }
       pointMap[4 * row + 3] = matrixOffset->GetOffset()[row];
     }
-    return checkedFinite(pointMap, path);
+    return finiteOrFail(pointMap, path);
   }
   // Any other linear map (a translation, a composite of linear transforms) is
   // fixed by the images of the origin and of the unit vectors.
@@ -189,7 +195,7 @@ AffineMatrix4 readLinearTransformFile(const std::string& path)
   {
     pointMap[4 * row + 3] = originImage[row];
   }
-  return checkedFinite(pointMap, path);
+  return finiteOrFail(pointMap, path);
 }
 
 } // namespace vimlop

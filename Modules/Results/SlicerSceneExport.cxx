@@ -83,12 +83,19 @@ vtkSmartPointer<vtkPolyData> endoscopeGlyph()
   return cone->GetOutput();
 }
 
-/// What the scene refers to beyond the files every export has.
-struct SceneContent
+/// The CT the record names as its "ct" input, when that file is still there; "" otherwise.
+std::string recordedCT(const RegistrationRecord& record)
 {
-  /// The CT's file, or empty for a scene without a CT.
-  std::string ctFile;
-};
+  for (const RegistrationRecord::InputFile& input : record.inputs)
+  {
+    std::error_code error;
+    if (input.role == "ct" && fs::exists(input.path, error))
+    {
+      return input.path;
+    }
+  }
+  return "";
+}
 
 /// One MRML node: its tag and attributes, in order.
 std::string node(
@@ -131,18 +138,18 @@ std::string modelNodes(const std::string& id, const std::string& name, const std
  * and the browser that plays it. Node tags and references are those of
  * Slicer 5's MRML scenes; ids are local to the file.
  */
-std::string slicerSceneXml(const SceneContent& content)
+std::string slicerSceneXml(const std::string& ctFile)
 {
   // A Slicer 5 scene: Slicer reads the meshes of an older one (version
   // "Slicer4.4.0", or none) as RAS unless their files say otherwise (ours
   // say SPACE=LPS anyway).
   std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                     "<MRML version=\"Slicer 5.0.0 1\" userTags=\"\">\n";
-  if (!content.ctFile.empty())
+  if (!ctFile.empty())
   {
     xml += node("VolumeArchetypeStorage",
       { { "id", "vtkMRMLVolumeArchetypeStorageNode1" }, { "name", "CTStorage" },
-        { "fileName", content.ctFile }, { "useCompression", "1" } });
+        { "fileName", ctFile }, { "useCompression", "1" } });
     xml += node("VolumeDisplay",
       { { "id", "vtkMRMLScalarVolumeDisplayNode1" }, { "name", "CTDisplay" },
         { "colorNodeID", "vtkMRMLColorTableNodeGrey" }, { "autoWindowLevel", "0" },
@@ -206,15 +213,17 @@ SlicerSceneFiles writeSlicerScene(
   written.files.push_back("Scene.mrml");
   const auto add = [&written](const std::string& name) { written.files.push_back(name); };
 
-  SceneContent scene;
-  if (!options.ctPath.empty())
+  std::string ctFile;
+  const std::string ctPath =
+    options.ctPath.empty() && options.ctFromResult ? recordedCT(record) : options.ctPath;
+  if (!ctPath.empty())
   {
-    progress("reading the CT " + options.ctPath);
-    const CTVolume ct = readCTVolume(options.ctPath);
+    progress("reading the CT " + ctPath);
+    const CTVolume ct = readCTVolume(ctPath);
     progress("writing CT.nrrd");
     writeCTVolume(ct, (dir / "CT.nrrd").string());
     add("CT.nrrd");
-    scene.ctFile = "CT.nrrd";
+    ctFile = "CT.nrrd";
     written.withCT = true;
   }
 
@@ -263,7 +272,7 @@ SlicerSceneFiles writeSlicerScene(
   written.frames = static_cast<int>(result.frames.size());
 
   progress("writing Scene.mrml");
-  writeFileAtomically((dir / "Scene.mrml").string(), slicerSceneXml(scene));
+  writeFileAtomically((dir / "Scene.mrml").string(), slicerSceneXml(ctFile));
 
   nlohmann::json manifest = {
     { "format", "vimlop-export" },

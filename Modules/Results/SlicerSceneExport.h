@@ -43,8 +43,11 @@ namespace vimlop
 /// @brief What writeSlicerScene() adds to the result's own content.
 struct SlicerSceneOptions
 {
-  /// The CT to put in the scene as CT.nrrd (any readCTVolume() input); empty: no CT.
+  /// The CT to put in the scene as CT.nrrd (any readCTVolume() input); empty:
+  /// the CT the result names (its "ct" input) when `ctFromResult` and that
+  /// file is still there, else no CT.
   std::string ctPath;
+  bool ctFromResult = false;
   /// The format of the ITK transform files: ".tfm" (text), ".h5" (HDF5) or ".mat".
   std::string transformExtension = ".tfm";
   /// Called with each step, for people ("writing CT.nrrd"); may be empty.

@@ -19,13 +19,6 @@ namespace vimlop
 namespace
 {
 
-std::string trim(const std::string& s)
-{
-  const size_t a = s.find_first_not_of(" \t\r\n");
-  const size_t b = s.find_last_not_of(" \t\r\n");
-  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
-}
-
 std::vector<std::string> splitCsv(const std::string& line)
 {
   std::vector<std::string> fields;
@@ -33,7 +26,7 @@ std::vector<std::string> splitCsv(const std::string& line)
   std::string field;
   while (std::getline(in, field, ','))
   {
-    fields.push_back(trim(field));
+    fields.push_back(trimmed(field));
   }
   if (!line.empty() && line.back() == ',')
   {
@@ -185,7 +178,7 @@ TrackerTrajectory TrackerTrajectory::readCsv(
   while (std::getline(in, line))
   {
     ++lineNumber;
-    const std::string t = trim(line);
+    const std::string t = trimmed(line);
     if (!t.empty() && t[0] != '#')
     {
       header = splitCsv(t);
@@ -226,7 +219,7 @@ TrackerTrajectory TrackerTrajectory::readCsv(
   while (std::getline(in, line))
   {
     ++lineNumber;
-    const std::string t = trim(line);
+    const std::string t = trimmed(line);
     if (t.empty() || t[0] == '#')
     {
       continue;
