@@ -30,6 +30,7 @@ find_package(VTK 9.1 REQUIRED COMPONENTS
   IOXML
   IOXMLParser
   RenderingContext2D
+  RenderingAnnotation
   RenderingContextOpenGL2
   RenderingCore
   RenderingFreeType

@@ -33,6 +33,7 @@ zlib1g-dev
 elastix
 xvfb
 xauth
+chromium
 libgl1-mesa-dri
 colmap
 invesalius-examples

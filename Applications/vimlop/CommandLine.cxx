@@ -83,6 +83,12 @@ void addModelOptions(CLI::App& command, std::string& mesh, std::string& ct)
   meshOption->excludes(ctOption);
 }
 
+std::vector<std::string>& commandWords()
+{
+  static std::vector<std::string> words;
+  return words;
+}
+
 void printLines(const std::vector<std::string>& lines)
 {
   for (const std::string& line : lines)

@@ -115,6 +115,12 @@ std::string nearestName(const std::string& word, const std::vector<std::string>&
 /// @brief A CLI11 parse error in words for `vimlop: error:` (exit code 1, as every error).
 std::string parseErrorMessage(const CLI::ParseError& error);
 
+/**
+ * @brief The words this program was started with (argv), set once by
+ * main(): the command line a result folder records (joinCommandLine()).
+ */
+std::vector<std::string>& commandWords();
+
 /// @brief Prints each of `lines` (a report's summaryLines) to stdout.
 void printLines(const std::vector<std::string>& lines);
 

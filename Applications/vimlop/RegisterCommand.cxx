@@ -1,5 +1,6 @@
 #include "CommandLine.h"
 #include "Commands.h"
+#include <vimlop/Cohort/CohortManifest.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/ProcessMemory.h>
 #include <vimlop/Core/TextFormat.h>
@@ -156,8 +157,9 @@ void runRegister(RegisterCommand c)
   // The pipeline's stages, then the record's and the outputs' (the order they run).
   StageTimings timings = pipeline.timings();
   const StageTimings::Stopwatch recordWatch;
-  const RegistrationRecord record =
+  RegistrationRecord record =
     makeRegistrationRecord(pipeline, "vimlop register " + inputs.framesPath, truth, c.truth);
+  record.commandLine = joinCommandLine(commandWords());
   timings.set("record", recordWatch);
   if (!c.outputs.video && !c.outputs.report)
   {

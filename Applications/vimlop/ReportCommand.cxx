@@ -70,6 +70,10 @@ void runReport(const ReportCommandOptions& o)
     std::printf("; %zu perturbation runs", runs.size());
   }
   std::printf("\n");
+  if (report.verdict)
+  {
+    std::printf("verdict: %s\n", report.verdict->headline().c_str());
+  }
 }
 
 } // namespace

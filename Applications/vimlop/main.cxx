@@ -19,6 +19,7 @@ int main(int argc, char** argv)
   // VTK's and ITK's own diagnostics would add lines of their own to ours:
   // every problem reaches the user as one vimlop::Error line instead.
   vtkObject::GlobalWarningDisplayOff();
+  vimlop::commandWords().assign(argv, argv + argc);
   CLI::App app{ "vimlop: video-CT registration for endoscopic sinus surgery (V-IMLOP)" };
   app.set_version_flag("--version", std::string("vimlop ") + VIMLOP_VERSION);
   app.require_subcommand(1);

@@ -94,6 +94,7 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
     record.frameImages.push_back(resultFrameImageName(frame.frameId));
   }
   record.frameTimesS = pipeline.frameTimesS();
+  record.runWallS = pipeline.timings().totalWallS();
   record.confidence = RegistrationRecord::Confidence{ outcome.failure, outcome.failureThresholdPx,
     outcome.failureReason, pipeline.startMode() == StartMode::Manual ? "manual" : "canonical",
     static_cast<int>(outcome.candidates.size()), outcome.bestCandidate };

@@ -7,7 +7,9 @@
 #include <vtkActor.h>
 #include <vtkArrowSource.h>
 #include <vtkAutoInit.h>
+#include <vtkAxesActor.h>
 #include <vtkCamera.h>
+#include <vtkCaptionActor2D.h>
 #include <vtkCellArray.h>
 #include <vtkClipPolyData.h>
 #include <vtkDoubleArray.h>
@@ -24,6 +26,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSphereSource.h>
+#include <vtkTextProperty.h>
 
 #include <Eigen/Geometry>
 
@@ -88,6 +91,45 @@ void addCameraPath(vtkRenderer* renderer, const std::vector<CameraPose>& cameras
     actor->GetProperty()->SetLineWidth(2.0f);
     renderer->AddActor(actor);
   }
+}
+
+/**
+ * The CT frame's axes in the bottom left corner, turned with the view: +x
+ * "L", +y "P", +z "S" (LPS), so that a reader knows which side of the head
+ * they look at. A renderer of its own on a layer above, whose camera looks
+ * the main camera's way at the axes from a fixed distance.
+ */
+void addOrientationMarker(vtkRenderWindow* window, vtkCamera* mainCamera)
+{
+  vtkNew<vtkAxesActor> axes;
+  axes->SetXAxisLabelText("L");
+  axes->SetYAxisLabelText("P");
+  axes->SetZAxisLabelText("S");
+  axes->SetTotalLength(1.0, 1.0, 1.0);
+  axes->SetShaftTypeToCylinder();
+  axes->SetCylinderRadius(0.04);
+  for (vtkCaptionActor2D* caption : { axes->GetXAxisCaptionActor2D(),
+         axes->GetYAxisCaptionActor2D(), axes->GetZAxisCaptionActor2D() })
+  {
+    caption->GetCaptionTextProperty()->SetColor(1.0, 1.0, 1.0);
+    caption->GetCaptionTextProperty()->ShadowOff();
+    caption->GetCaptionTextProperty()->ItalicOff();
+  }
+  vtkNew<vtkRenderer> corner;
+  corner->SetLayer(1);
+  corner->SetViewport(0.0, 0.0, 0.2, 0.2 * window->GetSize()[0] / window->GetSize()[1]);
+  corner->InteractiveOff();
+  corner->AddActor(axes);
+  double direction[3];
+  mainCamera->GetDirectionOfProjection(direction);
+  vtkCamera* camera = corner->GetActiveCamera();
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetPosition(-4.0 * direction[0], -4.0 * direction[1], -4.0 * direction[2]);
+  camera->SetViewUp(mainCamera->GetViewUp());
+  camera->SetViewAngle(30.0);
+  corner->ResetCameraClippingRange();
+  window->SetNumberOfLayers(2);
+  window->AddRenderer(corner);
 }
 
 } // namespace
@@ -221,6 +263,7 @@ vtkSmartPointer<vtkImageData> renderRegistrationScene(const TriangleMesh& model,
   window->SetMultiSamples(0);
   window->AddRenderer(renderer);
   window->SetSize(widthPx, heightPx);
+  addOrientationMarker(window, camera);
   return captureWindow(window);
 }
 

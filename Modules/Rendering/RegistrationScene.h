@@ -27,6 +27,8 @@ namespace vimlop
  * The view looks at the data from the side of the camera path (along the
  * cameras' mean x axis, image up roughly up) from far enough to see all of
  * it; the half of the model between the viewer and the data is cut away.
+ * An orientation marker in the bottom left corner shows the CT frame's axes
+ * as the view turns them, labelled L, P and S (+x, +y, +z: LPS).
  * RGB unsigned char, `widthPx` x `heightPx`, row 0 at the bottom. Needs an X
  * display.
  * @throws vimlop::Error for a mesh without faces or no points and no cameras.

@@ -15,8 +15,13 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <vimlop/Results/RegistrationVerdict.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -53,6 +58,33 @@ cv::Mat toBgrTopDown(vtkImageData* rgb)
   return bgr;
 }
 
+/// Height of the verdict's band above every picture of the video, px.
+constexpr int bannerHeightPx = 30;
+
+/**
+ * `picture` under a band in the verdict's colour (green registered, red
+ * flagged, amber unchecked: the report's) holding its headline in white, so
+ * that a clip cut from the video still says whether it may be trusted.
+ */
+cv::Mat underVerdictBanner(const cv::Mat& picture, const RegistrationVerdict& verdict)
+{
+  const cv::Scalar colour = verdict.status == VerdictStatus::Registered ? cv::Scalar(46, 122, 27)
+    : verdict.status == VerdictStatus::Flagged                          ? cv::Scalar(27, 22, 179)
+                                                                        : cv::Scalar(0, 98, 122);
+  cv::Mat framed(picture.rows + bannerHeightPx, picture.cols, CV_8UC3, colour);
+  picture.copyTo(framed(cv::Rect(0, bannerHeightPx, picture.cols, picture.rows)));
+  const std::string text = verdict.headline();
+  const int font = cv::FONT_HERSHEY_SIMPLEX;
+  int baseline = 0;
+  double scale = 0.6;
+  const cv::Size size = cv::getTextSize(text, font, scale, 1, &baseline);
+  // Long reasons shrink to the width (not below legibility; beyond, the end is cut).
+  scale = std::max(0.35, std::min(scale, scale * (picture.cols - 16) / std::max(1, size.width)));
+  cv::putText(framed, text, cv::Point(8, bannerHeightPx - 10), font, scale,
+    cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  return framed;
+}
+
 } // namespace
 
 std::vector<std::string> writeRegisteredVideo(const RegistrationRecord& record,
@@ -73,6 +105,7 @@ std::vector<std::string> writeRegisteredVideo(const RegistrationRecord& record,
   cv::VideoWriter video;
   const std::string videoName = "registered-video.avi";
   const size_t count = std::min(record.data.frames.size(), record.result.frames.size());
+  const RegistrationVerdict verdict = RegistrationVerdict::of(record);
   for (size_t j = 0; j < count && (!keepGoing || keepGoing()); ++j)
   {
     const VideoFrame& frame = record.data.frames[j];
@@ -90,12 +123,15 @@ std::vector<std::string> writeRegisteredVideo(const RegistrationRecord& record,
     char name[64];
     std::snprintf(name, sizeof name, "registered/frame-%04d.png", frame.frameId);
     const std::string path = (fs::path(folder) / name).string();
-    const vtkSmartPointer<vtkImageData> sideBySide = placeSideBySide({ overlay, view }, 4);
-    writePNG(sideBySide, path);
+    // The picture and the video's frame are one, with the verdict above.
+    const cv::Mat side =
+      underVerdictBanner(toBgrTopDown(placeSideBySide({ overlay, view }, 4)), verdict);
+    if (!cv::imwrite(path, side))
+    {
+      throw Error("'" + path + "': cannot write the picture");
+    }
     written.push_back(name);
 
-    // The video takes the same picture, converted in memory (not read back from its file).
-    const cv::Mat side = toBgrTopDown(sideBySide);
     if (!video.isOpened())
     {
       video.open((fs::path(folder) / videoName).string(),

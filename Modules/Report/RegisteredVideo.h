@@ -16,8 +16,9 @@ namespace vimlop
  * @brief Writes the registered video of a result folder: for every frame, the
  * frame with the model's occluding contours at its registered pose (green)
  * and its video contours (white), beside the airway rendered offscreen from
- * that pose. PNG frames in `folder/registered/` and, with OpenCV's MJPEG
- * writer, `folder/registered-video.avi` at `fps`. The frame pictures named by
+ * that pose, under a band stating the verdict (RegistrationVerdict: green
+ * registered, red flagged as a failure, amber not checked). PNG frames in `folder/registered/` and,
+ * with OpenCV's MJPEG writer, `folder/registered-video.avi` at `fps`. The frame pictures named by
  * record.frameImages must be in `folder`. Needs an X display. `keepGoing`,
  * when given, is asked before each frame: false stops the video there.
  * @return the files written, relative to `folder`.

@@ -121,6 +121,48 @@ vtkSmartPointer<vtkImageData> iterationCharts(
   return renderCharts({ costChart, errorChart }, chartWidthPx, chartHeightPx);
 }
 
+vtkSmartPointer<vtkImageData> frameCharts(const std::vector<RegistrationReport::Frame>& frames,
+  double thresholdPx, int chartWidthPx, int chartHeightPx)
+{
+  std::vector<double> id, before, after, truthId, position, angle;
+  for (const RegistrationReport::Frame& f : frames)
+  {
+    id.push_back(f.frameId);
+    before.push_back(f.contourErrorBeforePx);
+    after.push_back(f.contourErrorAfterPx);
+    if (f.cameraPositionErrorMm)
+    {
+      truthId.push_back(f.frameId);
+      position.push_back(*f.cameraPositionErrorMm);
+      angle.push_back(*f.cameraAngleErrorDeg);
+    }
+  }
+  ChartSpec contour;
+  contour.title = "Contour error per frame";
+  contour.xTitle = "frame";
+  contour.yTitle = "contour error (px)";
+  contour.series.push_back(series("before", id, before, orange));
+  contour.series.push_back(series("after", id, after, blue));
+  if (thresholdPx > 0.0 && !id.empty())
+  {
+    // The threshold as a line across the frames: a frame above it is what flags a result.
+    contour.series.push_back(series("failure threshold (on the mean)", { id.front(), id.back() },
+      { thresholdPx, thresholdPx }, red));
+  }
+  std::vector<ChartSpec> charts = { contour };
+  if (!truthId.empty())
+  {
+    ChartSpec camera;
+    camera.title = "Camera error against the truth";
+    camera.xTitle = "frame";
+    camera.yTitle = "position error (mm); angle error (deg)";
+    camera.series.push_back(series("position (mm)", truthId, position, purple));
+    camera.series.push_back(series("angle (deg)", truthId, angle, green));
+    charts.push_back(camera);
+  }
+  return renderCharts(charts, chartWidthPx, chartHeightPx);
+}
+
 vtkSmartPointer<vtkImageData> perturbationCharts(
   const std::vector<PerturbationRun>& runs, int chartWidthPx, int chartHeightPx)
 {

@@ -3,6 +3,7 @@
 
 // Private to the Report module: the report's charts, drawn from a record.
 
+#include <vimlop/Report/RegistrationReport.h>
 #include <vimlop/Results/PerturbationRuns.h>
 #include <vimlop/Results/RegistrationRecord.h>
 
@@ -21,6 +22,15 @@ namespace vimlop
  */
 vtkSmartPointer<vtkImageData> iterationCharts(
   const RegistrationRecord& record, int chartWidthPx, int chartHeightPx);
+
+/**
+ * @brief Per frame of the result: the contour error before and after
+ * registration beside the failure threshold (when `thresholdPx` > 0), and,
+ * when the frames have errors against a truth, the camera's position and
+ * angle errors.
+ */
+vtkSmartPointer<vtkImageData> frameCharts(const std::vector<RegistrationReport::Frame>& frames,
+  double thresholdPx, int chartWidthPx, int chartHeightPx);
 
 /**
  * @brief Final error and contour error against the initial offset of each

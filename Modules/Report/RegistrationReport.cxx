@@ -1,5 +1,6 @@
 #include <vimlop/Report/RegistrationReport.h>
 
+#include "InteractiveView.h"
 #include "RegistrationCharts.h"
 
 #include <vimlop/Core/ContourMatcher.h>
@@ -18,6 +19,7 @@
 #include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
 #include <vimlop/Results/RecordJson.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
+#include <vimlop/Results/RegistrationVerdict.h>
 
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -142,6 +144,71 @@ json perturbationSummary(const std::vector<PerturbationRun>& runs)
   return { { "runs", runs.size() }, { "offsets", offsets } };
 }
 
+/// The run behind a record: how it was started, how long it took, with what, on what.
+json runJson(const RegistrationRecord& record)
+{
+  json versions = { { "vimlop", VIMLOP_VERSION } };
+  for (const auto& [name, version] : record.versions)
+  {
+    versions[name] = version;
+  }
+  json inputs = json::array();
+  for (const RegistrationRecord::InputFile& input : record.inputs)
+  {
+    inputs.push_back({ { "role", input.role }, { "path", input.path }, { "bytes", input.bytes },
+      { "sha256", input.sha256 } });
+  }
+  json run = { { "source", record.source }, { "command_line", record.commandLine },
+    { "registration_runtime_s", record.result.runtimeSeconds }, { "versions", versions },
+    { "inputs", inputs }, { "ct_identity", record.ctIdentity } };
+  run["run_wall_s"] = record.runWallS > 0.0 ? json(record.runWallS) : json(nullptr);
+  return run;
+}
+
+std::string runHtml(const json& run)
+{
+  std::ostringstream html;
+  html << "<h2>Run</h2>\n<table>\n";
+  const std::string command = run.at("command_line").get<std::string>();
+  html << "<tr><td>command line</td><td style=\"text-align:left\">"
+       << (command.empty() ? std::string("(not from a command line: ") +
+                escapeHtml(run.at("source").get<std::string>()) + ")"
+                           : "<pre>" + escapeHtml(command) + "</pre>")
+       << "</td></tr>\n";
+  html << "<tr><td>run time until the result (s)</td><td>"
+       << (run.at("run_wall_s").is_null() ? std::string("not recorded")
+                                          : number(run.at("run_wall_s").get<double>(), 1) +
+                " (loading, SfM, contours, registration; the result folder's pictures, video and "
+                "report follow)")
+       << "</td></tr>\n";
+  std::string versions;
+  for (const auto& [name, version] : run.at("versions").items())
+  {
+    versions += (versions.empty() ? "" : ", ") + name + " " + version.get<std::string>();
+  }
+  html << "<tr><td>versions</td><td>" << escapeHtml(versions) << "</td></tr>\n";
+  for (const auto& [key, value] : run.at("ct_identity").items())
+  {
+    html << "<tr><td>CT " << escapeHtml(key) << "</td><td>" << escapeHtml(value.get<std::string>())
+         << "</td></tr>\n";
+  }
+  html << "</table>\n";
+  if (!run.at("inputs").empty())
+  {
+    html << "<h3>Inputs</h3>\n<table>\n<tr><th>role</th><th>path</th><th>bytes</th>"
+            "<th>SHA-256</th></tr>\n";
+    for (const json& input : run.at("inputs"))
+    {
+      html << "<tr><td>" << escapeHtml(input.at("role").get<std::string>()) << "</td><td>"
+           << escapeHtml(input.at("path").get<std::string>()) << "</td><td>"
+           << input.at("bytes").get<std::uint64_t>() << "</td><td><code>"
+           << escapeHtml(input.at("sha256").get<std::string>()) << "</code></td></tr>\n";
+    }
+    html << "</table>\n";
+  }
+  return html.str();
+}
+
 void writeText(const std::string& text, const fs::path& path)
 {
   std::ofstream out(path);
@@ -180,12 +247,24 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
        << "table{border-collapse:collapse;margin:0.5em 0}"
        << "td,th{border:1px solid #ccc;padding:0.2em 0.6em;text-align:right}"
        << "th{background:#eee}td:first-child,th:first-child{text-align:left}"
-       << "img{max-width:100%;border:1px solid #888}</style>\n"
+       << "img{max-width:100%;border:1px solid #888}"
+       << "pre{white-space:pre-wrap;word-break:break-all;background:#f4f4f4;padding:0.5em}"
+       << ".verdict{padding:0.7em 1em;font-size:1.3em;font-weight:bold;color:#fff}"
+       << ".registered{background:#1b7a2e}.flagged{background:#b3161b}"
+       << ".unchecked{background:#7a6200}</style>\n"
        << "</head><body>\n<h1>VIMLOP registration report</h1>\n";
 
   if (record)
   {
     const RegistrationResult& result = record->result;
+    // The verdict first, where nobody can miss it.
+    const RegistrationVerdict verdict = RegistrationVerdict::of(*record);
+    report.verdict = verdict;
+    reportJson["verdict"] = { { "status", toString(verdict.status) },
+      { "headline", verdict.headline() }, { "contour_error_px", verdict.contourErrorPx },
+      { "threshold_px", verdict.thresholdPx }, { "reason", verdict.reason } };
+    html << "<div id=\"verdict\" class=\"verdict " << toString(verdict.status) << "\">"
+         << escapeHtml(verdict.headline()) << "</div>\n";
     // The model's search structures once: the caller's when it has them.
     std::optional<RegistrationModel> ownModel;
     if (!builtModel)
@@ -307,6 +386,15 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
                options.sceneWidthPx, options.sceneHeightPx),
       (out / "scene.png").string());
     report.pictures.push_back("scene.png");
+    const std::string interactiveView =
+      writeInteractiveView({ record->model, registered, cameras, trueCameras }, outFolder);
+    if (frameCount > 0)
+    {
+      writePNG(frameCharts(
+                 report.frames, verdict.thresholdPx, options.chartWidthPx, options.chartHeightPx),
+        (out / "frames.png").string());
+      report.pictures.push_back("frames.png");
+    }
     if (!result.history.empty())
     {
       writePNG(iterationCharts(*record, options.chartWidthPx, options.chartHeightPx),
@@ -337,7 +425,8 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
     html << "<p>" << escapeHtml(record->source) << "</p>\n<h2>Result</h2>\n<table>\n"
          << "<tr><td>method</td><td>" << toString(record->options.method) << "</td></tr>\n"
          << "<tr><td>termination</td><td>" << toString(result.termination) << " after "
-         << result.iterations << " iterations (" << number(result.runtimeSeconds, 2)
+         << result.iterations
+         << " iterations (the winning start: " << number(result.runtimeSeconds, 2)
          << " s)</td></tr>\n"
          << "<tr><td>scale s</td><td>" << number(result.sfmToCT.scale, 5) << "</td></tr>\n"
          << "<tr><td>rotation angle (deg)</td><td>"
@@ -379,6 +468,10 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
       html << "</tr>\n";
     }
     html << "</table>\n";
+    if (frameCount > 0)
+    {
+      html << "<img src=\"frames.png\" alt=\"errors per frame\">\n";
+    }
     for (const Frame& f : report.frames)
     {
       if (!f.overlay.empty())
@@ -390,7 +483,8 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
     html << "<h2>3-D scene</h2>\n<p>Airway cut open; registered SfM points in red, registered "
             "camera path in yellow"
          << (record->truth ? ", true cameras in cyan" : "") << ".</p>\n"
-         << "<img src=\"scene.png\" alt=\"3-D scene\">\n";
+         << "<img src=\"scene.png\" alt=\"3-D scene\">\n<h3>Interactive view</h3>\n"
+         << interactiveView;
     if (!result.history.empty())
     {
       html << "<h2>Iterations</h2>\n<img src=\"iterations.png\" alt=\"cost and errors per "
@@ -422,6 +516,8 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
 
   if (record)
   {
+    reportJson["run"] = runJson(*record);
+    html << runHtml(reportJson.at("run"));
     html << "<h2>Parameters</h2>\n<table>\n";
     for (const auto& [key, value] : reportJson.at("parameters").items())
     {

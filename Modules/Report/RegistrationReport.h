@@ -3,6 +3,7 @@
 
 #include <vimlop/Results/PerturbationRuns.h>
 #include <vimlop/Results/RegistrationRecord.h>
+#include <vimlop/Results/RegistrationVerdict.h>
 
 #include "VIMLOPReportModule.h"
 
@@ -37,14 +38,24 @@ struct RegistrationReportOptions
  *   before registration (cameras at the initial transform) on the left and
  *   after on the right, as in the paper's Fig. 2;
  * - `scene.png`: the model cut open, the registered points in red, the
- *   camera path as arrows (and the true cameras in cyan) (Fig. 1b);
+ *   camera path as arrows (and the true cameras in cyan) (Fig. 1b), and the
+ *   same scene to turn and zoom in the page (`scene-data.js`, `view3d.js`:
+ *   WebGL, offline);
+ * - at the top of `index.html`, the verdict (RegistrationVerdict):
+ *   registered, flagged as a failure (do not navigate) or not checked, with
+ *   the contour error against the threshold, as an element with id
+ *   "verdict" and class "registered", "flagged" or "unchecked";
+ * - `frames.png`: per frame, the contour error before and after beside the
+ *   failure threshold, and with ground truth the camera errors;
  * - `iterations.png`: the cost per iteration (log scale) beside the errors
  *   per iteration (residual mm, contour px, and with ground truth TRE and
  *   mean camera position error, mm);
  * - `perturbation.png` (with runs): final error and contour error against
  *   the initial offset, successes in blue and failures in red (Fig. 3);
- * - `report.json` (format "vimlop-report", version 1) with the numbers and
- *   `index.html` tying pictures, metrics and parameters together.
+ * - `report.json` (format "vimlop-report", version 1) with the numbers (and
+ *   "verdict": status, headline, contour error, threshold, reason; "run":
+ *   command line, run time, versions, inputs) and `index.html` tying
+ *   pictures, metrics, the run and the parameters together.
  * The contour errors before and after are measured the same way for both:
  * the mean distance from each video contour point to its V5 match among the
  * model's visible contour samples (Embree visibility), pixels.
@@ -88,6 +99,8 @@ public:
   /// With ground truth and targets: the TRE of the start and of the result, mm.
   std::optional<double> treBeforeMm;
   std::optional<double> treAfterMm;
+  /// The verdict on the record's result (none for a perturbation study alone).
+  std::optional<RegistrationVerdict> verdict;
   /// Every picture written, relative to the report folder.
   std::vector<std::string> pictures;
 };

@@ -87,6 +87,15 @@ struct RegistrationRecord
     int winner = 0;
   };
   std::optional<Confidence> confidence;
+  /// The command that ran the registration, as a shell reads it (each word
+  /// quoted where it needs to be), to show it and to run it again; empty when
+  /// the run did not come from a command line. Written as "command_line".
+  std::string commandLine;
+  /// Wall time of the whole run from its start until the result was found
+  /// (loading, SfM, contours, the multi-start), s; the outputs written after
+  /// it are not in it (result.runtimeSeconds is the winning start's alone).
+  /// 0 when unknown. Written as "run_wall_s".
+  double runWallS = 0.0;
   /// Versions of the libraries and inputs worth recording (name -> text),
   /// written as "versions" next to VIMLOP's own.
   std::map<std::string, std::string> versions;

@@ -326,6 +326,14 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
     versions[name] = version;
   }
   summary["versions"] = versions;
+  if (!record.commandLine.empty())
+  {
+    summary["command_line"] = record.commandLine;
+  }
+  if (record.runWallS > 0.0)
+  {
+    summary["run_wall_s"] = record.runWallS;
+  }
   if (!record.inputs.empty())
   {
     json inputs = json::array();
@@ -509,6 +517,8 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
             input.at("bytes").get<std::uint64_t>(), input.at("sha256").get<std::string>() });
       }
     }
+    record.commandLine = j.value("command_line", std::string());
+    record.runWallS = j.value("run_wall_s", 0.0);
     if (j.contains("ct_identity"))
     {
       record.ctIdentity = j.at("ct_identity").get<std::map<std::string, std::string>>();

@@ -11,6 +11,7 @@
 #include <vimlop/Rendering/ContourOverlay.h>
 #include <vimlop/Rendering/PNGImageIO.h>
 #include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
+#include <vimlop/Report/RegisteredVideo.h>
 #include <vimlop/Report/RegistrationReport.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 
@@ -24,6 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -166,8 +168,8 @@ TEST(RegistrationReport, WritesEveryPictureAsInTheBaselines)
   ASSERT_TRUE(report.frames[0].cameraPositionErrorMm.has_value());
 
   // Files.
-  for (const char* file :
-    { "index.html", "report.json", "scene.png", "iterations.png", "perturbation.png" })
+  for (const char* file : { "index.html", "report.json", "scene.png", "frames.png",
+         "iterations.png", "perturbation.png" })
   {
     EXPECT_TRUE(fs::exists(fs::path(out) / file)) << file;
   }
@@ -192,7 +194,8 @@ TEST(RegistrationReport, WritesEveryPictureAsInTheBaselines)
   // Pictures.
   const std::pair<std::string, std::string> pictures[] = {
     { report.frames[0].overlay, "report-overlay.png" }, { "scene.png", "report-scene.png" },
-    { "iterations.png", "report-iterations.png" }, { "perturbation.png", "report-perturbation.png" }
+    { "frames.png", "report-frames.png" }, { "iterations.png", "report-iterations.png" },
+    { "perturbation.png", "report-perturbation.png" }
   };
   for (const auto& [file, baseline] : pictures)
   {
@@ -280,4 +283,101 @@ TEST(RegistrationReport, ReportsNothingToReport)
     EXPECT_STREQ(
       e.what(), "report: nothing to report (no registration result and no perturbation runs)");
   }
+}
+
+namespace
+{
+
+/// The colour of the picture at (u, row from the top), RGB.
+std::array<int, 3> colourAt(vtkImageData* picture, int u, int rowFromTop)
+{
+  int dims[3];
+  picture->GetDimensions(dims);
+  const auto* p =
+    static_cast<const unsigned char*>(picture->GetScalarPointer(u, dims[1] - 1 - rowFromTop, 0));
+  return { p[0], p[1], p[2] };
+}
+
+/// Report and registered video of the fixture's record with the given failure check.
+nlohmann::json reportAndVideoOf(const std::optional<RegistrationRecord::Confidence>& confidence,
+  const std::string& name, std::string& html, vtkSmartPointer<vtkImageData>& videoFrame)
+{
+  const std::string result = fixtures::freshTestFolder(name).string();
+  RegistrationRecord record = fixtures::makeReportRecord(result);
+  record.confidence = confidence;
+  record.commandLine = "vimlop register --frames 'my frames' --ct ct.nrrd";
+  record.runWallS = 12.5;
+  record.inputs = { { "intrinsics", "k.yaml", 42, std::string(64, 'b') } };
+  const std::string out = (fs::path(result) / "report").string();
+  RegistrationReport::write(&record, result, {}, out, smallPictures());
+  const std::vector<std::string> written = writeRegisteredVideo(record, result, 10.0);
+  EXPECT_EQ(written.back(), "registered-video.avi");
+  videoFrame = readPNG((fs::path(result) / written.front()).string());
+  std::stringstream text;
+  text << std::ifstream(fs::path(out) / "index.html").rdbuf();
+  html = text.str();
+  nlohmann::json j;
+  std::ifstream(fs::path(out) / "report.json") >> j;
+  return j;
+}
+
+} // namespace
+
+TEST(RegistrationReport, AFlaggedResultSaysSoAtTheTopOfThePageInTheJsonAndOnEveryVideoFrame)
+{
+  std::string html;
+  vtkSmartPointer<vtkImageData> frame;
+  const nlohmann::json j = reportAndVideoOf(
+    RegistrationRecord::Confidence{ true, 1.0,
+      "the contour error 1.20 px is above the threshold of 1.00 px", "canonical", 12, 3 },
+    "report-flagged", html, frame);
+  EXPECT_EQ(j.at("verdict").at("status"), "flagged");
+  EXPECT_DOUBLE_EQ(j.at("verdict").at("threshold_px").get<double>(), 1.0);
+  const std::string headline = "FLAGGED AS A FAILURE, do not navigate: the contour error 1.20 px "
+                               "is above the threshold of 1.00 px";
+  EXPECT_EQ(j.at("verdict").at("headline"), headline);
+  // The banner comes before anything else in the body.
+  const size_t banner = html.find("<div id=\"verdict\" class=\"verdict flagged\">" + headline);
+  ASSERT_NE(banner, std::string::npos) << html.substr(0, 2000);
+  EXPECT_LT(banner, html.find("<h2>"));
+  // The video's band is red; below it is the picture, not the band.
+  const std::array<int, 3> red = { 179, 22, 27 };
+  EXPECT_EQ(colourAt(frame, 2, 2), red);
+  EXPECT_NE(colourAt(frame, 2, 40), red);
+}
+
+TEST(RegistrationReport, AResultThatPassedItsCheckIsShownRegisteredAndTheRunIsRecorded)
+{
+  std::string html;
+  vtkSmartPointer<vtkImageData> frame;
+  const nlohmann::json j =
+    reportAndVideoOf(RegistrationRecord::Confidence{ false, 3.0, "", "canonical", 12, 3 },
+      "report-registered", html, frame);
+  EXPECT_EQ(j.at("verdict").at("status"), "registered");
+  EXPECT_NE(html.find("class=\"verdict registered\">REGISTERED: contour error 1.20 px (flagged "
+                      "above 3.00 px)"),
+    std::string::npos);
+  EXPECT_EQ(colourAt(frame, 2, 2), (std::array<int, 3>{ 27, 122, 46 }));
+  // The run: command line, the whole run's time (not the winning start's), inputs, versions.
+  const nlohmann::json& run = j.at("run");
+  EXPECT_EQ(run.at("command_line"), "vimlop register --frames 'my frames' --ct ct.nrrd");
+  EXPECT_DOUBLE_EQ(run.at("run_wall_s").get<double>(), 12.5);
+  EXPECT_DOUBLE_EQ(run.at("registration_runtime_s").get<double>(), 0.5);
+  EXPECT_TRUE(run.at("versions").contains("vimlop"));
+  EXPECT_EQ(run.at("inputs")[0].at("path"), "k.yaml");
+  EXPECT_NE(
+    html.find("<pre>vimlop register --frames 'my frames' --ct ct.nrrd</pre>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>run time until the result (s)</td><td>12.5 "), std::string::npos);
+  EXPECT_NE(html.find("src=\"frames.png\""), std::string::npos);
+}
+
+TEST(RegistrationReport, AResultWithoutAFailureCheckIsNotCalledRegistered)
+{
+  std::string html;
+  vtkSmartPointer<vtkImageData> frame;
+  const nlohmann::json j = reportAndVideoOf(std::nullopt, "report-unchecked", html, frame);
+  EXPECT_EQ(j.at("verdict").at("status"), "unchecked");
+  EXPECT_EQ(html.find("REGISTERED"), std::string::npos);
+  EXPECT_NE(html.find("class=\"verdict unchecked\">NOT CHECKED"), std::string::npos);
+  EXPECT_TRUE(j.at("run").at("run_wall_s").is_number());
 }

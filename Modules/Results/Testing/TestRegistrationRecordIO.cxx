@@ -49,6 +49,8 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
     RegistrationRecord::Confidence{ true, 6.5, "contour error 7.0 px", "canonical", 120, 17 };
   changed.frameTimesS = { 0.0, 0.04, 0.12 };
   changed.versions["opencv"] = "4.6.0";
+  changed.commandLine = "vimlop register --frames 'my frames' --ct ct.nrrd";
+  changed.runWallS = 31.25;
   changed.frameSources.assign(changed.data.frames.size(), "");
   changed.frameSources.back() = "frame011.png";
   changed.inputs = { { "ct", "/data/ct", 123456789012ull, std::string(64, 'a') },
@@ -131,6 +133,8 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   EXPECT_EQ(back.confidence->candidates, 120);
   EXPECT_EQ(back.confidence->winner, 17);
   EXPECT_EQ(back.versions.at("opencv"), "4.6.0");
+  EXPECT_EQ(back.commandLine, changed.commandLine);
+  EXPECT_DOUBLE_EQ(back.runWallS, 31.25);
   EXPECT_FALSE(readRegistrationRecord(freshRecordWithoutConfidence()).confidence.has_value());
 }
 
