@@ -25,6 +25,8 @@ struct ReportCommandOptions
   std::string perturbation;
   std::string out;
   int maxOverlays = 0;
+  std::string ct;
+  bool noCtSlices = false;
 };
 
 void runReport(const ReportCommandOptions& o)
@@ -51,6 +53,8 @@ void runReport(const ReportCommandOptions& o)
   requireOffscreenRendering("vimlop report");
   RegistrationReportOptions options;
   options.maxOverlayFrames = o.maxOverlays;
+  options.ctPath = o.ct;
+  options.ctSlices = !o.noCtSlices;
   const RegistrationReport report =
     RegistrationReport::write(record ? &*record : nullptr, o.result, runs, o.out, options);
 
@@ -82,8 +86,9 @@ void addReportCommand(CLI::App& app)
 {
   auto options = std::make_shared<ReportCommandOptions>();
   CLI::App* report = app.add_subcommand("report",
-    "Render the report of a registration result folder (contour overlays before and after, 3-D "
-    "scene, plots per iteration) and/or of a perturbation study: index.html, report.json, PNGs");
+    "Render the report of a registration result folder (the verdict, contour overlays before and "
+    "after, errors per frame, 3-D scene and interactive view, the scope in the CT's slices, plots "
+    "per iteration, the run) and/or of a perturbation study: index.html, report.json, PNGs");
   report->add_option("--result", options->result,
     "result folder (written by vimlop evaluate synthetic --save-trial or vimlop register)");
   report->add_option("--perturbation", options->perturbation,
@@ -95,6 +100,10 @@ void addReportCommand(CLI::App& app)
       "draw overlays for at most this many frames, evenly spread (0: all)")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
+  CLI::Option* ct = report->add_option("--ct", options->ct,
+    "the CT to draw the scope's slices from (default: the CT the result names, when it is there)");
+  report->add_flag("--no-ct-slices", options->noCtSlices, "no CT slices (e.g. a CT slow to read)")
+    ->excludes(ct);
   report->callback([options] { runReport(*options); });
 }
 

@@ -1,5 +1,6 @@
 #include <vimlop/Report/RegistrationReport.h>
 
+#include "CTSlices.h"
 #include "InteractiveView.h"
 #include "RegistrationCharts.h"
 
@@ -12,11 +13,14 @@
 #include <vimlop/Core/TaskPool.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/VisibleModelContours.h>
+#include <vimlop/Imaging/CTVolume.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Rendering/ContourOverlay.h>
 #include <vimlop/Rendering/PNGImageIO.h>
 #include <vimlop/Rendering/RegistrationScene.h>
 #include <vimlop/Rendering/vtkVIMLOPSilhouetteRenderer.h>
+#include <vimlop/Results/InputIdentity.h>
 #include <vimlop/Results/RecordJson.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
 #include <vimlop/Results/RegistrationVerdict.h>
@@ -388,6 +392,41 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
     report.pictures.push_back("scene.png");
     const std::string interactiveView =
       writeInteractiveView({ record->model, registered, cameras, trueCameras }, outFolder);
+    // The scope in the CT: the middle frame's camera (the path as dots).
+    std::string ctSlicesHtml;
+    const std::string ctPath =
+      options.ctPath.empty() ? recordedInputPath(*record, "ct") : options.ctPath;
+    if (options.ctSlices && !ctPath.empty() && !cameras.empty())
+    {
+      const size_t shown = cameras.size() / 2;
+      try
+      {
+        writeCTSlices(readCTVolume(ctPath), cameras, shown, (out / "ct-slices.png").string());
+        report.pictures.push_back("ct-slices.png");
+        const Eigen::Vector3d& c = cameras[shown].centre;
+        ctSlicesHtml = "<h2>The scope in the CT</h2>\n<p>Frame " +
+          std::to_string(result.frames[shown].frameId) + " (the middle of the sequence) at (" +
+          number(c.x(), 1) + ", " + number(c.y(), 1) + ", " + number(c.z(), 1) +
+          ") mm, LPS: its optical centre (ring) and view direction (arrow, 15 mm, projected), "
+          "the other frames' centres as dots; " +
+          formatText(
+            "%.0f mm fields, bone window, from %s.", ctSliceFieldMm, escapeHtml(ctPath).c_str()) +
+          "</p>\n<img src=\"ct-slices.png\" alt=\"axial, coronal and sagittal CT slices with the "
+          "scope\">\n";
+        reportJson["ct_slices"] = { { "ct", ctPath }, { "frame", result.frames[shown].frameId },
+          { "centre_mm", { c.x(), c.y(), c.z() } } };
+      }
+      catch (const Error& e)
+      {
+        if (!options.ctPath.empty())
+        {
+          throw;
+        }
+        ctSlicesHtml = "<h2>The scope in the CT</h2>\n<p>Not drawn: the recorded CT could not be "
+                       "read (" +
+          escapeHtml(e.what()) + ").</p>\n";
+      }
+    }
     if (frameCount > 0)
     {
       writePNG(frameCharts(
@@ -484,7 +523,7 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
             "camera path in yellow"
          << (record->truth ? ", true cameras in cyan" : "") << ".</p>\n"
          << "<img src=\"scene.png\" alt=\"3-D scene\">\n<h3>Interactive view</h3>\n"
-         << interactiveView;
+         << interactiveView << ctSlicesHtml;
     if (!result.history.empty())
     {
       html << "<h2>Iterations</h2>\n<img src=\"iterations.png\" alt=\"cost and errors per "

@@ -25,6 +25,15 @@ struct RegistrationReportOptions
   int chartHeightPx = 380; ///< default 380
   /// At most this many frames get an overlay, evenly spread (default 0: every frame).
   int maxOverlayFrames = 0;
+  /// The scope in the CT's slices (`ct-slices.png`; default on), from `ctPath`.
+  bool ctSlices = true;
+  /**
+   * The CT to draw the slices from. Empty (the default): the CT the record
+   * names as its "ct" input, when it is still there; a recorded CT that
+   * cannot be read any more is said so in the page instead of the slices,
+   * while a CT given here that cannot be read is an error.
+   */
+  std::string ctPath;
 };
 
 /**
@@ -47,6 +56,9 @@ struct RegistrationReportOptions
  *   "verdict" and class "registered", "flagged" or "unchecked";
  * - `frames.png`: per frame, the contour error before and after beside the
  *   failure threshold, and with ground truth the camera errors;
+ * - `ct-slices.png` (with a CT, RegistrationReportOptions::ctPath): the
+ *   axial, coronal and sagittal slices through the optical centre of the
+ *   middle frame, the scope and its view direction drawn in them;
  * - `iterations.png`: the cost per iteration (log scale) beside the errors
  *   per iteration (residual mm, contour px, and with ground truth TRE and
  *   mean camera position error, mm);

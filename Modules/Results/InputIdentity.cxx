@@ -73,4 +73,17 @@ std::vector<RegistrationRecord::InputFile> identifyInputs(
   return inputs;
 }
 
+std::string recordedInputPath(const RegistrationRecord& record, const std::string& role)
+{
+  for (const RegistrationRecord::InputFile& input : record.inputs)
+  {
+    std::error_code error;
+    if (input.role == role && std::filesystem::exists(input.path, error))
+    {
+      return input.path;
+    }
+  }
+  return "";
+}
+
 } // namespace vimlop

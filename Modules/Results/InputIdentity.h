@@ -32,6 +32,12 @@ std::vector<RegistrationRecord::InputFile> identifyInputs(
   const std::vector<std::pair<std::string, std::string>>& rolesAndPaths,
   std::vector<std::string>& problems);
 
+/**
+ * @brief The path of the record's input of `role` (e.g. "ct") when the file
+ * or folder is still there; empty when the record names none or it is gone.
+ */
+std::string recordedInputPath(const RegistrationRecord& record, const std::string& role);
+
 } // namespace vimlop
 
 #endif

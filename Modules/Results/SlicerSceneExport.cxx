@@ -1,5 +1,7 @@
 #include <vimlop/Results/SlicerSceneExport.h>
 
+#include <vimlop/Results/InputIdentity.h>
+
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/CoordinateFrames.h>
 #include <vimlop/Core/Error.h>
@@ -81,20 +83,6 @@ vtkSmartPointer<vtkPolyData> endoscopeGlyph()
   cone->SetDirection(0.0, 0.0, -1.0);
   cone->Update();
   return cone->GetOutput();
-}
-
-/// The CT the record names as its "ct" input, when that file is still there; "" otherwise.
-std::string recordedCT(const RegistrationRecord& record)
-{
-  for (const RegistrationRecord::InputFile& input : record.inputs)
-  {
-    std::error_code error;
-    if (input.role == "ct" && fs::exists(input.path, error))
-    {
-      return input.path;
-    }
-  }
-  return "";
 }
 
 /// One MRML node: its tag and attributes, in order.
@@ -214,8 +202,9 @@ SlicerSceneFiles writeSlicerScene(
   const auto add = [&written](const std::string& name) { written.files.push_back(name); };
 
   std::string ctFile;
-  const std::string ctPath =
-    options.ctPath.empty() && options.ctFromResult ? recordedCT(record) : options.ctPath;
+  const std::string ctPath = options.ctPath.empty() && options.ctFromResult
+    ? recordedInputPath(record, "ct")
+    : options.ctPath;
   if (!ctPath.empty())
   {
     progress("reading the CT " + ctPath);

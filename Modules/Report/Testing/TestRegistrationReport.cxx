@@ -5,8 +5,11 @@
 // purpose, run the test with VIMLOP_UPDATE_BASELINES=1 in the environment:
 // it then writes the new pictures there (check them before committing).
 
+#include "ErrorMessage.h"
 #include "ReportFixture.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Imaging/CTVolume.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Rendering/ContourOverlay.h>
 #include <vimlop/Rendering/PNGImageIO.h>
@@ -25,6 +28,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <cstring>
@@ -380,4 +384,122 @@ TEST(RegistrationReport, AResultWithoutAFailureCheckIsNotCalledRegistered)
   EXPECT_EQ(html.find("REGISTERED"), std::string::npos);
   EXPECT_NE(html.find("class=\"verdict unchecked\">NOT CHECKED"), std::string::npos);
   EXPECT_TRUE(j.at("run").at("run_wall_s").is_number());
+}
+
+namespace
+{
+
+/// Bone (1000 HU) with three balls of air around `centre`: 20 mm to the
+/// patient's left (radius 15), superior (radius 10) and anterior (radius 8).
+CTVolume boneWithAirAround(const Eigen::Vector3d& centre)
+{
+  CTVolume ct;
+  ct.dims = { 121, 121, 121 };
+  ct.originMm = { centre.x() - 60.0, centre.y() - 60.0, centre.z() - 60.0 };
+  ct.intensities.assign(ct.numberOfVoxels(), 1000.0f);
+  const std::pair<Eigen::Vector3d, double> balls[] = { { centre + 20.0 * Eigen::Vector3d::UnitX(),
+                                                         15.0 },
+    { centre + 20.0 * Eigen::Vector3d::UnitZ(), 10.0 },
+    { centre - 20.0 * Eigen::Vector3d::UnitY(), 8.0 } };
+  for (int k = 0; k < 121; ++k)
+  {
+    for (int j = 0; j < 121; ++j)
+    {
+      for (int i = 0; i < 121; ++i)
+      {
+        const std::array<double, 3> p = ct.indexToPhysical({ double(i), double(j), double(k) });
+        for (const auto& [ball, radius] : balls)
+        {
+          if ((Eigen::Vector3d(p[0], p[1], p[2]) - ball).norm() < radius)
+          {
+            ct.intensities[i + 121 * (j + 121 * static_cast<size_t>(k))] = -1000.0f;
+          }
+        }
+      }
+    }
+  }
+  return ct;
+}
+
+} // namespace
+
+TEST(RegistrationReport, TheCTSlicesShowTheScopeWhereItIsInRadiologicalOrientation)
+{
+  const std::string result = fixtures::freshTestFolder("report-ct-slices").string();
+  const RegistrationRecord record = fixtures::makeReportRecord(result);
+  // The middle frame's camera is the one drawn, at the slices' centres.
+  const Eigen::Vector3d scope = record.result.frames[1].cameraToCT.centre;
+  const std::string ctPath = result + "/ct.nrrd";
+  writeCTVolume(boneWithAirAround(scope), ctPath);
+  RegistrationReportOptions options = smallPictures();
+  options.ctPath = ctPath;
+  const std::string out = result + "/report";
+  const RegistrationReport report = RegistrationReport::write(&record, result, {}, out, options);
+  EXPECT_NE(std::find(report.pictures.begin(), report.pictures.end(), "ct-slices.png"),
+    report.pictures.end());
+  const vtkSmartPointer<vtkImageData> slices = readPNG(out + "/ct-slices.png");
+  int dims[3];
+  slices->GetDimensions(dims);
+  ASSERT_EQ(dims[0], 3 * 256 + 8);
+  ASSERT_EQ(dims[1], 256);
+  // 20 mm from the centre is 43 px (256 px over 120 mm).
+  const auto grey = [&](int panel, int u, int v)
+  { return colourAt(slices, panel * 260 + u, v)[0]; };
+  const int near = 128 - 43, far = 128 + 43;
+  // Axial: the patient's left on the right, anterior up.
+  EXPECT_LT(grey(0, far, 128), 60);
+  EXPECT_GT(grey(0, near, 128), 150);
+  EXPECT_LT(grey(0, 128, near), 60);
+  EXPECT_GT(grey(0, 128, far), 150);
+  // Coronal: the patient's left on the right, superior up.
+  EXPECT_LT(grey(1, far, 128), 60);
+  EXPECT_GT(grey(1, near, 128), 150);
+  EXPECT_LT(grey(1, 128, near), 60);
+  EXPECT_GT(grey(1, 128, far), 150);
+  // Sagittal: anterior on the left, superior up.
+  EXPECT_LT(grey(2, near, 128), 60);
+  EXPECT_GT(grey(2, far, 128), 150);
+  EXPECT_LT(grey(2, 128, near), 60);
+  EXPECT_GT(grey(2, 128, far), 150);
+  // The scope's ring at the centre of every slice.
+  for (int panel = 0; panel < 3; ++panel)
+  {
+    int yellow = 0;
+    for (int v = 120; v <= 136; ++v)
+    {
+      for (int u = 120; u <= 136; ++u)
+      {
+        const std::array<int, 3> c = colourAt(slices, panel * 260 + u, v);
+        yellow += c[0] > 180 && c[1] > 150 && c[2] < 90;
+      }
+    }
+    EXPECT_GT(yellow, 15) << "panel " << panel;
+  }
+  std::stringstream html;
+  html << std::ifstream(out + "/index.html").rdbuf();
+  EXPECT_NE(html.str().find("<img src=\"ct-slices.png\""), std::string::npos);
+}
+
+TEST(RegistrationReport, ACTThatCannotBeReadIsAnErrorWhenGivenAndANoteWhenOnlyRecorded)
+{
+  const std::string result = fixtures::freshTestFolder("report-ct-unreadable").string();
+  RegistrationRecord record = fixtures::makeReportRecord(result);
+  const std::string bad = result + "/ct.nrrd";
+  std::ofstream(bad) << "not a CT\n";
+  RegistrationReportOptions options = smallPictures();
+  options.ctPath = bad;
+  const std::string message = fixtures::errorMessageOf(
+    [&] { RegistrationReport::write(&record, result, {}, result + "/report-given", options); });
+  EXPECT_NE(message.find("ct.nrrd"), std::string::npos) << message;
+
+  // Recorded as the run's CT: the report is written all the same, and says why there are no slices.
+  record.inputs = { { "ct", bad, 9, std::string(64, 'c') } };
+  const RegistrationReport report =
+    RegistrationReport::write(&record, result, {}, result + "/report-recorded", smallPictures());
+  EXPECT_EQ(std::find(report.pictures.begin(), report.pictures.end(), "ct-slices.png"),
+    report.pictures.end());
+  std::stringstream html;
+  html << std::ifstream(result + "/report-recorded/index.html").rdbuf();
+  EXPECT_NE(
+    html.str().find("<p>Not drawn: the recorded CT could not be read ("), std::string::npos);
 }
