@@ -1,6 +1,8 @@
-# Usage: cmake -DDIR=<folder> "-DFILES=a;b/c;..." [-DFILE=<json> "-DKEYS=..."] -P check-files.cmake
+# Usage: cmake -DDIR=<folder> "-DFILES=a;b/c;..." [-DFILE=<json> "-DKEYS=..."]
+#   [-DTEXT=<file> "-DLINES=regex;..."] -P check-files.cmake
 # Fails unless every file exists (and is not empty) in DIR; with FILE and KEYS,
-# also checks that every key of the JSON file holds a number (check-json-numbers.cmake).
+# also checks that every key of the JSON file holds a number (check-json-numbers.cmake);
+# with TEXT and LINES, that each regular expression matches a line of TEXT.
 foreach(name IN LISTS FILES)
   if(NOT EXISTS "${DIR}/${name}")
     message(FATAL_ERROR "${DIR}: '${name}' is missing")
@@ -13,4 +15,20 @@ foreach(name IN LISTS FILES)
 endforeach()
 if(DEFINED FILE)
   include("${CMAKE_CURRENT_LIST_DIR}/check-json-numbers.cmake")
+endif()
+if(DEFINED TEXT)
+  file(STRINGS "${TEXT}" text_lines)
+  foreach(pattern IN LISTS LINES)
+    set(found FALSE)
+    foreach(line IN LISTS text_lines)
+      if(line MATCHES "${pattern}")
+        set(found TRUE)
+        break()
+      endif()
+    endforeach()
+    if(NOT found)
+      message(FATAL_ERROR "${TEXT}: no line matches '${pattern}'")
+    endif()
+    message(STATUS "${TEXT}: a line matches '${pattern}'")
+  endforeach()
 endif()

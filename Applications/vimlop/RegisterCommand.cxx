@@ -3,6 +3,7 @@
 #include <vimlop/Cohort/CohortManifest.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/ProcessMemory.h>
+#include <vimlop/Core/TeeStream.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Pipeline/RegistrationOutputs.h>
@@ -17,6 +18,7 @@
 #include <chrono>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -100,7 +102,7 @@ void runRegister(RegisterCommand c)
   const InterruptGuard guard;
   // In --json mode only the JSON reaches stdout, and only warnings and errors stderr.
   std::ostringstream quiet;
-  std::ostream& log = c.json ? quiet : std::cerr;
+  std::ostream& terminal = c.json ? quiet : std::cerr;
 
   // Everything that can be checked before the work is checked first.
   c.pipeline.registration.method = registrationMethodFromString(c.method);
@@ -130,12 +132,29 @@ void runRegister(RegisterCommand c)
     c.force ? ResultFolderTransaction::Existing::Replace
             : ResultFolderTransaction::Existing::Refuse,
     &note);
+  // The run's log in its result folder: the command, the progress lines and
+  // warnings as the terminal shows them, the summary.
+  const std::string logPath = (std::filesystem::path(folder.stagingFolder()) / "log.txt").string();
+  std::ofstream logFile(logPath);
+  if (!logFile)
+  {
+    throw Error("'" + logPath + "': cannot write the log file");
+  }
+  logFile << joinCommandLine(commandWords()) << "\n";
+  TeeStream log(terminal, logFile);
   if (!note.empty())
   {
     std::cerr << "vimlop: note: " << note << "\n";
+    logFile << "vimlop: note: " << note << "\n";
   }
   VideoRegistrationPipeline pipeline(c.pipeline);
   pipeline.setLog(&log);
+  pipeline.setWarningHandler(
+    [&](const std::string& warning)
+    {
+      std::cerr << "vimlop: warning: " << warning << "\n";
+      logFile << "vimlop: warning: " << warning << "\n";
+    });
   pipeline.setProgress([](const std::string&, double) { return !InterruptGuard::requested(); });
   pipeline.prepare(inputs);
   const std::vector<FramePose> truth =
@@ -209,6 +228,12 @@ void runRegister(RegisterCommand c)
   {
     summary["peak_resident_mib"] = peakMiB;
   }
+  // The folder is committed (renamed): its log file stays open and takes the summary too.
+  for (const std::string& line : registrationSummaryLines(summary))
+  {
+    logFile << line << "\n";
+  }
+  logFile.flush();
   if (c.json)
   {
     std::cout << summary.dump(2) << std::endl;
