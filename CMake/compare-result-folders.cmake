@@ -1,8 +1,11 @@
-# Usage: cmake -DA=<folder> -DB=<folder> [-DFILES=a.vtp;b.vtt] -P compare-result-folders.cmake
+# Usage: cmake -DA=<folder> -DB=<folder> [-DFILES=a.vtp;b.vtt] [-DIGNORE=key;key]
+#   -P compare-result-folders.cmake
 # Fails unless the result.json of both result folders are identical once the
-# timing fields are taken out (runtime_s, and times_ms of every iteration)
-# and the thread count (parameters.threads, the one input that may differ),
-# and each of FILES is byte-identical in both. Guards determinism: the same
+# timing fields are taken out (runtime_s, run_wall_s, and times_ms of every
+# iteration), the thread count (parameters.threads, the one input that may
+# differ) and the top-level keys in IGNORE (e.g. inputs and command_line of
+# two runs given the same data in other files), and each of FILES is
+# byte-identical in both. Guards determinism: the same
 # inputs and seed must give the same result whatever the thread count.
 
 function(read_stripped folder out)
@@ -16,6 +19,9 @@ function(read_stripped folder out)
     message(FATAL_ERROR "${file}: no runtime_s (${error})")
   endif()
   string(JSON json ERROR_VARIABLE error REMOVE "${json}" parameters threads)
+  foreach(key IN ITEMS run_wall_s LISTS IGNORE)
+    string(JSON json ERROR_VARIABLE error REMOVE "${json}" ${key})
+  endforeach()
   string(JSON iterations LENGTH "${json}" history)
   if(iterations GREATER 0)
     math(EXPR last "${iterations} - 1")

@@ -3,7 +3,9 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Video/FrameContoursIO.h>
 #include <vimlop/Video/FrameSequence.h>
+#include <vimlop/Video/IntrinsicsIO.h>
 #include <vimlop/Video/OccludingContourDetector.h>
+#include <vimlop/Video/VideoInput.h>
 
 #include <CLI/CLI.hpp>
 
@@ -11,6 +13,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <memory>
 
 namespace vimlop
@@ -22,9 +25,13 @@ namespace
 struct ContoursOptions
 {
   std::string frames;
+  std::string intrinsics;
   std::string out;
   std::string overlay;
-  std::string channel = "luminance";
+  // vimlop register's default (ContourDetectionOptions), so that its --contours reuses the same
+  // points.
+  std::string channel =
+    ContourDetectionOptions().channel == ContourChannel::Red ? "red" : "luminance";
   ContourDetectionOptions detector;
 };
 
@@ -43,25 +50,37 @@ void runContours(ContoursOptions o)
     throw Error("--channel: expected 'luminance' or 'red', got '" + o.channel + "'");
   }
   const FrameSequence sequence = FrameSequence::load(o.frames);
+  // With intrinsics, the frames as the registration sees them: undistorted.
+  FrameContoursPictures pictures;
+  std::vector<cv::Mat> undistorted;
+  if (!o.intrinsics.empty())
+  {
+    undistorted =
+      idealFrames(sequence, readIntrinsics(o.intrinsics), o.frames, o.intrinsics, &std::cerr);
+    pictures.undistorted = true;
+  }
   const OccludingContourDetector detector(o.detector);
   std::vector<FrameContours> frames;
   size_t total = 0;
   for (int f = 0; f < sequence.size(); ++f)
   {
-    frames.push_back({ sequence.name(f), detector.detect(sequence.frame(f)) });
+    const cv::Mat& picture = undistorted.empty() ? sequence.frame(f) : undistorted[f];
+    pictures.widthPx = picture.cols;
+    pictures.heightPx = picture.rows;
+    frames.push_back({ sequence.name(f), detector.detect(picture) });
     total += frames.back().points.size();
     if (!o.overlay.empty())
     {
       std::filesystem::create_directories(o.overlay);
       const std::string path =
         (std::filesystem::path(o.overlay) / sequence.name(f)).replace_extension(".png").string();
-      if (!cv::imwrite(path, drawFrameContours(sequence.frame(f), frames.back().points)))
+      if (!cv::imwrite(path, drawFrameContours(picture, frames.back().points)))
       {
         throw Error("'" + path + "': cannot write the image");
       }
     }
   }
-  writeFrameContours(frames, o.out);
+  writeFrameContours(frames, pictures, o.out);
   std::printf("contours: %zu points in %d frames (%.0f per frame); wrote '%s'\n", total,
     sequence.size(), static_cast<double>(total) / sequence.size(), o.out.c_str());
 }
@@ -75,6 +94,9 @@ void addContoursCommand(CLI::App& app)
     "contours", "Detect occluding contours with normals (near to far side) in every frame");
   contours->add_option("--frames", o->frames, "folder of frames or a video file")->required();
   contours->add_option("--out", o->out, "result JSON file")->required();
+  contours->add_option("--intrinsics", o->intrinsics,
+    "camera intrinsics (OpenCV YAML/JSON/XML): detect in the undistorted frames, as vimlop "
+    "register does, so that register --contours can reuse the file");
   contours->add_option(
     "--overlay", o->overlay, "folder for pictures of the contours over the frames");
   contours->add_option("--channel", o->channel, "image channel: luminance or red")

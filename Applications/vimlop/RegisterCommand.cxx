@@ -280,8 +280,13 @@ void addRegisterCommand(CLI::App& app)
     ->excludes(r->add_option("--video", c->video, "video file"));
   r->add_option("--intrinsics", in.intrinsicsPath, "camera intrinsics (OpenCV YAML/JSON/XML)")
     ->required();
-  r->add_option("--sfm", c->sfm, "structure from motion: builtin or colmap:DIR (a sparse model)")
+  r->add_option("--sfm", c->sfm,
+     "structure from motion: builtin, colmap:DIR (a sparse model) or FILE.json (the output of "
+     "vimlop sfm, reused; frames matched by name)")
     ->capture_default_str();
+  r->add_option("--contours", in.contoursFile,
+    "occluding contours already detected: the output of vimlop contours (with --intrinsics when "
+    "the lens has a distortion), reused instead of detecting them (frames matched by name)");
   r->add_option("--tracker", in.trackerPath,
     "tracker CSV (time_s,x_mm,y_mm,z_mm), or a tracked sequence with --tracker-transform: "
     "initial scale (V14)");

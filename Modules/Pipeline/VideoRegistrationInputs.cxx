@@ -1,6 +1,7 @@
 #include <vimlop/Pipeline/VideoRegistrationInputs.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 
 namespace vimlop
 {
@@ -44,9 +45,15 @@ void VideoRegistrationInputs::setStructureFromMotion(
   const std::string& text, const std::string& what)
 {
   std::string folder;
-  if (text != "builtin" && !after(text, "colmap:", folder))
+  this->sfmFile.clear();
+  if (text.size() > 5 && lowerCaseExtension(text) == ".json")
   {
-    throw Error(what + ": expected builtin or colmap:DIR, got '" + text + "'");
+    this->sfmFile = text;
+  }
+  else if (text != "builtin" && !after(text, "colmap:", folder))
+  {
+    throw Error(
+      what + ": expected builtin, colmap:DIR or a file of vimlop sfm (.json), got '" + text + "'");
   }
   this->colmapFolder = folder;
 }

@@ -31,6 +31,11 @@ struct VideoRegistrationInputs
   std::string intrinsicsPath;
   /// Structure from motion: empty for the built-in one, else a COLMAP sparse model folder.
   std::string colmapFolder;
+  /// Or a reconstruction already made: a `vimlop sfm` file (frames matched by name).
+  std::string sfmFile;
+  /// Contours already detected: a `vimlop contours` file (frames matched by
+  /// name), instead of detecting them (V1).
+  std::string contoursFile;
   /// V14: the tracker (a CSV, or a tracked sequence with `trackerTransform`),
   /// or the initial scale in mm per SfM unit (wins when positive).
   std::string trackerPath;
@@ -57,8 +62,9 @@ struct VideoRegistrationInputs
    */
   void setStart(const std::string& text, const std::string& what);
   /**
-   * @brief Sets the structure from motion from its text form: "builtin" or
-   * "colmap:DIR" (a COLMAP sparse model folder).
+   * @brief Sets the structure from motion from its text form: "builtin",
+   * "colmap:DIR" (a COLMAP sparse model folder) or the path of a `vimlop
+   * sfm` file (ending in .json).
    * @throws vimlop::Error naming `what` for any other text.
    */
   void setStructureFromMotion(const std::string& text, const std::string& what);

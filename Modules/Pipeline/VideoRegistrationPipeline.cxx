@@ -11,9 +11,11 @@
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Results/InputIdentity.h>
 #include <vimlop/Video/FieldOfView.h>
+#include <vimlop/Video/FrameContoursIO.h>
 #include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Video/IntrinsicsIO.h>
 #include <vimlop/Video/OccludingContourDetector.h>
+#include <vimlop/Video/SfmReconstructionIO.h>
 #include <vimlop/Video/TrackerScale.h>
 #include <vimlop/Video/VideoInput.h>
 
@@ -21,8 +23,10 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <ostream>
 #include <sstream>
 
@@ -121,6 +125,68 @@ void VideoRegistrationPipeline::detectContours()
   d.progress("contours", 1.0);
 }
 
+void VideoRegistrationPipeline::useContours(const std::vector<FrameContours>& contours,
+  const FrameContoursPictures& pictures, const std::string& source)
+{
+  Internals& d = *this->Impl;
+  d.need(d.FramesLoaded, "load the frames");
+  const StageTimings::Stopwatch watch;
+  const auto fail = [&](const std::string& problem)
+  { throw Error("'" + source + "': " + problem); };
+  if (pictures.widthPx > 0 &&
+    (pictures.widthPx != d.Intrinsics.widthPx || pictures.heightPx != d.Intrinsics.heightPx))
+  {
+    fail(formatText("its contours are of %dx%d pictures, the frames are %dx%d", pictures.widthPx,
+      pictures.heightPx, d.Intrinsics.widthPx, d.Intrinsics.heightPx));
+  }
+  if (d.Intrinsics.hasDistortion() && !pictures.undistorted)
+  {
+    fail("its contours were detected in the frames as recorded, but the intrinsics have a lens "
+         "distortion and the registration sees the frames undistorted: detect them with vimlop "
+         "contours --intrinsics");
+  }
+  std::map<std::string, const FrameContours*> byName;
+  for (const FrameContours& frame : contours)
+  {
+    byName[frame.name] = &frame;
+  }
+  const cv::Mat mask = d.View && !d.View->isEverything() ? d.View->mask() : cv::Mat();
+  std::vector<std::vector<ContourPoint>> kept;
+  size_t dropped = 0;
+  size_t total = 0;
+  for (const std::string& name : d.Names)
+  {
+    const auto at = byName.find(name);
+    if (at == byName.end())
+    {
+      fail("has no contours of the frame '" + name + "'");
+    }
+    kept.emplace_back();
+    for (const ContourPoint& p : at->second->points)
+    {
+      ++total;
+      const int u = static_cast<int>(std::lround(p.pixel.x()));
+      const int v = static_cast<int>(std::lround(p.pixel.y()));
+      if (!mask.empty() &&
+        (u < 0 || v < 0 || u >= mask.cols || v >= mask.rows || mask.at<unsigned char>(v, u) == 0))
+      {
+        ++dropped;
+        continue;
+      }
+      kept.back().push_back(p);
+    }
+  }
+  d.say(formatText("contours of %zu frames from '%s'", d.Names.size(), source.c_str()));
+  if (!mask.empty())
+  {
+    d.say(formatText("field stop: %zu of %zu contour points (%g %%) dropped", dropped, total,
+      total > 0 ? 100.0 * dropped / total : 0.0));
+  }
+  d.Contours = std::move(kept);
+  d.ContoursDetected = true;
+  d.Timings.set("contours", watch);
+}
+
 void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
 {
   Internals& d = *this->Impl;
@@ -140,6 +206,51 @@ void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
   d.Sfm = std::move(sfm);
   d.Timings.set("sfm", watch);
   d.progress("sfm", 1.0);
+}
+
+void VideoRegistrationPipeline::useReconstruction(
+  const SfmReconstruction& given, const std::string& source)
+{
+  Internals& d = *this->Impl;
+  d.need(d.FramesLoaded, "load the frames");
+  const StageTimings::Stopwatch watch;
+  std::vector<std::string> warnings;
+  SfmReconstruction sfm = given.forFrames(d.Names, &warnings);
+  for (const std::string& w : warnings)
+  {
+    d.Warn("'" + source + "': " + w);
+  }
+  // The registration projects with the loaded intrinsics: SfM made with others is not this video's.
+  PinholeCamera ideal = d.Intrinsics;
+  ideal.removeDistortion();
+  for (const SfmReconstruction::Frame& f : sfm.frames)
+  {
+    const PinholeCamera& k = f.intrinsics;
+    const auto differs = [](double a, double b)
+    { return std::abs(a - b) > 1e-6 * std::max(1.0, std::abs(b)); };
+    if (f.registered &&
+      (k.widthPx != ideal.widthPx || k.heightPx != ideal.heightPx || differs(k.fx, ideal.fx) ||
+        differs(k.fy, ideal.fy) || differs(k.cx, ideal.cx) || differs(k.cy, ideal.cy) ||
+        k.hasDistortion()))
+    {
+      throw Error(formatText("'%s': frame '%s' was reconstructed with other intrinsics (fx %g, fy "
+                             "%g, cx %g, cy %g, %dx%d%s) than the ones given (fx %g, fy %g, cx %g, "
+                             "cy %g, %dx%d, undistorted)",
+        source.c_str(), f.name.c_str(), k.fx, k.fy, k.cx, k.cy, k.widthPx, k.heightPx,
+        k.hasDistortion() ? ", with a lens distortion" : "", ideal.fx, ideal.fy, ideal.cx, ideal.cy,
+        ideal.widthPx, ideal.heightPx));
+    }
+  }
+  if (sfm.numberOfRegisteredFrames() < 2 || sfm.points.size() < 10)
+  {
+    throw Error("'" + source + "': holds " + std::to_string(sfm.numberOfRegisteredFrames()) +
+      " of the frames and " + std::to_string(sfm.points.size()) +
+      " points seen in them; too few to register");
+  }
+  d.say(formatText("SfM from '%s': %d of %zu frames, %zu points", source.c_str(),
+    sfm.numberOfRegisteredFrames(), sfm.frames.size(), sfm.points.size()));
+  d.Sfm = std::move(sfm);
+  d.Timings.set("sfm", watch);
 }
 
 void VideoRegistrationPipeline::estimateInitialScale(
@@ -406,12 +517,25 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
   {
     throw Error("a manual start needs a pose file");
   }
+  // Earlier stages' outputs are small files too.
+  d.GivenSfm.reset();
+  d.GivenContours.reset();
+  if (!in.sfmFile.empty())
+  {
+    d.GivenSfm = readSfmReconstruction(in.sfmFile);
+  }
+  if (!in.contoursFile.empty())
+  {
+    Internals::ContoursFile file;
+    file.frames = readFrameContours(in.contoursFile, &file.pictures);
+    d.GivenContours = std::move(file);
+  }
   d.Inputs = in;
   // Identified as they are when the run starts, in a thread of its own.
   const std::vector<std::pair<std::string, std::string>> files = { { "ct", in.ctPath },
     { "mesh", in.meshPath }, { "frames", in.framesPath }, { "intrinsics", in.intrinsicsPath },
     { "tracker", in.trackerPath }, { "start_poses", in.startPosesPath },
-    { "colmap", in.colmapFolder } };
+    { "colmap", in.colmapFolder }, { "sfm", in.sfmFile }, { "contours", in.contoursFile } };
   d.InputIdentities = std::async(std::launch::async,
     [files]
     {
@@ -438,8 +562,22 @@ void VideoRegistrationPipeline::process()
         in.timeOffsetS, nullptr));
   }
   this->loadModel(in.meshPath, in.meshPath.empty() ? in.ctPath : std::string());
-  this->detectContours();
-  this->reconstruct(in.colmapFolder);
+  if (d.GivenContours)
+  {
+    this->useContours(d.GivenContours->frames, d.GivenContours->pictures, in.contoursFile);
+  }
+  else
+  {
+    this->detectContours();
+  }
+  if (d.GivenSfm)
+  {
+    this->useReconstruction(*d.GivenSfm, in.sfmFile);
+  }
+  else
+  {
+    this->reconstruct(in.colmapFolder);
+  }
   this->estimateInitialScale(
     tracker ? &*tracker : nullptr, in.framesPerSecond, in.timeOffsetS, in.initialScale);
   this->makeData();

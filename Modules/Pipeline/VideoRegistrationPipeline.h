@@ -14,6 +14,7 @@
 #include <vimlop/Pipeline/VideoRegistrationInputs.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
 #include <vimlop/Results/RegistrationRecord.h>
+#include <vimlop/Video/FrameContours.h>
 #include <vimlop/Video/SfmReconstruction.h>
 #include <vimlop/Video/TrackerTrajectory.h>
 
@@ -98,6 +99,17 @@ public:
 
   /// 3. Occluding contours of every frame (VideoRegistrationOptions::contours).
   void detectContours();
+  /**
+   * 3, instead: contours detected before (a `vimlop contours` file read with
+   * readFrameContours(), named `source` in messages), matched to the loaded
+   * frames by name. Points outside the field of view are dropped, as
+   * detectContours() drops them.
+   * @throws vimlop::Error when a loaded frame has no contours there, the
+   * pictures were of another size, or the intrinsics have a lens
+   * distortion and the contours were not detected in undistorted frames.
+   */
+  void useContours(const std::vector<FrameContours>& contours,
+    const FrameContoursPictures& pictures, const std::string& source);
 
   /**
    * 4. Structure from motion of the frames: the built-in one when
@@ -106,6 +118,13 @@ public:
    * @throws vimlop::Error when it registers fewer than 2 frames or 10 points.
    */
   void reconstruct(const std::string& colmapFolder = std::string());
+  /**
+   * 4, instead: a reconstruction made before (e.g. a `vimlop sfm` file, named
+   * `source` in messages), its frames matched to the loaded ones by name.
+   * @throws vimlop::Error when it was made with other intrinsics, or holds
+   * fewer than 2 of the loaded frames or 10 points.
+   */
+  void useReconstruction(const SfmReconstruction& sfm, const std::string& source);
 
   /**
    * 5. The initial scale (V14): from `tracker` over the registered frames

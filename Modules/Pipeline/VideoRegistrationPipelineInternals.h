@@ -64,6 +64,14 @@ struct VideoRegistrationPipeline::Internals
   std::optional<VideoRegistrationInputs> Inputs;
   std::optional<TrackerTrajectory> Tracker;
   std::vector<FramePose> StartPoses;
+  /// Earlier stages' outputs given as files (read by prepare()).
+  std::optional<SfmReconstruction> GivenSfm;
+  struct ContoursFile
+  {
+    std::vector<FrameContours> frames;
+    FrameContoursPictures pictures;
+  };
+  std::optional<ContoursFile> GivenContours;
   /// The inputs' identities (InputIdentity.h), computed beside the stages
   /// from prepare() on, so that hashing them delays no result.
   struct Identities

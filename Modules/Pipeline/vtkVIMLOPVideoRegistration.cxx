@@ -125,6 +125,8 @@ int vtkVIMLOPVideoRegistration::RequestData(
     inputs.maxFrames = this->MaxFrames;
     inputs.intrinsicsPath = this->IntrinsicsFileName;
     inputs.colmapFolder = this->ColmapFolder;
+    inputs.sfmFile = this->SfmFileName;
+    inputs.contoursFile = this->ContoursFileName;
     inputs.trackerPath = this->TrackerFileName;
     inputs.initialScale = this->InitialScale;
     inputs.trackerTransform = this->TrackerTransformName;
@@ -168,6 +170,8 @@ void vtkVIMLOPVideoRegistration::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FramesPerSecond: " << this->FramesPerSecond << "\n";
   os << indent << "TimeOffset: " << this->TimeOffset << "\n";
   os << indent << "ColmapFolder: " << this->ColmapFolder << "\n";
+  os << indent << "SfmFileName: " << this->SfmFileName << "\n";
+  os << indent << "ContoursFileName: " << this->ContoursFileName << "\n";
   os << indent << "StartPosesFileName: " << this->StartPosesFileName << "\n";
   os << indent << "StartFromManualPose: " << (this->StartFromManualPose ? "On" : "Off") << "\n";
   os << indent << "MaxFrames: " << this->MaxFrames << "\n";

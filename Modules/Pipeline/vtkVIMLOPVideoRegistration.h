@@ -107,6 +107,16 @@ public:
   ///@}
 
   ///@{
+  /// Earlier stages' outputs to reuse (default: none, computed here): a
+  /// `vimlop sfm` file instead of the structure from motion, a `vimlop
+  /// contours` file instead of the contour detection (frames matched by name).
+  vtkSetStdStringFromCharMacro(SfmFileName);
+  vtkGetCharFromStdStringMacro(SfmFileName);
+  vtkSetStdStringFromCharMacro(ContoursFileName);
+  vtkGetCharFromStdStringMacro(ContoursFileName);
+  ///@}
+
+  ///@{
   /// V13: the start. Empty (default): canonical poses generated along the
   /// airway. A pose file (FramePose JSON) with StartFromManualPose off:
   /// canonical poses from it (e.g. template poses warped to the patient);
@@ -197,6 +207,8 @@ private:
   std::string IntrinsicsFileName;
   std::string TrackerFileName;
   std::string ColmapFolder;
+  std::string SfmFileName;
+  std::string ContoursFileName;
   std::string StartPosesFileName;
   bool StartFromManualPose = false;
   double InitialScale = 0.0;

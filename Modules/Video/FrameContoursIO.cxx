@@ -1,14 +1,19 @@
 #include <vimlop/Video/FrameContoursIO.h>
 
 #include <vimlop/Core/AtomicFile.h>
+#include <vimlop/Core/Error.h>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
+#include <fstream>
+
 namespace vimlop
 {
 
-void writeFrameContours(const std::vector<FrameContours>& frames, const std::string& path)
+void writeFrameContours(const std::vector<FrameContours>& frames,
+  const FrameContoursPictures& pictures, const std::string& path)
 {
   nlohmann::json list = nlohmann::json::array();
   for (const FrameContours& frame : frames)
@@ -24,8 +29,71 @@ void writeFrameContours(const std::vector<FrameContours>& frames, const std::str
     { "convention",
       "pixels with the centre of the top-left pixel at (0, 0); [u, v, nu, nv] with the unit normal "
       "pointing from the near, occluding side to the far side" },
-    { "frames", list } };
+    { "width", pictures.widthPx }, { "height", pictures.heightPx },
+    { "undistorted", pictures.undistorted }, { "frames", list } };
   writeFileAtomically(path, document.dump(2) + "\n");
+}
+
+std::vector<FrameContours> readFrameContours(
+  const std::string& path, FrameContoursPictures* pictures)
+{
+  const auto fail = [&](const std::string& problem) { throw Error("'" + path + "': " + problem); };
+  std::ifstream in(path);
+  if (!in)
+  {
+    fail("cannot open the contours file");
+  }
+  nlohmann::json document;
+  try
+  {
+    document = nlohmann::json::parse(in);
+  }
+  catch (const nlohmann::json::exception&)
+  {
+    fail("not a JSON file");
+  }
+  if (!document.is_object() || document.value("format", "") != "vimlop-contours")
+  {
+    fail("not a contours file of vimlop contours (its \"format\" is not \"vimlop-contours\")");
+  }
+  std::vector<FrameContours> frames;
+  try
+  {
+    if (pictures)
+    {
+      pictures->widthPx = document.value("width", 0);
+      pictures->heightPx = document.value("height", 0);
+      pictures->undistorted = document.value("undistorted", false);
+    }
+    for (const nlohmann::json& frame : document.at("frames"))
+    {
+      FrameContours f;
+      f.name = frame.at("name").get<std::string>();
+      for (const nlohmann::json& point : frame.at("points"))
+      {
+        if (!point.is_array() || point.size() != 4)
+        {
+          fail("frame '" + f.name + "': a point is not [u, v, nu, nv]");
+        }
+        ContourPoint p;
+        p.pixel = { point[0].get<double>(), point[1].get<double>() };
+        p.normal = { point[2].get<double>(), point[3].get<double>() };
+        if (!p.pixel.allFinite() || !(std::abs(p.normal.norm() - 1.0) < 1e-3))
+        {
+          fail("frame '" + f.name +
+            "': a point's pixel is not finite or its normal is not a unit "
+            "vector");
+        }
+        f.points.push_back(p);
+      }
+      frames.push_back(std::move(f));
+    }
+  }
+  catch (const nlohmann::json::exception& e)
+  {
+    fail(std::string("malformed: ") + e.what());
+  }
+  return frames;
 }
 
 cv::Mat drawFrameContours(const cv::Mat& frame, const std::vector<ContourPoint>& points)

@@ -1,7 +1,7 @@
 #ifndef vimlop_FrameContoursIO_h
 #define vimlop_FrameContoursIO_h
 
-#include <vimlop/Core/ContourPoint.h>
+#include <vimlop/Video/FrameContours.h>
 
 #include <opencv2/core.hpp>
 
@@ -11,22 +11,25 @@
 namespace vimlop
 {
 
-/// @brief The contour points detected in one frame of a sequence.
-struct FrameContours
-{
-  /// The frame's file name (FrameSequence::name).
-  std::string name;
-  std::vector<ContourPoint> points;
-};
-
 /**
  * @brief Writes `frames` as the "vimlop-contours" JSON file (version 1) of
  * `vimlop contours`: per frame its name and points [u, v, nu, nv] (pixels
  * with the centre of the top-left pixel at (0, 0); the unit normal from the
- * near, occluding side to the far side). Written atomically.
+ * near, occluding side to the far side), and the pictures' "width",
+ * "height" and "undistorted". Written atomically.
  * @throws vimlop::Error if the file cannot be written.
  */
-void writeFrameContours(const std::vector<FrameContours>& frames, const std::string& path);
+void writeFrameContours(const std::vector<FrameContours>& frames,
+  const FrameContoursPictures& pictures, const std::string& path);
+
+/**
+ * @brief Reads a file written by writeFrameContours(); `pictures`, when
+ * given, receives what it says of the pictures.
+ * @throws vimlop::Error naming the file: missing, not JSON, another format,
+ * a malformed frame or point, a normal that is not a unit vector.
+ */
+std::vector<FrameContours> readFrameContours(
+  const std::string& path, FrameContoursPictures* pictures = nullptr);
 
 /// @brief `frame` (8-bit BGR) with each point drawn as a dot and a short
 /// tick along its normal, towards the far side.

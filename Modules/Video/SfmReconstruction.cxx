@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <map>
 
 namespace vimlop
 {
@@ -130,6 +131,71 @@ void SfmReconstruction::validate() const
       throw Error("SfM frame '" + f.name + "' has a non-finite pose");
     }
   }
+}
+
+SfmReconstruction SfmReconstruction::forFrames(
+  const std::vector<std::string>& names, std::vector<std::string>* warnings) const
+{
+  SfmReconstruction r;
+  r.source = this->source;
+  r.trackerScale = this->trackerScale;
+  std::map<std::string, int> frameOfName;
+  for (size_t f = 0; f < names.size(); ++f)
+  {
+    frameOfName[names[f]] = static_cast<int>(f);
+    SfmReconstruction::Frame frame;
+    frame.name = names[f];
+    r.frames.push_back(frame);
+  }
+  std::vector<int> newIndex(this->frames.size(), -1);
+  std::vector<std::string> notNamed;
+  for (size_t f = 0; f < this->frames.size(); ++f)
+  {
+    const auto at = frameOfName.find(this->frames[f].name);
+    if (at == frameOfName.end())
+    {
+      notNamed.push_back(this->frames[f].name);
+      continue;
+    }
+    newIndex[f] = at->second;
+    r.frames[static_cast<size_t>(at->second)] = this->frames[f];
+  }
+  int droppedPoints = 0;
+  for (const Point& point : this->points)
+  {
+    Point kept = point;
+    kept.observations.clear();
+    for (const Observation& o : point.observations)
+    {
+      if (o.frame >= 0 && static_cast<size_t>(o.frame) < newIndex.size() && newIndex[o.frame] >= 0)
+      {
+        kept.observations.push_back({ newIndex[o.frame], o.pixel });
+      }
+    }
+    if (kept.observations.size() < 2)
+    {
+      ++droppedPoints;
+      continue;
+    }
+    r.points.push_back(std::move(kept));
+  }
+  if (warnings)
+  {
+    if (!notNamed.empty())
+    {
+      warnings->push_back("SfM: dropped " + std::to_string(notNamed.size()) +
+        " frame(s) not among the frames (first: '" + notNamed.front() + "') and " +
+        std::to_string(droppedPoints) + " point(s) seen in fewer than 2 of the others");
+    }
+    for (const Frame& f : r.frames)
+    {
+      if (!f.registered)
+      {
+        warnings->push_back("SfM: frame '" + f.name + "' is not registered");
+      }
+    }
+  }
+  return r;
 }
 
 } // namespace vimlop

@@ -91,6 +91,15 @@ struct SfmReconstruction
    * frame that does not exist or is not registered, non-finite values).
    */
   void validate() const;
+
+  /**
+   * @brief This reconstruction with its frames in the order of `names`: a
+   * name it lacks becomes an unregistered frame; its frames not named are
+   * dropped with their observations (and points left with fewer than two);
+   * `warnings`, when given, receives what was dropped or is missing.
+   */
+  SfmReconstruction forFrames(
+    const std::vector<std::string>& names, std::vector<std::string>* warnings = nullptr) const;
 };
 
 } // namespace vimlop

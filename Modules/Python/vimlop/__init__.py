@@ -34,7 +34,8 @@ class RegistrationError(RuntimeError):
 
 def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0.0,
                    fps=0.0, time_offset_s=0.0, colmap=None, start_poses=None,
-                   manual_start=False, threads=0, tracker_transform=None):
+                   manual_start=False, threads=0, tracker_transform=None, sfm=None,
+                   contours=None):
     """Registers a video sequence to a CT: the main job, with `vimlop register`'s defaults.
 
     frames: a folder of pictures, a video file or a tracked sequence (PLUS or
@@ -45,7 +46,8 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
     alone reads the tracker from the frames' file) or scale (mm per SfM unit)
     for the initial scale; fps overrides the frames' own timestamps or video
     rate (0: them, else 30 fps); colmap: a COLMAP sparse model
-    folder instead of the built-in SfM; start_poses: a FramePose JSON file of
+    folder instead of the built-in SfM; sfm, contours: the outputs of `vimlop
+    sfm` and `vimlop contours`, reused instead of computing them; start_poses: a FramePose JSON file of
     canonical poses (default: generated along the airway) or, with
     manual_start, the camera-to-CT pose of one frame.
 
@@ -73,6 +75,8 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
     registration.SetFramesPerSecond(float(fps))
     registration.SetTimeOffset(float(time_offset_s))
     registration.SetColmapFolder(str(colmap) if colmap is not None else "")
+    registration.SetSfmFileName(str(sfm) if sfm is not None else "")
+    registration.SetContoursFileName(str(contours) if contours is not None else "")
     registration.SetStartPosesFileName(str(start_poses) if start_poses is not None else "")
     registration.SetStartFromManualPose(bool(manual_start))
     registration.SetNumberOfThreads(int(threads))
