@@ -224,9 +224,34 @@ bool InterruptGuard::requested()
   return interruptRequested;
 }
 
-std::string parseErrorMessage(const CLI::ParseError& error)
+std::string parseErrorMessage(const CLI::ParseError& error, const std::string& configPath)
 {
   const std::string text = error.what();
+  // A config file's problems name the file and say what is wrong in it.
+  const std::string unparsed = "INI was not able to parse ";
+  if (dynamic_cast<const CLI::ConfigError*>(&error) && text.rfind(unparsed, 0) == 0)
+  {
+    const std::string item = text.substr(unparsed.size());
+    const size_t dot = item.rfind('.');
+    std::string problem;
+    if (item.size() > 3 && item.compare(item.size() - 3, 3, ".++") == 0)
+    {
+      problem = "no command is named [" + item.substr(0, item.size() - 3) + "]";
+    }
+    else if (dot != std::string::npos && item.find(' ') == std::string::npos)
+    {
+      problem = "[" + item.substr(0, dot) + "] has no option '" + item.substr(dot + 1) + "'";
+    }
+    else
+    {
+      problem = "cannot read '" + item + "' (lines are 'name = value', under a [command] section)";
+    }
+    return "'" + configPath + "': " + problem;
+  }
+  if (dynamic_cast<const CLI::FileError*>(&error) && !configPath.empty())
+  {
+    return "'" + configPath + "': cannot read the config file (is it there?)";
+  }
   return (text == "A subcommand is required" ? std::string("give a command") : text) +
     " (--help lists the commands and options)";
 }

@@ -112,8 +112,11 @@ std::string unknownSubcommandMessage(const CLI::App& app, int argc, const char* 
  */
 std::string nearestName(const std::string& word, const std::vector<std::string>& names);
 
-/// @brief A CLI11 parse error in words for `vimlop: error:` (exit code 1, as every error).
-std::string parseErrorMessage(const CLI::ParseError& error);
+/**
+ * @brief A CLI11 parse error in words for `vimlop: error:` (exit code 1, as
+ * every error); an error in the config file `configPath` (--config) names it.
+ */
+std::string parseErrorMessage(const CLI::ParseError& error, const std::string& configPath = "");
 
 /**
  * @brief The words this program was started with (argv), set once by

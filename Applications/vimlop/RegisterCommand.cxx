@@ -1,6 +1,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include <vimlop/Cohort/CohortManifest.h>
+#include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/ProcessMemory.h>
 #include <vimlop/Core/TeeStream.h>
@@ -92,6 +93,8 @@ struct RegisterCommand
   VideoRegistrationOptions pipeline;
   std::string video, sfm = "builtin", init = "canonical", method = "vimlop", truth, out;
   bool force = false, json = false, printOptions = false, serve = false, timings = false;
+  /// The options given, as a config file (TOML) to run it again.
+  std::string configText;
   RegistrationOutputOptions outputs;
   PoseServingOptions serving;
 };
@@ -141,6 +144,10 @@ void runRegister(RegisterCommand c)
     throw Error("'" + logPath + "': cannot write the log file");
   }
   logFile << joinCommandLine(commandWords()) << "\n";
+  writeFileAtomically((std::filesystem::path(folder.stagingFolder()) / "config.toml").string(),
+    "# vimlop register: the options of this run (vimlop register --config config.toml runs it "
+    "again;\n# relative paths are relative to where it ran)\n" +
+      c.configText);
   TeeStream log(terminal, logFile);
   if (!note.empty())
   {
@@ -334,12 +341,14 @@ void addRegisterCommand(CLI::App& app)
     "a result flagged as a failure only with --allow-flagged");
   addPoseServingOptions(*r, c->serving);
   r->callback(
-    [c]
+    [c, r]
     {
       if (!c->printOptions && c->inputs.framesPath.empty() && c->video.empty())
       {
         throw Error("give --frames DIR or --video FILE");
       }
+      // What was given, from the command line and a config file alike.
+      c->configText = "[register]\n" + r->config_to_str(false, true);
       runRegister(*c);
     });
 }

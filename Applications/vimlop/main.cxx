@@ -23,6 +23,16 @@ int main(int argc, char** argv)
   CLI::App app{ "vimlop: video-CT registration for endoscopic sinus surgery (V-IMLOP)" };
   app.set_version_flag("--version", std::string("vimlop ") + VIMLOP_VERSION);
   app.require_subcommand(1);
+  // One config file for every command: a TOML file whose [register],
+  // [simulate], ... sections hold the options of that command ("name =
+  // value", the long name without "--"); the command line wins. Given after
+  // the command's name too (it falls through to here).
+  app.set_config("--config", "",
+    "read options from a TOML file: a section per command ([register], ...) of 'name = value' "
+    "lines, the long option names without '--' (e.g. fps = 25, no-video = true); the command "
+    "line wins. vimlop register writes its options back as config.toml in the result folder");
+  app.fallthrough();
+  app.allow_config_extras(CLI::config_extras_mode::error);
   vimlop::addInfoCommand(app);
   vimlop::addSegmentCommand(app);
   vimlop::addServeCommand(app);
@@ -55,7 +65,11 @@ int main(int argc, char** argv)
     {
       return app.exit(e); // --help, --version
     }
-    std::cerr << "vimlop: error: " << vimlop::parseErrorMessage(e) << "\n";
+    const CLI::Option* config = app.get_config_ptr();
+    std::cerr << "vimlop: error: "
+              << vimlop::parseErrorMessage(
+                   e, config && config->count() > 0 ? config->as<std::string>() : std::string())
+              << "\n";
     return 1;
   }
   catch (const vimlop::Error& e)
