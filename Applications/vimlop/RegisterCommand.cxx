@@ -288,8 +288,11 @@ void addRegisterCommand(CLI::App& app)
   r->add_option("--intrinsics", in.intrinsicsPath, "camera intrinsics (OpenCV YAML/JSON/XML)")
     ->required();
   r->add_option("--sfm", c->sfm,
-     "structure from motion: builtin, colmap:DIR (a sparse model) or FILE.json (the output of "
-     "vimlop sfm, reused; frames matched by name)")
+     "structure from motion: builtin, colmap (COLMAP run on the frames, --colmap-executable), "
+     "colmap:DIR (a COLMAP sparse model) or FILE.json (the output of vimlop sfm, reused; frames "
+     "matched by name)")
+    ->capture_default_str();
+  r->add_option("--colmap-executable", in.colmapExecutable, "the COLMAP program of --sfm colmap")
     ->capture_default_str();
   r->add_option("--contours", in.contoursFile,
     "occluding contours already detected: the output of vimlop contours (with --intrinsics when "

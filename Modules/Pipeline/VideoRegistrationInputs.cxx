@@ -46,14 +46,15 @@ void VideoRegistrationInputs::setStructureFromMotion(
 {
   std::string folder;
   this->sfmFile.clear();
+  this->runColmap = text == "colmap";
   if (text.size() > 5 && lowerCaseExtension(text) == ".json")
   {
     this->sfmFile = text;
   }
-  else if (text != "builtin" && !after(text, "colmap:", folder))
+  else if (text != "builtin" && !this->runColmap && !after(text, "colmap:", folder))
   {
-    throw Error(
-      what + ": expected builtin, colmap:DIR or a file of vimlop sfm (.json), got '" + text + "'");
+    throw Error(what + ": expected builtin, colmap, colmap:DIR or a file of vimlop sfm (.json), " +
+      "got '" + text + "'");
   }
   this->colmapFolder = folder;
 }

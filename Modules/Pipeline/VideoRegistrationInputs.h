@@ -33,6 +33,10 @@ struct VideoRegistrationInputs
   std::string colmapFolder;
   /// Or a reconstruction already made: a `vimlop sfm` file (frames matched by name).
   std::string sfmFile;
+  /// Or COLMAP run here on the frames (VideoRegistrationPipeline::reconstructWithColmap).
+  bool runColmap = false;
+  /// The COLMAP program that runColmap runs (default "colmap", on the PATH).
+  std::string colmapExecutable = "colmap";
   /// Contours already detected: a `vimlop contours` file (frames matched by
   /// name), instead of detecting them (V1).
   std::string contoursFile;
@@ -63,8 +67,8 @@ struct VideoRegistrationInputs
   void setStart(const std::string& text, const std::string& what);
   /**
    * @brief Sets the structure from motion from its text form: "builtin",
-   * "colmap:DIR" (a COLMAP sparse model folder) or the path of a `vimlop
-   * sfm` file (ending in .json).
+   * "colmap" (COLMAP run on the frames), "colmap:DIR" (a COLMAP sparse
+   * model folder) or the path of a `vimlop sfm` file (ending in .json).
    * @throws vimlop::Error naming `what` for any other text.
    */
   void setStructureFromMotion(const std::string& text, const std::string& what);

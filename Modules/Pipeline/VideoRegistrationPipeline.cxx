@@ -10,6 +10,8 @@
 #include <vimlop/Pipeline/VideoRegistrationData.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Results/InputIdentity.h>
+#include <vimlop/Video/ColmapImport.h>
+#include <vimlop/Video/ColmapRunner.h>
 #include <vimlop/Video/FieldOfView.h>
 #include <vimlop/Video/FrameContoursIO.h>
 #include <vimlop/Video/FrameSequence.h>
@@ -22,7 +24,10 @@
 #include <opencv2/core/mat.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -32,6 +37,8 @@
 
 namespace vimlop
 {
+
+namespace fs = std::filesystem;
 
 void VideoRegistrationPipeline::loadModel(const TriangleMesh& airwayCT)
 {
@@ -203,6 +210,78 @@ void VideoRegistrationPipeline::reconstruct(const std::string& colmapFolder)
     throw Error("SfM registered " + std::to_string(sfm.numberOfRegisteredFrames()) +
       " frames and " + std::to_string(sfm.points.size()) + " points; too few to register");
   }
+  d.Sfm = std::move(sfm);
+  d.Timings.set("sfm", watch);
+  d.progress("sfm", 1.0);
+}
+
+void VideoRegistrationPipeline::reconstructWithColmap(const std::string& executable)
+{
+  Internals& d = *this->Impl;
+  d.need(d.FramesLoaded, "load the frames");
+  const StageTimings::Stopwatch watch;
+  d.progress("sfm", 0.0);
+  ColmapRunnerOptions options;
+  options.executable = executable;
+  options.threads = d.Opts.registration.threads > 0 ? d.Opts.registration.threads : -1;
+  const ColmapRunner runner(options);
+  runner.requireAvailable(); // before any file is written
+  if (d.View && !d.View->isEverything())
+  {
+    d.Warn("COLMAP: its features are not masked by the field stop (the built-in SfM's are)");
+  }
+  // The frames as files COLMAP reads, numbered (a video's frames have no file names).
+  static std::atomic<int> runs{ 0 };
+  const fs::path work = fs::temp_directory_path() /
+    formatText("vimlop-colmap-%ld-%d", static_cast<long>(::getpid()), runs++);
+  const fs::path images = work / "images";
+  std::error_code ec;
+  fs::remove_all(work, ec);
+  fs::create_directories(images, ec);
+  if (ec)
+  {
+    throw Error("'" + images.string() + "': cannot create the folder (" + ec.message() + ")");
+  }
+  std::vector<std::string> fileNames;
+  for (size_t f = 0; f < d.Frames.size(); ++f)
+  {
+    fileNames.push_back(formatText("%06zu.png", f));
+    if (!cv::imwrite((images / fileNames.back()).string(), d.Frames[f]))
+    {
+      throw Error("'" + (images / fileNames.back()).string() + "': cannot write the frame");
+    }
+  }
+  PinholeCamera ideal = d.Intrinsics;
+  ideal.removeDistortion();
+  d.say("SfM: COLMAP on " + std::to_string(d.Frames.size()) + " frames in '" + work.string() + "'");
+  SfmReconstruction sfm;
+  try
+  {
+    // COLMAP's own folder beside the images: the runner starts it afresh.
+    const std::string model = runner.run(images.string(), ideal, (work / "colmap").string());
+    std::vector<std::string> warnings;
+    sfm = readColmapModel(model, ColmapFormat::Automatic, fileNames, 0.5, &warnings);
+    for (const std::string& w : warnings)
+    {
+      d.Warn(w);
+    }
+  }
+  catch (const Error& e)
+  {
+    throw Error(std::string(e.what()) + " (COLMAP's files are kept in '" + work.string() + "')");
+  }
+  for (size_t f = 0; f < sfm.frames.size(); ++f)
+  {
+    sfm.frames[f].name = d.Names[f];
+  }
+  fs::remove_all(work, ec);
+  if (sfm.numberOfRegisteredFrames() < 2 || sfm.points.size() < 10)
+  {
+    throw Error("COLMAP registered " + std::to_string(sfm.numberOfRegisteredFrames()) +
+      " frames and " + std::to_string(sfm.points.size()) + " points; too few to register");
+  }
+  d.say(formatText("SfM (COLMAP): %d of %zu frames, %zu points", sfm.numberOfRegisteredFrames(),
+    sfm.frames.size(), sfm.points.size()));
   d.Sfm = std::move(sfm);
   d.Timings.set("sfm", watch);
   d.progress("sfm", 1.0);
@@ -573,6 +652,10 @@ void VideoRegistrationPipeline::process()
   if (d.GivenSfm)
   {
     this->useReconstruction(*d.GivenSfm, in.sfmFile);
+  }
+  else if (in.runColmap)
+  {
+    this->reconstructWithColmap(in.colmapExecutable);
   }
   else
   {

@@ -119,6 +119,18 @@ public:
    */
   void reconstruct(const std::string& colmapFolder = std::string());
   /**
+   * 4, with COLMAP: runs the `colmap` program (`executable`; ColmapRunner)
+   * on the loaded frames as the registration sees them (undistorted, written
+   * as PNG into a work folder of the system's temporary folder, removed
+   * afterwards, kept when COLMAP fails and named in the error), with the
+   * intrinsics held fixed, then reads its model as reconstruct() does.
+   * COLMAP's features are not masked by a field stop (a warning says so).
+   * @throws vimlop::Error when COLMAP is missing or fails, or registers
+   * fewer than 2 frames or 10 points.
+   */
+  void reconstructWithColmap(const std::string& executable = "colmap");
+
+  /**
    * 4, instead: a reconstruction made before (e.g. a `vimlop sfm` file, named
    * `source` in messages), its frames matched to the loaded ones by name.
    * @throws vimlop::Error when it was made with other intrinsics, or holds

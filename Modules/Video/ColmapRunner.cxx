@@ -49,14 +49,19 @@ std::string ColmapRunner::textModelFolder(const std::string& workFolder)
   return (fs::path(workFolder) / "sparse-text").string();
 }
 
-std::string ColmapRunner::run(
-  const std::string& imageFolder, const PinholeCamera& k, const std::string& workFolder) const
+void ColmapRunner::requireAvailable() const
 {
   if (!this->isAvailable())
   {
     throw Error(
       "COLMAP: cannot run '" + this->Opts.executable + "' (install Debian's 'colmap' package)");
   }
+}
+
+std::string ColmapRunner::run(
+  const std::string& imageFolder, const PinholeCamera& k, const std::string& workFolder) const
+{
+  this->requireAvailable();
   std::error_code ec;
   fs::remove_all(workFolder, ec);
   fs::create_directories(fs::path(workFolder) / "sparse", ec);

@@ -39,6 +39,8 @@ public:
 
   /// @brief True when the executable runs (`colmap help` succeeds).
   bool isAvailable() const;
+  /// @throws vimlop::Error saying how to install COLMAP when it is not available.
+  void requireAvailable() const;
 
   /**
    * @brief Reconstructs the images in `imageFolder` into `workFolder`
