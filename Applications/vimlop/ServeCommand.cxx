@@ -64,6 +64,10 @@ ServedPoses servedPosesOf(const RegistrationRecord& record)
       poses.frameTimesS.push_back(record.frameTimesS[static_cast<size_t>(at - frames.begin())]);
     }
   }
+  for (const RegistrationRecord::FrameWithoutPose& f : record.framesWithoutPose)
+  {
+    poses.framesWithoutPose.push_back({ f.frameId, f.timeS, "SfM did not register it" });
+  }
   if (const auto& c = record.confidence)
   {
     const std::string reason = c->reason.empty() ? "flagged as a failure" : c->reason;

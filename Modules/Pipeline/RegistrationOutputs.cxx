@@ -99,9 +99,26 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
     outcome.failureReason, pipeline.startMode() == StartMode::Manual ? "manual" : "canonical",
     static_cast<int>(outcome.candidates.size()), outcome.bestCandidate };
   record.versions = { { "vtk", vtkVersion::GetVTKVersion() }, { "opencv", CV_VERSION } };
+  std::vector<bool> posed(pipeline.frameIds().size(), false);
   for (int f : pipeline.frameOf())
   {
     record.frameSources.push_back(pipeline.frameNames()[f]);
+    posed[static_cast<size_t>(f)] = true;
+  }
+  const std::vector<double>& loadedTimesS = pipeline.loadedFrameTimesS();
+  for (size_t f = 0; f < posed.size(); ++f)
+  {
+    if (!posed[f])
+    {
+      RegistrationRecord::FrameWithoutPose lost;
+      lost.frameId = pipeline.frameIds()[f];
+      lost.source = pipeline.frameNames()[f];
+      if (f < loadedTimesS.size())
+      {
+        lost.timeS = loadedTimesS[f];
+      }
+      record.framesWithoutPose.push_back(lost);
+    }
   }
   record.ctIdentity = pipeline.ctIdentity();
   record.inputs = pipeline.inputIdentities();

@@ -221,6 +221,9 @@ public:
   /// data().frames, from the frame rate and offset given to
   /// estimateInitialScale() (empty before it).
   std::vector<double> frameTimesS() const;
+  /// Every loaded frame's time on the video's clock, s, in the order of
+  /// frameIds() (empty before estimateInitialScale()).
+  const std::vector<double>& loadedFrameTimesS() const;
   /**
    * The rate the frames were taken at, frames per second (for the registered
    * video): the rate given to estimateInitialScale() when positive, else the

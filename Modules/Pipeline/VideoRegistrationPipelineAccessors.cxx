@@ -142,6 +142,11 @@ std::vector<double> VideoRegistrationPipeline::frameTimesS() const
   return times;
 }
 
+const std::vector<double>& VideoRegistrationPipeline::loadedFrameTimesS() const
+{
+  return this->Impl->TimesS;
+}
+
 const std::vector<SimilarityTransform>& VideoRegistrationPipeline::starts() const
 {
   return this->Impl->Starts;

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -57,6 +58,18 @@ struct RegistrationRecord
   /// s (from the video, or --fps and --time-offset for a frame folder),
   /// written as "time_s"; empty when unknown.
   std::vector<double> frameTimesS;
+  /// A frame that was read but got no pose (SfM did not register it): a
+  /// moment the scope was not tracked.
+  struct FrameWithoutPose
+  {
+    int frameId = 0;
+    /// The file (or video frame) it came from.
+    std::string source;
+    /// Its time on the video's clock, s; NaN when unknown.
+    double timeS = std::numeric_limits<double>::quiet_NaN();
+  };
+  /// In video order; written as "frames_without_pose" ("id", "source", "time_s").
+  std::vector<FrameWithoutPose> framesWithoutPose;
   /// One input of the run, identified: what it is for ("ct", "frames",
   /// "intrinsics", ...), its path as given, its size in bytes and its SHA-256
   /// (of a folder: of its files' names and bytes, in name order).

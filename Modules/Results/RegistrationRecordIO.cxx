@@ -330,6 +330,16 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
   {
     summary["command_line"] = record.commandLine;
   }
+  if (!record.framesWithoutPose.empty())
+  {
+    json lost = json::array();
+    for (const RegistrationRecord::FrameWithoutPose& f : record.framesWithoutPose)
+    {
+      lost.push_back({ { "id", f.frameId }, { "source", f.source },
+        { "time_s", std::isfinite(f.timeS) ? json(f.timeS) : json(nullptr) } });
+    }
+    summary["frames_without_pose"] = lost;
+  }
   if (record.runWallS > 0.0)
   {
     summary["run_wall_s"] = record.runWallS;
@@ -518,6 +528,20 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
       }
     }
     record.commandLine = j.value("command_line", std::string());
+    if (j.contains("frames_without_pose"))
+    {
+      for (const json& f : j.at("frames_without_pose"))
+      {
+        RegistrationRecord::FrameWithoutPose lost;
+        lost.frameId = f.at("id").get<int>();
+        lost.source = f.value("source", std::string());
+        if (f.contains("time_s") && f.at("time_s").is_number())
+        {
+          lost.timeS = f.at("time_s").get<double>();
+        }
+        record.framesWithoutPose.push_back(lost);
+      }
+    }
     record.runWallS = j.value("run_wall_s", 0.0);
     if (j.contains("ct_identity"))
     {

@@ -61,6 +61,20 @@ std::string packTransform(const std::string& name, const Eigen::Matrix4d& m, dou
   return packed(*message, timeS);
 }
 
+/// A frame without a pose: the camera device is not present at that moment.
+std::string packTrackingLost(const std::string& device, const FrameWithoutPose& frame, double timeS)
+{
+  igtl::StatusMessage::Pointer message = igtl::StatusMessage::New();
+  message->SetDeviceName(device.c_str());
+  message->SetCode(igtl::StatusMessage::STATUS_NOT_PRESENT);
+  message->SetSubCode(frame.frameId);
+  message->SetErrorName("TrackingLost");
+  message->SetStatusString(("frame " + std::to_string(frame.frameId) + " has no pose" +
+    (frame.reason.empty() ? std::string() : ": " + frame.reason))
+                             .c_str());
+  return packed(*message, timeS);
+}
+
 std::string packStatus(const std::string& device, const PoseVerdict& verdict, double timeS)
 {
   igtl::StatusMessage::Pointer message = igtl::StatusMessage::New();
@@ -247,6 +261,14 @@ void PoseStreamServer::publish(const ServedPoses& poses)
       throw Error(std::to_string(timesS.size()) + " frame times for " +
         std::to_string(cameraToCT.size()) + " poses: one finite time per pose, or none");
     }
+    for (const FrameWithoutPose& lost : poses.framesWithoutPose)
+    {
+      if (!timesS.empty() && !std::isfinite(lost.timeS))
+      {
+        throw Error("frame " + std::to_string(lost.frameId) +
+          " without a pose has no finite time, and the poses have times");
+      }
+    }
     for (const FramePose& pose : cameraToCT)
     {
       const std::string name = deviceNameOf(this->Options, pose.frameId);
@@ -264,15 +286,34 @@ void PoseStreamServer::publish(const ServedPoses& poses)
   // The newest frame is now; the others as long before it as the video says.
   const double nowS =
     std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-  const double newestS = timesS.empty() ? 0.0 : *std::max_element(timesS.begin(), timesS.end());
+  double newestS = timesS.empty() ? 0.0 : *std::max_element(timesS.begin(), timesS.end());
+  for (const FrameWithoutPose& lost : poses.framesWithoutPose)
+  {
+    newestS = timesS.empty() ? newestS : std::max(newestS, lost.timeS);
+  }
+  const auto stamp = [&](double frameTimeS)
+  { return timesS.empty() ? nowS : nowS - (newestS - frameTimeS); };
   std::string messages = poses.ctFromSfm
     ? packTransform("CTFromSfM", intoRas(poses.ctFromSfm->matrix()), nowS)
     : std::string();
+  // Poses and lost frames in the order of the video (by time; by frame id without times).
+  std::vector<std::pair<double, std::string>> frames;
   for (size_t i = 0; i < cameraToCT.size(); ++i)
   {
-    const double timeS = timesS.empty() ? nowS : nowS - (newestS - timesS[i]);
-    messages += packTransform(deviceNameOf(this->Options, cameraToCT[i].frameId),
-      intoRas(cameraToCT[i].cameraToWorld.matrix()), timeS);
+    frames.emplace_back(timesS.empty() ? cameraToCT[i].frameId : timesS[i],
+      packTransform(deviceNameOf(this->Options, cameraToCT[i].frameId),
+        intoRas(cameraToCT[i].cameraToWorld.matrix()), stamp(timesS.empty() ? 0.0 : timesS[i])));
+  }
+  for (const FrameWithoutPose& lost : poses.framesWithoutPose)
+  {
+    frames.emplace_back(timesS.empty() ? lost.frameId : lost.timeS,
+      packTrackingLost(this->Options.cameraName, lost, stamp(lost.timeS)));
+  }
+  std::stable_sort(
+    frames.begin(), frames.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& frame : frames)
+  {
+    messages += frame.second;
   }
   if (poses.verdict)
   {

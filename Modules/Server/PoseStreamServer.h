@@ -81,7 +81,9 @@ struct PoseStreamServerOptions
  * new one: `CTFromSfM` (the similarity T, mapping the SfM frame into the
  * CT), one TRANSFORM per frame (each frame's camera-to-CT pose; camera axes
  * x right, y down, z forward), in the order of the video, named by
- * `cameraNames`, and, for a registration's poses, a STATUS message with its
+ * `cameraNames`, a STATUS message (code NOT_PRESENT, error name
+ * `TrackingLost`, sub-code the frame id) in the place of each frame without
+ * a pose, and, for a registration's poses, a STATUS message with its
  * verdict (code OK, or error name `RegistrationFlagged` for a result flagged
  * as a failure). Each message carries a wall-clock timestamp: the newest
  * frame is stamped with the moment of publication, the others earlier by

@@ -22,6 +22,16 @@ struct PoseVerdict
   std::string text;
 };
 
+/// @brief A frame of the video that has no pose: the scope was not tracked there.
+struct FrameWithoutPose
+{
+  int frameId = 0;
+  /// Its time on the video's clock, s (used when the poses have times).
+  double timeS = 0.0;
+  /// Why, for people (e.g. "SfM did not register it").
+  std::string reason;
+};
+
 /// @brief What a pose server sends: the poses of one registration (or of a pose file).
 struct ServedPoses
 {
@@ -33,6 +43,9 @@ struct ServedPoses
   /// empty when unknown (a pose file): the poses then all carry the time of
   /// their publication.
   std::vector<double> frameTimesS;
+  /// The frames without a pose, in the order of the video: each is told as a
+  /// STATUS "TrackingLost" between the poses around it.
+  std::vector<FrameWithoutPose> framesWithoutPose;
   /// The registration's verdict; none for poses that no registration judged.
   std::optional<PoseVerdict> verdict;
 };

@@ -259,6 +259,22 @@ int main(int argc, char** argv)
       }
       expected.push_back(e);
     }
+    // A frame without a pose is a TrackingLost STATUS in its place in the video.
+    for (const auto& frame : result.value("frames_without_pose", nlohmann::json::array()))
+    {
+      Expected e{ "STATUS", camera, {}, std::nullopt, 16, "TrackingLost" };
+      if (frame["time_s"].is_number())
+      {
+        e.frameTimeS = frame["time_s"].get<double>();
+      }
+      expected.push_back(e);
+    }
+    if (std::all_of(expected.begin() + 1, expected.end(),
+          [](const Expected& e) { return e.frameTimeS.has_value(); }))
+    {
+      std::stable_sort(expected.begin() + 1, expected.end(),
+        [](const Expected& a, const Expected& b) { return *a.frameTimeS < *b.frameTimeS; });
+    }
     if (result.contains("confidence"))
     {
       const bool failure = result["confidence"]["failure"].get<bool>();

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -51,6 +52,7 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   changed.versions["opencv"] = "4.6.0";
   changed.commandLine = "vimlop register --frames 'my frames' --ct ct.nrrd";
   changed.runWallS = 31.25;
+  changed.framesWithoutPose = { { 4, "frame004.png", 0.16 }, { 9, "frame009.png" } };
   changed.frameSources.assign(changed.data.frames.size(), "");
   changed.frameSources.back() = "frame011.png";
   changed.inputs = { { "ct", "/data/ct", 123456789012ull, std::string(64, 'a') },
@@ -135,6 +137,11 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   EXPECT_EQ(back.versions.at("opencv"), "4.6.0");
   EXPECT_EQ(back.commandLine, changed.commandLine);
   EXPECT_DOUBLE_EQ(back.runWallS, 31.25);
+  ASSERT_EQ(back.framesWithoutPose.size(), 2u);
+  EXPECT_EQ(back.framesWithoutPose[0].frameId, 4);
+  EXPECT_EQ(back.framesWithoutPose[0].source, "frame004.png");
+  EXPECT_DOUBLE_EQ(back.framesWithoutPose[0].timeS, 0.16);
+  EXPECT_TRUE(std::isnan(back.framesWithoutPose[1].timeS));
   EXPECT_FALSE(readRegistrationRecord(freshRecordWithoutConfidence()).confidence.has_value());
 }
 

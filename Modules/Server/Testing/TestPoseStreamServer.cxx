@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 
 #include <arpa/inet.h>
@@ -500,4 +501,41 @@ TEST(PoseStreamServer, RefusesNamesOpenIGTLinkWouldCutAndTimesThatDoNotMatchTheP
   EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(poses); }),
     "pose server: refusing to publish: 3 frame times for 3 poses: one finite time per pose, or "
     "none");
+}
+
+TEST(PoseStreamServer, AFrameWithoutAPoseIsToldAsTrackingLostInItsPlaceInTheVideo)
+{
+  PoseStreamServer server(anyFreePort());
+  ServedPoses poses = threeFramesOfAVideo();
+  // Frames 10, 12 and 13 have poses; 11 (at 0.44 s) was not registered, nor was 14 (0.56 s).
+  poses.cameraToCT[1].frameId = 12;
+  poses.cameraToCT[2].frameId = 13;
+  poses.frameTimesS = { 0.4, 0.48, 0.52 };
+  poses.framesWithoutPose = { { 11, 0.44, "SfM did not register it" }, { 14, 0.56, "" } };
+  server.publish(poses);
+  const std::vector<WireMessage> got = receiveAll(server, 200);
+  ASSERT_EQ(got.size(), 6u);
+  const std::vector<std::string> types = { got[1].type, got[2].type, got[3].type, got[4].type,
+    got[5].type };
+  EXPECT_EQ(
+    types, (std::vector<std::string>{ "TRANSFORM", "STATUS", "TRANSFORM", "TRANSFORM", "STATUS" }));
+  for (size_t i = 1; i + 1 < got.size(); ++i)
+  {
+    EXPECT_NEAR(got[i + 1].timeS - got[i].timeS, 0.04, 1e-6) << i;
+  }
+  const WireMessage& lost = got[2];
+  EXPECT_EQ(lost.device, "CameraToCT");
+  EXPECT_EQ(bigEndian(lost.body, 0, 2), 16u); // STATUS_NOT_PRESENT
+  EXPECT_EQ(bigEndian(lost.body, 2, 8), 11u);
+  EXPECT_EQ(field(lost.body, 10, 20), "TrackingLost");
+  EXPECT_EQ(
+    field(lost.body, 30, lost.body.size() - 30), "frame 11 has no pose: SfM did not register it");
+  EXPECT_EQ(field(got[5].body, 30, got[5].body.size() - 30), "frame 14 has no pose");
+
+  // A lost frame needs a time when the poses have them.
+  poses.framesWithoutPose[0].timeS = std::nan("");
+  const std::string message = fixtures::errorMessageOf([&] { server.publish(poses); });
+  EXPECT_EQ(message,
+    "pose server: refusing to publish: frame 11 without a pose has no finite time, and the poses "
+    "have times");
 }
