@@ -9,7 +9,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
+#include <filesystem>
 #include <memory>
 
 namespace vimlop
@@ -22,8 +26,37 @@ struct ServeOptions
 {
   std::string poses;
   std::string result;
+  bool images = false;
   PoseServingOptions serving;
 };
+
+/// The pictures of a result folder's registered frames, in the order of its poses.
+std::vector<FramePicture> framePicturesOf(
+  const RegistrationRecord& record, const std::string& folder)
+{
+  std::vector<FramePicture> pictures;
+  for (size_t j = 0; j < record.result.frames.size(); ++j)
+  {
+    const std::string path = j < record.frameImages.size() && !record.frameImages[j].empty()
+      ? (std::filesystem::path(folder) / record.frameImages[j]).string()
+      : std::string();
+    const cv::Mat bgr = path.empty() ? cv::Mat() : cv::imread(path, cv::IMREAD_COLOR);
+    if (bgr.empty())
+    {
+      throw Error("'" + folder + "': frame " + std::to_string(record.result.frames[j].frameId) +
+        " has no readable picture" + (path.empty() ? std::string() : " ('" + path + "')") +
+        ", so --images cannot send it");
+    }
+    cv::Mat rgb;
+    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+    FramePicture picture;
+    picture.widthPx = rgb.cols;
+    picture.heightPx = rgb.rows;
+    picture.rgb.assign(rgb.datastart, rgb.dataend);
+    pictures.push_back(std::move(picture));
+  }
+  return pictures;
+}
 
 void runServe(const ServeOptions& options)
 {
@@ -38,7 +71,12 @@ void runServe(const ServeOptions& options)
   }
   else
   {
-    poses = servedPosesOf(readRegistrationRecord(options.result));
+    const RegistrationRecord record = readRegistrationRecord(options.result);
+    poses = servedPosesOf(record);
+    if (options.images)
+    {
+      poses.pictures = framePicturesOf(record, options.result);
+    }
   }
   servePoses(options.serving, poses);
 }
@@ -92,6 +130,16 @@ void addServeCommand(CLI::App& app)
     "a registration's result folder: each frame's camera-to-CT pose stamped with its frame's "
     "time, the SfM-to-CT similarity as CTFromSfM and the verdict as a STATUS message; a result "
     "flagged as a failure is refused without --allow-flagged");
+  serve
+    ->add_flag("--images", options->images,
+      "with --result: each frame's picture before its pose, as an IMAGE message (--image-name) "
+      "with the same time, so that 3D Slicer shows the video beside the virtual view")
+    ->needs("--result");
+  serve
+    ->add_option("--image-name", options->serving.server.imageName,
+      "device name of the IMAGE messages (1 to 20 characters)")
+    ->capture_default_str()
+    ->needs("--images");
   addPoseServingOptions(*serve, options->serving);
   serve->callback([options] { runServe(*options); });
 }

@@ -51,12 +51,22 @@ void servePoses(const PoseServingOptions& options, const ServedPoses& poses)
   const auto previousTerm = std::signal(SIGTERM, requestStop);
   const bool oneDevice = options.server.cameraNames == CameraDeviceNames::OneMovingCamera;
   const std::string devices = oneDevice ? "as " + options.server.cameraName : "as VideoCamera_<id>";
-  std::printf("%s: %zu camera poses %s%s%s on %s:%d (OpenIGTLink TRANSFORM, RAS mm); Ctrl-C "
+  std::string also;
+  if (!poses.pictures.empty())
+  {
+    also += "; their frames as IMAGE " + options.server.imageName;
+  }
+  if (!poses.framesWithoutPose.empty())
+  {
+    also += "; " + std::to_string(poses.framesWithoutPose.size()) +
+      " frame(s) without a pose as STATUS TrackingLost";
+  }
+  std::printf("%s: %zu camera poses %s%s%s on %s:%d (OpenIGTLink TRANSFORM, RAS mm%s); Ctrl-C "
               "stops\n",
     options.label.c_str(), poses.cameraToCT.size(), devices.c_str(),
     poses.ctFromSfm ? ", CTFromSfM" : "",
     poses.verdict ? (poses.verdict->flagged ? ", STATUS flagged" : ", STATUS OK") : "",
-    options.server.host.c_str(), server.port());
+    options.server.host.c_str(), server.port(), also.c_str());
   std::fflush(stdout);
   const auto start = std::chrono::steady_clock::now();
   try

@@ -3,6 +3,7 @@
 #include <vimlop/Core/CoordinateFrames.h>
 #include <vimlop/Core/Error.h>
 
+#include <igtlImageMessage.h>
 #include <igtlStatusMessage.h>
 #include <igtlTimeStamp.h>
 #include <igtlTransformMessage.h>
@@ -58,6 +59,25 @@ std::string packTransform(const std::string& name, const Eigen::Matrix4d& m, dou
   igtl::TransformMessage::Pointer message = igtl::TransformMessage::New();
   message->SetDeviceName(name.c_str());
   message->SetMatrix(matrix);
+  return packed(*message, timeS);
+}
+
+/// A frame's picture: RGB, one slice, j downward (rows top first).
+std::string packImage(const std::string& device, const FramePicture& picture, double timeS)
+{
+  igtl::ImageMessage::Pointer message = igtl::ImageMessage::New();
+  message->SetDeviceName(device.c_str());
+  message->SetDimensions(picture.widthPx, picture.heightPx, 1);
+  message->SetSpacing(1.0f, 1.0f, 1.0f);
+  message->SetScalarTypeToUint8();
+  message->SetNumComponents(3);
+  igtl::Matrix4x4 matrix;
+  igtl::IdentityMatrix(matrix);
+  matrix[1][1] = -1.0f;
+  matrix[2][2] = -1.0f;
+  message->SetMatrix(matrix);
+  message->AllocateScalars();
+  std::memcpy(message->GetScalarPointer(), picture.rgb.data(), picture.rgb.size());
   return packed(*message, timeS);
 }
 
@@ -261,6 +281,27 @@ void PoseStreamServer::publish(const ServedPoses& poses)
       throw Error(std::to_string(timesS.size()) + " frame times for " +
         std::to_string(cameraToCT.size()) + " poses: one finite time per pose, or none");
     }
+    if (!poses.pictures.empty() && poses.pictures.size() != cameraToCT.size())
+    {
+      throw Error(std::to_string(poses.pictures.size()) + " pictures for " +
+        std::to_string(cameraToCT.size()) + " poses: one per pose, or none");
+    }
+    for (const FramePicture& picture : poses.pictures)
+    {
+      if (picture.widthPx < 1 || picture.heightPx < 1 || picture.widthPx > 65535 ||
+        picture.heightPx > 65535 ||
+        picture.rgb.size() != static_cast<size_t>(picture.widthPx) * picture.heightPx * 3)
+      {
+        throw Error("a picture of " + std::to_string(picture.widthPx) + "x" +
+          std::to_string(picture.heightPx) + " px holds " + std::to_string(picture.rgb.size()) +
+          " bytes, not 3 per pixel");
+      }
+    }
+    if (this->Options.imageName.empty() || this->Options.imageName.size() > maxDeviceNameLength)
+    {
+      throw Error("the image device name '" + this->Options.imageName + "' is not 1 to " +
+        std::to_string(maxDeviceNameLength) + " characters");
+    }
     for (const FrameWithoutPose& lost : poses.framesWithoutPose)
     {
       if (!timesS.empty() && !std::isfinite(lost.timeS))
@@ -300,9 +341,12 @@ void PoseStreamServer::publish(const ServedPoses& poses)
   std::vector<std::pair<double, std::string>> frames;
   for (size_t i = 0; i < cameraToCT.size(); ++i)
   {
+    const double timeS = stamp(timesS.empty() ? 0.0 : timesS[i]);
     frames.emplace_back(timesS.empty() ? cameraToCT[i].frameId : timesS[i],
-      packTransform(deviceNameOf(this->Options, cameraToCT[i].frameId),
-        intoRas(cameraToCT[i].cameraToWorld.matrix()), stamp(timesS.empty() ? 0.0 : timesS[i])));
+      (poses.pictures.empty() ? std::string()
+                              : packImage(this->Options.imageName, poses.pictures[i], timeS)) +
+        packTransform(deviceNameOf(this->Options, cameraToCT[i].frameId),
+          intoRas(cameraToCT[i].cameraToWorld.matrix()), timeS));
   }
   for (const FrameWithoutPose& lost : poses.framesWithoutPose)
   {

@@ -72,6 +72,9 @@ struct PoseStreamServerOptions
   /// The moving camera's device name (default CameraToCT; 1 to 20
   /// characters, OpenIGTLink's limit), also the STATUS messages' device.
   std::string cameraName = "CameraToCT";
+  /// The device name of the frames' IMAGE messages (default CameraImage; 1
+  /// to 20 characters), when the poses come with pictures.
+  std::string imageName = "CameraImage";
 };
 
 /**
@@ -81,7 +84,10 @@ struct PoseStreamServerOptions
  * new one: `CTFromSfM` (the similarity T, mapping the SfM frame into the
  * CT), one TRANSFORM per frame (each frame's camera-to-CT pose; camera axes
  * x right, y down, z forward), in the order of the video, named by
- * `cameraNames`, a STATUS message (code NOT_PRESENT, error name
+ * `cameraNames`, each preceded, when the poses come with pictures, by its
+ * frame's picture as an IMAGE message (`imageName`, 8-bit RGB, the same
+ * time; rows top first, the image's j axis pointing down, so that 3D Slicer
+ * shows it upright), a STATUS message (code NOT_PRESENT, error name
  * `TrackingLost`, sub-code the frame id) in the place of each frame without
  * a pose, and, for a registration's poses, a STATUS message with its
  * verdict (code OK, or error name `RegistrationFlagged` for a result flagged

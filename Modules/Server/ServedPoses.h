@@ -32,6 +32,15 @@ struct FrameWithoutPose
   std::string reason;
 };
 
+/// @brief A frame's picture as the registration saw it: 8-bit RGB, rows top first.
+struct FramePicture
+{
+  int widthPx = 0;
+  int heightPx = 0;
+  /// widthPx * heightPx * 3 bytes, row after row from the top.
+  std::vector<unsigned char> rgb;
+};
+
 /// @brief What a pose server sends: the poses of one registration (or of a pose file).
 struct ServedPoses
 {
@@ -43,6 +52,9 @@ struct ServedPoses
   /// empty when unknown (a pose file): the poses then all carry the time of
   /// their publication.
   std::vector<double> frameTimesS;
+  /// Per pose (in the order of cameraToCT), its frame's picture, sent as an
+  /// IMAGE message just before the pose, with its time; empty: no pictures.
+  std::vector<FramePicture> pictures;
   /// The frames without a pose, in the order of the video: each is told as a
   /// STATUS "TrackingLost" between the poses around it.
   std::vector<FrameWithoutPose> framesWithoutPose;

@@ -12,6 +12,7 @@
 //        TestPoseReceiver <vimlop> --result <result folder> [serve flags...]
 
 #include <igtlClientSocket.h>
+#include <igtlImageMessage.h>
 #include <igtlMessageHeader.h>
 #include <igtlStatusMessage.h>
 #include <igtlTransformMessage.h>
@@ -83,6 +84,10 @@ struct Received
   int code = 0;
   std::string errorName;
   std::string text;
+  /// An IMAGE's size and components.
+  int width = 0;
+  int height = 0;
+  int components = 0;
 };
 
 /// Receives messages until `expected` arrived or 10 s passed.
@@ -115,9 +120,14 @@ std::vector<Received> receiveMessages(int port, size_t expected)
     igtl::MessageBase::Pointer body;
     igtl::TransformMessage::Pointer transform = igtl::TransformMessage::New();
     igtl::StatusMessage::Pointer status = igtl::StatusMessage::New();
+    igtl::ImageMessage::Pointer image = igtl::ImageMessage::New();
     if (r.type == "TRANSFORM")
     {
       body = transform;
+    }
+    else if (r.type == "IMAGE")
+    {
+      body = image;
     }
     else if (r.type == "STATUS")
     {
@@ -147,6 +157,14 @@ std::vector<Received> receiveMessages(int port, size_t expected)
           r.matrix.push_back(m[i][j]);
         }
       }
+    }
+    else if (r.type == "IMAGE")
+    {
+      int size[3];
+      image->GetDimensions(size);
+      r.width = size[0];
+      r.height = size[1];
+      r.components = image->GetNumComponents();
     }
     else
     {
@@ -202,6 +220,8 @@ struct Expected
   std::optional<double> frameTimeS;
   int code = 0;
   std::string errorName;
+  int width = 0;
+  int height = 0;
 };
 
 Expected transformOf(const std::string& device, const Matrix& matrix)
@@ -230,6 +250,8 @@ int main(int argc, char** argv)
   const auto named = std::find(serveFlags.begin(), serveFlags.end(), "--camera-name");
   const std::string camera =
     named != serveFlags.end() && named + 1 != serveFlags.end() ? *(named + 1) : "CameraToCT";
+  const bool images =
+    std::find(serveFlags.begin(), serveFlags.end(), "--images") != serveFlags.end();
   const auto cameraDevice = [perFrame, &camera](int frameId)
   { return perFrame ? "VideoCamera_" + std::to_string(frameId) : camera; };
   std::vector<Expected> expected;
@@ -256,6 +278,17 @@ int main(int argc, char** argv)
       if (frame.contains("time_s"))
       {
         e.frameTimeS = frame["time_s"].get<double>();
+      }
+      if (images)
+      {
+        // The frame's picture first, at the same time.
+        Expected picture;
+        picture.type = "IMAGE";
+        picture.device = "CameraImage";
+        picture.frameTimeS = e.frameTimeS;
+        picture.width = frame["intrinsics"]["width_px"].get<int>();
+        picture.height = frame["intrinsics"]["height_px"].get<int>();
+        expected.push_back(picture);
       }
       expected.push_back(e);
     }
@@ -395,6 +428,15 @@ int main(int argc, char** argv)
     {
       check(r.code == e.code && r.errorName == e.errorName,
         what + " says code " + std::to_string(r.code) + " '" + r.errorName + "': " + r.text);
+      continue;
+    }
+    if (e.type == "IMAGE")
+    {
+      check(r.width == e.width && r.height == e.height && r.components == 3,
+        what + " is the frame's RGB picture (" + std::to_string(r.width) + "x" +
+          std::to_string(r.height) + ", " + std::to_string(r.components) + " components)");
+      check(k + 1 < got.size() && got[k + 1].timeS == r.timeS,
+        what + " carries the time of the pose after it");
       continue;
     }
     double worst = 0.0;

@@ -539,3 +539,51 @@ TEST(PoseStreamServer, AFrameWithoutAPoseIsToldAsTrackingLostInItsPlaceInTheVide
     "pose server: refusing to publish: frame 11 without a pose has no finite time, and the poses "
     "have times");
 }
+
+TEST(PoseStreamServer, EachPoseCanComeWithItsFramesPictureAsAnImageAtTheSameTime)
+{
+  PoseStreamServerOptions options = anyFreePort();
+  options.imageName = "Endoscope";
+  PoseStreamServer server(options);
+  ServedPoses poses = threeFramesOfAVideo();
+  for (int i = 0; i < 3; ++i)
+  {
+    FramePicture picture;
+    picture.widthPx = 4;
+    picture.heightPx = 2;
+    for (int k = 0; k < 24; ++k)
+    {
+      picture.rgb.push_back(static_cast<unsigned char>(10 * i + k));
+    }
+    poses.pictures.push_back(picture);
+  }
+  server.publish(poses);
+  const std::vector<WireMessage> got = receiveAll(server, 200);
+  ASSERT_EQ(got.size(), 7u);
+  for (size_t i = 0; i < 3; ++i)
+  {
+    const WireMessage& image = got[1 + 2 * i];
+    const WireMessage& pose = got[2 + 2 * i];
+    EXPECT_EQ(image.type, "IMAGE");
+    EXPECT_EQ(image.device, "Endoscope");
+    EXPECT_EQ(pose.type, "TRANSFORM");
+    EXPECT_EQ(image.timeS, pose.timeS);
+    // Body: version (2), components (1), scalar type (1), endian (1), coordinate (1),
+    // size (3 x 2), matrix (12 x 4), subvolume offset and size (6 x 2), then the pixels.
+    ASSERT_EQ(image.body.size(), 72u + 24u);
+    EXPECT_EQ(bigEndian(image.body, 2, 1), 3u); // RGB
+    EXPECT_EQ(bigEndian(image.body, 3, 1), 3u); // uint8
+    EXPECT_EQ(bigEndian(image.body, 6, 2), 4u);
+    EXPECT_EQ(bigEndian(image.body, 8, 2), 2u);
+    EXPECT_EQ(static_cast<unsigned char>(image.body[72]), 10 * i);
+    EXPECT_EQ(static_cast<unsigned char>(image.body[72 + 23]), 10 * i + 23);
+  }
+
+  poses.pictures.pop_back();
+  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(poses); }),
+    "pose server: refusing to publish: 2 pictures for 3 poses: one per pose, or none");
+  poses.pictures.push_back(poses.pictures.back());
+  poses.pictures.back().rgb.pop_back();
+  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(poses); }),
+    "pose server: refusing to publish: a picture of 4x2 px holds 23 bytes, not 3 per pixel");
+}
