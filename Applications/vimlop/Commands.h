@@ -17,6 +17,9 @@ namespace vimlop
 
 /// @brief Adds `vimlop canonical`: canonical camera poses along a (template) airway (V13 b).
 void addCanonicalCommand(CLI::App& app);
+
+/// @brief `vimlop calibrate`: the camera's intrinsics from views of a chessboard.
+void addCalibrateCommand(CLI::App& app);
 /**
  * @brief Adds `vimlop cohort run|submit|status|resubmit|merge|task`: a
  * manifest's rows run on this machine or as Slurm job arrays, and merged.

@@ -48,6 +48,7 @@ int main(int argc, char** argv)
   vimlop::addReportCommand(app);
   vimlop::addRegisterCommand(app);
   vimlop::addCanonicalCommand(app);
+  vimlop::addCalibrateCommand(app);
   vimlop::addCohortCommand(app);
   if (const std::string unknown = vimlop::unknownSubcommandMessage(app, argc, argv);
       !unknown.empty())
