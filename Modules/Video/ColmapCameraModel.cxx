@@ -13,7 +13,8 @@ namespace
 {
 
 constexpr ColmapCameraModel supportedModels[] = { { "SIMPLE_PINHOLE", 0, 3 }, { "PINHOLE", 1, 4 },
-  { "SIMPLE_RADIAL", 2, 4 }, { "RADIAL", 3, 5 }, { "OPENCV", 4, 8 }, { "OPENCV_FISHEYE", 5, 8 } };
+  { "SIMPLE_RADIAL", 2, 4 }, { "RADIAL", 3, 5 }, { "OPENCV", 4, 8 }, { "OPENCV_FISHEYE", 5, 8 },
+  { "FULL_OPENCV", 6, 12 } };
 /// Every COLMAP model by id, for messages about the ones VIMLOP does not read.
 constexpr const char* colmapModelNames[] = { "SIMPLE_PINHOLE", "PINHOLE", "SIMPLE_RADIAL", "RADIAL",
   "OPENCV", "OPENCV_FISHEYE", "FULL_OPENCV", "FOV", "SIMPLE_RADIAL_FISHEYE", "RADIAL_FISHEYE",
@@ -84,7 +85,8 @@ PinholeCamera intrinsicsOf(const std::string& path, std::uint64_t cameraId,
       fail(path, camera + " has a non-finite parameter");
     }
   }
-  if (!(p[0] > 0.0) || ((model.id == 1 || model.id == 4 || model.id == 5) && !(p[1] > 0.0)))
+  if (!(p[0] > 0.0) ||
+    ((model.id == 1 || model.id == 4 || model.id == 5 || model.id == 6) && !(p[1] > 0.0)))
   {
     fail(path, camera + " has a focal length that is not positive");
   }
@@ -110,6 +112,13 @@ PinholeCamera intrinsicsOf(const std::string& path, std::uint64_t cameraId,
     case 5: // OPENCV_FISHEYE: fx, fy, cx, cy, k1, k2, k3, k4 (OpenCV's cv::fisheye)
       k.distortion = Eigen::Vector4d(p[4], p[5], p[6], p[7]);
       k.lensModel = LensModel::Fisheye;
+      break;
+    case 6: // FULL_OPENCV: fx, fy, cx, cy, k1, k2, p1, p2, k3, k4, k5, k6 (OpenCV's rational model)
+      k.distortion.resize(8);
+      for (int i = 0; i < 8; ++i)
+      {
+        k.distortion[i] = p[static_cast<size_t>(4 + i)];
+      }
       break;
     default:
       break;

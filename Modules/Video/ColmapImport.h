@@ -21,16 +21,15 @@ enum class ColmapFormat
  * @brief Reads a COLMAP sparse model (a folder such as `sparse/0`) into an
  * SfmReconstruction.
  *
- * Camera models: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV and
- * OPENCV_FISHEYE (the ones used with endoscopes); their radial and
+ * Camera models: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV,
+ * OPENCV_FISHEYE and FULL_OPENCV (the ones used with endoscopes); their radial and
  * tangential coefficients become OpenCV distortion coefficients (k1, k2, p1,
- * p2), OPENCV_FISHEYE's a fisheye lens (LensModel::Fisheye, k1..k4). COLMAP poses are
- * world-to-camera (q, t) with the same camera axes as OpenCV; they become
- * camera-to-SfM poses. COLMAP puts the centre of the top-left pixel at
- * (0.5, 0.5), VIMLOP at (0, 0): principal points and observations are shifted
- * by -0.5 px. Frames are the model's images sorted by name (digit runs by
- * value); when `frameNames` is given, frames follow it instead, and names
- * the model lacks become unregistered frames. Point covariances come from
+ * p2; FULL_OPENCV's all eight, OpenCV's rational model), OPENCV_FISHEYE's a fisheye lens
+ * (LensModel::Fisheye, k1..k4). COLMAP poses are world-to-camera (q, t) with the same camera axes
+ * as OpenCV; they become camera-to-SfM poses. COLMAP puts the centre of the top-left pixel at (0.5,
+ * 0.5), VIMLOP at (0, 0): principal points and observations are shifted by -0.5 px. Frames are the
+ * model's images sorted by name (digit runs by value); when `frameNames` is given, frames follow it
+ * instead, and names the model lacks become unregistered frames. Point covariances come from
  * triangulation geometry (COLMAP writes none) with an image noise of
  * `sigmaPx` pixels.
  *

@@ -262,16 +262,16 @@ TEST(ColmapImport, RejectsUnknownAndUnsupportedCameraModels)
   EXPECT_EQ(messageOf(folder),
     "'" + folder +
       "/cameras.txt': unknown camera model 'MAGIC_LENS' (supported: SIMPLE_PINHOLE, PINHOLE, "
-      "SIMPLE_RADIAL, RADIAL, OPENCV, OPENCV_FISHEYE)");
-  writeText(folder, "FULL_OPENCV");
-  EXPECT_NE(messageOf(folder).find("cameras.txt': unsupported camera model 'FULL_OPENCV'"),
-    std::string::npos);
+      "SIMPLE_RADIAL, RADIAL, OPENCV, OPENCV_FISHEYE, FULL_OPENCV)");
+  writeText(folder, "FOV");
+  EXPECT_NE(
+    messageOf(folder).find("cameras.txt': unsupported camera model 'FOV'"), std::string::npos);
   const std::string binary = freshFolder("colmap-unknown-model-bin");
   writeBinary(binary, 42);
   EXPECT_EQ(messageOf(binary),
     "'" + binary +
       "/cameras.bin': unknown camera model id 42 (supported: SIMPLE_PINHOLE, PINHOLE, "
-      "SIMPLE_RADIAL, RADIAL, OPENCV, OPENCV_FISHEYE)");
+      "SIMPLE_RADIAL, RADIAL, OPENCV, OPENCV_FISHEYE, FULL_OPENCV)");
 }
 
 TEST(ColmapImport, RejectsDanglingIds)
@@ -313,4 +313,24 @@ TEST(ColmapImport, PinholeParametersUseColmapPixelCentres)
   k.cx = 159.5;
   k.cy = 119.5;
   EXPECT_EQ(colmapPinholeParameters(k), "200,210,160,120");
+}
+
+TEST(ColmapImport, ReadsTheFullOpenCVModelAsOpenCVsRationalModel)
+{
+  const std::string folder = freshFolder("colmap-full-opencv");
+  writeText(folder);
+  // fx, fy, cx, cy, then k1, k2, p1, p2, k3, k4, k5, k6 in COLMAP's order, which is OpenCV's.
+  std::ofstream(folder + "/cameras.txt")
+    << "3 FULL_OPENCV 320 240 200 210 160 120 -0.3 0.1 0.001 0.002 -0.02 0.01 0.003 0.0004\n"
+    << "7 SIMPLE_RADIAL 320 240 205 161 121 -0.05\n";
+  const SfmReconstruction r = readColmapModel(folder, ColmapFormat::Text);
+  const PinholeCamera& k = r.frames[1].intrinsics; // frameB, camera 3
+  EXPECT_EQ(k.lensModel, LensModel::RadialTangential);
+  ASSERT_EQ(k.distortion.size(), 8);
+  EXPECT_DOUBLE_EQ(k.distortion[0], -0.3);
+  EXPECT_DOUBLE_EQ(k.distortion[3], 0.002);
+  EXPECT_DOUBLE_EQ(k.distortion[4], -0.02);
+  EXPECT_DOUBLE_EQ(k.distortion[7], 0.0004);
+  EXPECT_DOUBLE_EQ(k.fy, 210.0);
+  EXPECT_DOUBLE_EQ(k.cx, 159.5);
 }
