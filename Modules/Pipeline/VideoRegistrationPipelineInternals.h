@@ -83,6 +83,14 @@ struct VideoRegistrationPipeline::Internals
   /// The time of each stage run, in order (timings()).
   StageTimings Timings;
 
+  /// The field stop's toll on the contours, one line for detected and reused ones alike.
+  void sayContourPointsDropped(size_t dropped, size_t total) const
+  {
+    std::ostringstream text;
+    text << "field stop: " << dropped << " of " << total << " contour points ("
+         << (total > 0 ? 100.0 * dropped / total : 0.0) << " %) dropped";
+    this->say(text.str());
+  }
   void say(const std::string& text) const
   {
     if (this->Log)

@@ -151,20 +151,10 @@ json perturbationSummary(const std::vector<PerturbationRun>& runs)
 /// The run behind a record: how it was started, how long it took, with what, on what.
 json runJson(const RegistrationRecord& record)
 {
-  json versions = { { "vimlop", VIMLOP_VERSION } };
-  for (const auto& [name, version] : record.versions)
-  {
-    versions[name] = version;
-  }
-  json inputs = json::array();
-  for (const RegistrationRecord::InputFile& input : record.inputs)
-  {
-    inputs.push_back({ { "role", input.role }, { "path", input.path }, { "bytes", input.bytes },
-      { "sha256", input.sha256 } });
-  }
   json run = { { "source", record.source }, { "command_line", record.commandLine },
-    { "registration_runtime_s", record.result.runtimeSeconds }, { "versions", versions },
-    { "inputs", inputs }, { "ct_identity", record.ctIdentity } };
+    { "registration_runtime_s", record.result.runtimeSeconds },
+    { "versions", recordjson::versionsJson(record) }, { "inputs", recordjson::inputsJson(record) },
+    { "ct_identity", record.ctIdentity } };
   run["run_wall_s"] = record.runWallS > 0.0 ? json(record.runWallS) : json(nullptr);
   return run;
 }

@@ -141,4 +141,25 @@ RegistrationOptions optionsFrom(const json& j)
   return o;
 }
 
+json versionsJson(const RegistrationRecord& record)
+{
+  json versions = { { "vimlop", VIMLOP_VERSION } };
+  for (const auto& [name, version] : record.versions)
+  {
+    versions[name] = version;
+  }
+  return versions;
+}
+
+json inputsJson(const RegistrationRecord& record)
+{
+  json inputs = json::array();
+  for (const RegistrationRecord::InputFile& input : record.inputs)
+  {
+    inputs.push_back({ { "role", input.role }, { "path", input.path }, { "bytes", input.bytes },
+      { "sha256", input.sha256 } });
+  }
+  return inputs;
+}
+
 } // namespace vimlop::recordjson

@@ -7,6 +7,7 @@
 
 #include <vimlop/Core/RegistrationOptions.h>
 #include <vimlop/Core/SimilarityTransform.h>
+#include <vimlop/Results/RegistrationRecord.h>
 
 #include <nlohmann/json.hpp>
 
@@ -42,6 +43,10 @@ void readValue(const json& j, const char* key, bool& field);
 /// Options from optionsJson() (every row of RegistrationOptionTable.h and
 /// the method, Σ2d and scale bounds); keys not given keep their defaults.
 RegistrationOptions optionsFrom(const json& j);
+/// {"vimlop": VIMLOP's version, then each of `record.versions`}.
+json versionsJson(const RegistrationRecord& record);
+/// Each input as {"role", "path", "bytes", "sha256"}.
+json inputsJson(const RegistrationRecord& record);
 
 } // namespace vimlop::recordjson
 

@@ -320,12 +320,7 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
       { "failure_threshold_px", c.failureThresholdPx }, { "failure_reason", c.reason },
       { "init", c.init }, { "candidates", c.candidates }, { "winner", c.winner } };
   }
-  json versions = { { "vimlop", VIMLOP_VERSION } };
-  for (const auto& [name, version] : record.versions)
-  {
-    versions[name] = version;
-  }
-  summary["versions"] = versions;
+  summary["versions"] = versionsJson(record);
   if (!record.commandLine.empty())
   {
     summary["command_line"] = record.commandLine;
@@ -346,13 +341,7 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
   }
   if (!record.inputs.empty())
   {
-    json inputs = json::array();
-    for (const RegistrationRecord::InputFile& input : record.inputs)
-    {
-      inputs.push_back({ { "role", input.role }, { "path", input.path }, { "bytes", input.bytes },
-        { "sha256", input.sha256 } });
-    }
-    summary["inputs"] = inputs;
+    summary["inputs"] = inputsJson(record);
   }
   if (!record.ctIdentity.empty())
   {

@@ -3,10 +3,7 @@
 #include <vimlop/Core/CoordinateFrames.h>
 #include <vimlop/Core/Error.h>
 
-#include <igtlImageMessage.h>
-#include <igtlStatusMessage.h>
-#include <igtlTimeStamp.h>
-#include <igtlTransformMessage.h>
+#include "OpenIGTLinkMessages.h"
 
 #include <algorithm>
 #include <arpa/inet.h>
@@ -25,6 +22,11 @@
 namespace vimlop
 {
 
+using igtlmessages::packImage;
+using igtlmessages::packStatus;
+using igtlmessages::packTrackingLost;
+using igtlmessages::packTransform;
+
 namespace
 {
 
@@ -35,77 +37,6 @@ void setNonBlocking(int fd)
 
 /// OpenIGTLink's device names are at most 20 bytes: a longer one is cut on the wire.
 constexpr size_t maxDeviceNameLength = 20;
-
-std::string packed(igtl::MessageBase& message, double timeS)
-{
-  igtl::TimeStamp::Pointer stamp = igtl::TimeStamp::New();
-  stamp->SetTime(timeS);
-  message.SetTimeStamp(stamp);
-  message.Pack();
-  return std::string(
-    static_cast<const char*>(message.GetPackPointer()), static_cast<size_t>(message.GetPackSize()));
-}
-
-std::string packTransform(const std::string& name, const Eigen::Matrix4d& m, double timeS)
-{
-  igtl::Matrix4x4 matrix;
-  for (int i = 0; i < 4; ++i)
-  {
-    for (int j = 0; j < 4; ++j)
-    {
-      matrix[i][j] = static_cast<float>(m(i, j));
-    }
-  }
-  igtl::TransformMessage::Pointer message = igtl::TransformMessage::New();
-  message->SetDeviceName(name.c_str());
-  message->SetMatrix(matrix);
-  return packed(*message, timeS);
-}
-
-/// A frame's picture: RGB, one slice, j downward (rows top first).
-std::string packImage(const std::string& device, const FramePicture& picture, double timeS)
-{
-  igtl::ImageMessage::Pointer message = igtl::ImageMessage::New();
-  message->SetDeviceName(device.c_str());
-  message->SetDimensions(picture.widthPx, picture.heightPx, 1);
-  message->SetSpacing(1.0f, 1.0f, 1.0f);
-  message->SetScalarTypeToUint8();
-  message->SetNumComponents(3);
-  igtl::Matrix4x4 matrix;
-  igtl::IdentityMatrix(matrix);
-  matrix[1][1] = -1.0f;
-  matrix[2][2] = -1.0f;
-  message->SetMatrix(matrix);
-  message->AllocateScalars();
-  std::memcpy(message->GetScalarPointer(), picture.rgb.data(), picture.rgb.size());
-  return packed(*message, timeS);
-}
-
-/// A frame without a pose: the camera device is not present at that moment.
-std::string packTrackingLost(const std::string& device, const FrameWithoutPose& frame, double timeS)
-{
-  igtl::StatusMessage::Pointer message = igtl::StatusMessage::New();
-  message->SetDeviceName(device.c_str());
-  message->SetCode(igtl::StatusMessage::STATUS_NOT_PRESENT);
-  message->SetSubCode(frame.frameId);
-  message->SetErrorName("TrackingLost");
-  message->SetStatusString(("frame " + std::to_string(frame.frameId) + " has no pose" +
-    (frame.reason.empty() ? std::string() : ": " + frame.reason))
-                             .c_str());
-  return packed(*message, timeS);
-}
-
-std::string packStatus(const std::string& device, const PoseVerdict& verdict, double timeS)
-{
-  igtl::StatusMessage::Pointer message = igtl::StatusMessage::New();
-  message->SetDeviceName(device.c_str());
-  message->SetCode(
-    verdict.flagged ? igtl::StatusMessage::STATUS_UNKNOWN_ERROR : igtl::StatusMessage::STATUS_OK);
-  message->SetSubCode(0);
-  message->SetErrorName(verdict.flagged ? "RegistrationFlagged" : "");
-  message->SetStatusString(verdict.text.c_str());
-  return packed(*message, timeS);
-}
 
 /// The IPv4 address of `host`: a dotted address, or a name (e.g. localhost) resolved.
 in_addr resolveHost(const std::string& host)
