@@ -133,7 +133,7 @@ void addSfmCommand(CLI::App& app)
     "Structure from motion of a frame sequence: points, SfM-frame camera poses and covariances "
     "(built in, or imported from a COLMAP model)");
   sfm->add_option("--frames", o->frames,
-    "folder of frames, a video file or a tracked sequence (PLUS/Slicer .igs.mha)");
+    "folder of frames, a video file or a tracked sequence (PLUS/Slicer .igs.mha, .igs.nrrd, .seq.nrrd)");
   sfm->add_option("--intrinsics", o->intrinsics, "camera intrinsics (OpenCV YAML/JSON/XML)");
   sfm->add_option(
     "--colmap", o->colmap, "import this COLMAP sparse model folder (text or binary) instead");

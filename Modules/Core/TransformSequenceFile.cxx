@@ -99,6 +99,85 @@ std::optional<double> SequenceMetafileHeader::timestampS(long frame, const std::
   return t;
 }
 
+namespace
+{
+
+/// Files a `Seq_Frame<n>_<name>` field under frame n, any other as the header's own.
+void addField(SequenceMetafileHeader& header, const std::string& key, const std::string& value,
+  int lineNumber, const std::string& path)
+{
+  if (key.compare(0, framePrefix.size(), framePrefix) != 0)
+  {
+    header.fields[key] = value;
+    return;
+  }
+  const size_t underscore = key.find('_', framePrefix.size());
+  char* end = nullptr;
+  const std::string number = underscore == std::string::npos
+    ? std::string()
+    : key.substr(framePrefix.size(), underscore - framePrefix.size());
+  const long frame = std::strtol(number.c_str(), &end, 10);
+  if (number.empty() || *end != '\0' || frame < 0)
+  {
+    fail(path, "line " + std::to_string(lineNumber) + ": '" + key + "' has no frame number");
+  }
+  header.frames[frame][key.substr(underscore + 1)] = value;
+}
+
+/// The last of a NRRD per-axis field's quoted strings (`units: "" "" "" "s"`):
+/// the sequence axis is the last one.
+std::string lastQuoted(const std::string& text)
+{
+  const size_t close = text.rfind('"');
+  const size_t open =
+    close == std::string::npos || close == 0 ? std::string::npos : text.rfind('"', close - 1);
+  return open == std::string::npos ? std::string() : text.substr(open + 1, close - open - 1);
+}
+
+/// Slicer's volume sequences carry their times as the sequence axis's index
+/// values, not as frame fields: they become the frames' Timestamps.
+void timestampsFromSequenceIndex(SequenceMetafileHeader& header, const std::string& path)
+{
+  for (const auto& [frame, fields] : header.frames)
+  {
+    if (fields.count("Timestamp"))
+    {
+      return;
+    }
+  }
+  for (const auto& [key, values] : header.fields)
+  {
+    const size_t suffix = key.rfind(" index values");
+    if (key.compare(0, 5, "axis ") != 0 || suffix == std::string::npos || suffix + 13 != key.size())
+    {
+      continue;
+    }
+    const std::string axis = key.substr(0, suffix);
+    const auto type = header.fields.find(axis + " index type");
+    if (type != header.fields.end() && type->second != "numeric")
+    {
+      fail(path,
+        "its sequence index is of type '" + type->second +
+          "', not numeric: the frames have no times");
+    }
+    const auto units = header.fields.find("units");
+    const std::string unit = units == header.fields.end() ? "" : lastQuoted(units->second);
+    if (!unit.empty() && unit != "s")
+    {
+      fail(path, "its sequence index is in '" + unit + "', not in seconds (s)");
+    }
+    std::istringstream list(values);
+    std::string value;
+    for (long frame = 0; list >> value; ++frame)
+    {
+      header.frames[frame]["Timestamp"] = value;
+    }
+    return;
+  }
+}
+
+} // namespace
+
 SequenceMetafileHeader readSequenceMetafileHeader(std::istream& in, const std::string& path)
 {
   SequenceMetafileHeader header;
@@ -113,35 +192,51 @@ SequenceMetafileHeader readSequenceMetafileHeader(std::istream& in, const std::s
     {
       fail(path, "its header goes on for over 64 MiB: not a sequence metafile");
     }
+    if (lineNumber == 1 && line.compare(0, 7, "NRRD000") == 0)
+    {
+      header.format = SequenceFileFormat::Nrrd;
+      continue;
+    }
+    if (header.format == SequenceFileFormat::Nrrd)
+    {
+      if (line.empty() || line == "\r")
+      {
+        header.complete = true;
+        header.dataOffset = in.tellg();
+        break;
+      }
+      if (line[0] == '#')
+      {
+        continue;
+      }
+      const size_t keyEnd = line.find(":=");
+      const size_t fieldEnd = line.find(": ");
+      const size_t colon = std::min(keyEnd, fieldEnd);
+      if (colon == std::string::npos)
+      {
+        fail(path, "line " + std::to_string(lineNumber) + " is not 'field: value' or 'key:=value'");
+      }
+      addField(
+        header, trimmed(line.substr(0, colon)), trimmed(line.substr(colon + 2)), lineNumber, path);
+      continue;
+    }
     const size_t equals = line.find('=');
     if (equals == std::string::npos)
     {
       fail(path, "line " + std::to_string(lineNumber) + " is not 'name = value'");
     }
     const std::string key = trimmed(line.substr(0, equals));
-    const std::string value = trimmed(line.substr(equals + 1));
-    if (key.compare(0, framePrefix.size(), framePrefix) != 0)
+    addField(header, key, trimmed(line.substr(equals + 1)), lineNumber, path);
+    if (key == "ElementDataFile")
     {
-      header.fields[key] = value;
-      if (key == "ElementDataFile")
-      {
-        header.complete = true;
-        header.dataOffset = in.tellg();
-        break;
-      }
-      continue;
+      header.complete = true;
+      header.dataOffset = in.tellg();
+      break;
     }
-    const size_t underscore = key.find('_', framePrefix.size());
-    char* end = nullptr;
-    const std::string number = underscore == std::string::npos
-      ? std::string()
-      : key.substr(framePrefix.size(), underscore - framePrefix.size());
-    const long frame = std::strtol(number.c_str(), &end, 10);
-    if (number.empty() || *end != '\0' || frame < 0)
-    {
-      fail(path, "line " + std::to_string(lineNumber) + ": '" + key + "' has no frame number");
-    }
-    header.frames[frame][key.substr(underscore + 1)] = value;
+  }
+  if (header.format == SequenceFileFormat::Nrrd)
+  {
+    timestampsFromSequenceIndex(header, path);
   }
   return header;
 }
@@ -155,7 +250,7 @@ std::vector<TimedTransform> readTransformSequenceFile(
     fail(path, "no such file, or it cannot be read");
   }
   const SequenceMetafileHeader header = readSequenceMetafileHeader(file, path);
-  if (header.fields.count("ObjectType") == 0)
+  if (header.format == SequenceFileFormat::MetaImage && header.fields.count("ObjectType") == 0)
   {
     fail(path, "not a sequence metafile (no ObjectType line)");
   }
@@ -195,9 +290,19 @@ std::vector<TimedTransform> readTransformSequenceFile(
   }
   if (items.empty())
   {
+    const bool anyTransform = std::any_of(header.frames.begin(), header.frames.end(),
+      [](const auto& frame)
+      {
+        return std::any_of(frame.second.begin(), frame.second.end(),
+          [](const auto& field) { return field.first.find("Transform") != std::string::npos; });
+      });
     fail(path,
       "holds no frame of the transform '" + name + "' (no field Seq_Frame<n>_" + transformField +
-        " with status OK)");
+        " with status OK)" +
+        (anyTransform || header.format != SequenceFileFormat::Nrrd
+            ? ""
+            : "; it holds no transform at all, as a 3D Slicer volume sequence: Slicer saves a "
+              "transform's sequence in its own file (.seq.mha)"));
   }
   return items;
 }

@@ -13,7 +13,7 @@
  * @file TransformSequenceFile.h
  * @brief A sequence of one named linear transform over time, in the sequence
  * metafile form of PLUS and 3D Slicer (`.seq.mha`, Slicer's "linear
- * transform sequence").
+ * transform sequence"); read also from PLUS's NRRD form (`.igs.nrrd`).
  *
  * The file is a MetaImage header with no voxels (`DimSize = 0 0 N`) whose
  * per-item fields carry the transforms:
@@ -37,18 +37,35 @@ struct TimedTransform
   Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
 };
 
+/// @brief The two header forms a tracked sequence comes in.
+enum class SequenceFileFormat
+{
+  /// MetaImage (`.mha`, `.mhd`): `Name = value` lines up to ElementDataFile.
+  MetaImage,
+  /// NRRD (`.nrrd`, `.nhdr`; PLUS's `.igs.nrrd`, Slicer's `.seq.nrrd`): a
+  /// `NRRD000n` line, `field: value` and `key:=value` lines, `#` comments,
+  /// and a blank line before the data.
+  Nrrd
+};
+
 /**
  * @brief The header of a sequence metafile (the transforms' and, in Video's
  * TrackedSequenceFile.h, the frames' reader): its own fields, the fields of
  * each frame (`Seq_Frame0003_Timestamp` is frame 3's "Timestamp"), and
  * where its data begin.
+ *
+ * A NRRD whose frames have no Timestamp but whose sequence axis has numeric
+ * index values (Slicer's `axis 3 index values:=0.04 0.08 ...`, in seconds)
+ * has those values as its frames' Timestamps.
  */
 struct SequenceMetafileHeader
 {
+  SequenceFileFormat format = SequenceFileFormat::MetaImage;
+  /// The header's own fields by name (a NRRD's fields and keys alike).
   std::map<std::string, std::string> fields;
   std::map<long, std::map<std::string, std::string>> frames;
-  /// True when an ElementDataFile line ended the header; its data (if
-  /// LOCAL) begin at `dataOffset` in the stream.
+  /// True when the header ended where the data begin (an ElementDataFile
+  /// line, a NRRD's blank line); local data begin at `dataOffset`.
   bool complete = false;
   std::streamoff dataOffset = 0;
 
@@ -60,12 +77,13 @@ struct SequenceMetafileHeader
 };
 
 /**
- * @brief Reads the header of a sequence metafile from `in` up to its
- * ElementDataFile line (or the end of `in`), so that binary data after it
- * are never read as text.
+ * @brief Reads the header of a sequence metafile (MetaImage or NRRD, told by
+ * its first line) from `in` up to where its data begin (or the end of `in`),
+ * so that binary data after it are never read as text.
  * @throws vimlop::Error "'path': line N ..." for a line that is not
- * `name = value` or a frame field without a frame number, or a header over
- * 64 MiB.
+ * `name = value` (NRRD: `field: value` or `key:=value`) or a frame field
+ * without a frame number, a header over 64 MiB, or a NRRD sequence index
+ * that is not a time in seconds.
  */
 SequenceMetafileHeader readSequenceMetafileHeader(std::istream& in, const std::string& path);
 

@@ -24,7 +24,8 @@ struct VideoRegistrationInputs
   std::string meshPath;
   std::string ctPath;
   /// The video: a folder of pictures, a video file or a tracked sequence
-  /// (PLUS/Slicer `.igs.mha`, with its timestamps), at most `maxFrames` of
+  /// (PLUS/Slicer `.igs.mha`, `.igs.nrrd`, `.seq.nrrd`, with its
+  /// timestamps), at most `maxFrames` of
   /// it (default 1000), and its intrinsics (OpenCV YAML/JSON/XML).
   std::string framesPath;
   int maxFrames = 1000;

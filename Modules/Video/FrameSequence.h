@@ -20,8 +20,10 @@ namespace vimlop
  * program), so that a decoder's fault on a broken file ends that process with
  * a message, not this one, or from a tracked image sequence as PLUS and 3D
  * Slicer record it (`.igs.mha`, `.seq.mha`, `.mha`, `.mhd`: a MetaImage whose
- * third axis is time, with a timestamp per frame; frames whose image status
- * is not OK are left out). All frames are 8-bit BGR and share one size. Sequences for
+ * third axis is time; `.igs.nrrd`, `.seq.nrrd`, `.nrrd`, `.nhdr`: a NRRD whose
+ * last axis is the list of frames; with a timestamp per frame, or Slicer's
+ * sequence index values in seconds; frames whose image status is not OK are
+ * left out). All frames are 8-bit BGR and share one size. Sequences for
  * registration are short (about 30 frames), so they are held in memory.
  */
 class FrameSequence

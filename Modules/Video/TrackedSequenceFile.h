@@ -3,7 +3,9 @@
 
 // Private to the Video module (not installed): the frames of a tracked image
 // sequence as PLUS and 3D Slicer record it, a MetaImage (`.igs.mha`,
-// `.seq.mha`, `.mha`; `.mhd` with its data file) whose third axis is time.
+// `.seq.mha`, `.mha`; `.mhd` with its data file) whose third axis is time, or
+// a NRRD (PLUS's `.igs.nrrd`, Slicer's volume sequence `.seq.nrrd`; `.nhdr`
+// with its data file) whose last axis is the list of frames.
 
 #include <opencv2/core/mat.hpp>
 
@@ -27,7 +29,8 @@ struct TrackedSequenceFrames
   std::vector<double> timestampsS;
 };
 
-/// @brief True when `path` is a file whose name ends with `.mha` or `.mhd`.
+/// @brief True when `path` is a file whose name ends with `.mha`, `.mhd`,
+/// `.nrrd` or `.nhdr`.
 bool isTrackedSequencePath(const std::string& path);
 
 /**
@@ -35,10 +38,11 @@ bool isTrackedSequencePath(const std::string& path);
  * file stores them (PLUS's "MF" orientation: the image as the camera saw it).
  * `checkSize(index, widthPx, heightPx)` judges the frame size before any
  * pixel is read (it throws to refuse).
- * @throws vimlop::Error "'path': problem": not a 3-D MetaImage of 8-bit
- * pixels with 1, 3 or 4 channels, a frame without a timestamp, timestamps
- * that do not increase, data shorter than the header promises or that does
- * not inflate, no frame whose status is OK.
+ * @throws vimlop::Error "'path': problem": not a 3-D MetaImage or a NRRD
+ * of 2-D frames of 8-bit pixels with 1, 3 or 4 channels (NRRD: raw or gzip
+ * encoded), a frame without a timestamp, timestamps that do not increase,
+ * data shorter than the header promises or that does not inflate, no frame
+ * whose status is OK.
  */
 TrackedSequenceFrames readTrackedSequence(const std::string& path, int maxFrames,
   const std::function<void(int, std::uint64_t, std::uint64_t)>& checkSize);

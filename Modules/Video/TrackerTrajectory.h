@@ -56,7 +56,7 @@ public:
   /**
    * @brief Reads the positions of the transform `transformName` (e.g.
    * "ProbeToTracker") of a tracked sequence file as PLUS and 3D Slicer write
-   * it (`.igs.mha`, `.seq.mha`: TransformSequenceFile.h): the origin of the
+   * it (`.igs.mha`, `.seq.mha`, `.igs.nrrd`: TransformSequenceFile.h): the origin of the
    * transform's frame, in mm in the tracker's frame, at each frame whose
    * transform status is OK, at the frame's timestamp.
    * @throws vimlop::Error as readTransformSequenceFile() does, or for fewer

@@ -1,4 +1,5 @@
-"""Writes a simulated sequence as a PLUS tracked recording (.igs.mha).
+"""Writes a simulated sequence as a PLUS tracked recording (.igs.mha, .igs.nrrd)
+or a 3D Slicer volume sequence (.seq.nrrd).
 
 What a lab's PLUS or 3D Slicer session records from a tracked endoscope:
 the frames (RGB, in one MetaImage whose third axis is time), a timestamp per
@@ -8,9 +9,17 @@ truth), seen from an electromagnetic field generator placed somewhere
 relative to the CT, with the tracker's noise on its position. Every frame
 is written with status OK.
 
-Usage: python3 WritePlusRecording.py <simulation folder> <out.igs.mha> [fps]
+The form follows the name: `.igs.mha` is PLUS's MetaImage (raw), `.igs.nrrd`
+PLUS's NRRD (gzip), `.seq.nrrd` the volume sequence Slicer saves from a
+sequence browser (frames and their times as the sequence index, no
+transform), its ProbeToTracker written beside it as the linear transform
+sequence Slicer saves (`ProbeToTracker.seq.mha`). The frames, times and
+transforms are the same in every form.
+
+Usage: python3 WritePlusRecording.py <simulation folder> <out.igs.mha|.igs.nrrd|.seq.nrrd> [fps]
 """
 
+import gzip
 import json
 import math
 import os
@@ -47,26 +56,59 @@ for name in names:
     rgb = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, -1)[:, :, :3]
     pixels.append(rgb[::-1])  # VTK's first row is the bottom one; PLUS's (MF) the top one
 
-with open(out, "wb") as f:
+frame_fields = []  # per frame: (name, value) pairs, PLUS's Seq_Frame<n>_ fields
+times_s = []
+for index, name in enumerate(names):
+    frame_id = int("".join(c for c in name if c.isdigit()))
+    probe_to_tracker = tracker_from_ct @ truth[frame_id]
+    probe_to_tracker[:3, 3] += rng.normal(0.0, noise_mm, 3)
+    times_s.append("%.6f" % (start_s + index / fps))
+    frame_fields.append([("ProbeToTrackerTransform", " ".join("%.17g" % v for v in probe_to_tracker.ravel())),
+                         ("ProbeToTrackerTransformStatus", "OK"), ("Timestamp", times_s[-1]),
+                         ("ImageStatus", "OK")])
+data = b"".join(numpy.ascontiguousarray(rgb, dtype=numpy.uint8).tobytes() for rgb in pixels)
+
+
+def frame_lines(separator, fields=frame_fields):
+    return ["Seq_Frame%04d_%s%s%s" % (index, key, separator, value)
+            for index, pairs in enumerate(fields) for key, value in pairs]
+
+
+if out.endswith(".mha"):
     header = ["ObjectType = Image", "NDims = 3", "AnatomicalOrientation = RAI", "BinaryData = True",
               "BinaryDataByteOrderMSB = False", "CompressedData = False",
               "DimSize = %d %d %d" % (width, height, len(names)), "ElementNumberOfChannels = 3",
               "ElementSpacing = 1 1 1", "ElementType = MET_UCHAR", "Kinds = domain domain list",
               "Offset = 0 0 0", "TransformMatrix = 1 0 0 0 1 0 0 0 1",
               "UltrasoundImageOrientation = MF", "UltrasoundImageType = RGB_COLOR"]
-    for index, name in enumerate(names):
-        frame_id = int("".join(c for c in name if c.isdigit()))
-        probe_to_tracker = tracker_from_ct @ truth[frame_id]
-        probe_to_tracker[:3, 3] += rng.normal(0.0, noise_mm, 3)
-        prefix = "Seq_Frame%04d_" % index
-        header += [prefix + "ProbeToTrackerTransform = " +
-                   " ".join("%.17g" % v for v in probe_to_tracker.ravel()),
-                   prefix + "ProbeToTrackerTransformStatus = OK",
-                   prefix + "Timestamp = %.6f" % (start_s + index / fps),
-                   prefix + "ImageStatus = OK"]
-    header.append("ElementDataFile = LOCAL")
+    header += frame_lines(" = ") + ["ElementDataFile = LOCAL"]
+    body = data
+elif out.endswith(".igs.nrrd"):
+    header = ["NRRD0004", "# Complete NRRD file format specification at:",
+              "# http://teem.sourceforge.net/nrrd/format.html", "type: unsigned char", "dimension: 5",
+              "space: left-posterior-superior", "sizes: 3 %d %d 1 %d" % (width, height, len(names)),
+              "kinds: vector domain domain domain list", "encoding: gzip",
+              "UltrasoundImageOrientation:=MF", "UltrasoundImageType:=RGB_COLOR"]
+    header += frame_lines(":=") + [""]
+    body = gzip.compress(data)
+elif out.endswith(".seq.nrrd"):
+    header = ["NRRD0004", "type: unsigned char", "dimension: 5", "space: left-posterior-superior",
+              "sizes: 3 %d %d 1 %d" % (width, height, len(names)),
+              "kinds: RGB-color domain domain domain list", 'units: "" "" "" "" "s"',
+              "encoding: gzip", "axis 3 index type:=numeric",
+              "axis 3 index values:=" + " ".join(times_s), "DataNodeClassName:=vtkMRMLVectorVolumeNode", ""]
+    body = gzip.compress(data)
+    transforms = ["ObjectType = Image", "NDims = 3", "AnatomicalOrientation = RAI", "BinaryData = True",
+                  "CompressedData = False", "DimSize = 0 0 %d" % len(names), "ElementSpacing = 1 1 1",
+                  "Offset = 0 0 0", "TransformMatrix = 1 0 0 0 1 0 0 0 1", "ElementType = MET_UCHAR",
+                  "Kinds = domain domain list"]
+    transforms += frame_lines(" = ", [pairs[:3] for pairs in frame_fields]) + ["ElementDataFile = LOCAL"]
+    with open(os.path.join(os.path.dirname(out), "ProbeToTracker.seq.mha"), "w") as f:
+        f.write("\n".join(transforms) + "\n")
+else:
+    sys.exit("the recording's name must end with .igs.mha, .igs.nrrd or .seq.nrrd: " + out)
+with open(out, "wb") as f:
     f.write(("\n".join(header) + "\n").encode())
-    for rgb in pixels:
-        f.write(numpy.ascontiguousarray(rgb, dtype=numpy.uint8).tobytes())
+    f.write(body)
 print("wrote %s: %d frames of %dx%d px at %g fps, ProbeToTracker with %.2f mm noise"
       % (out, len(names), width, height, fps, noise_mm))

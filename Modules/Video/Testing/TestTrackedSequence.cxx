@@ -1,6 +1,6 @@
-// Tracked image sequences as PLUS and 3D Slicer record them (.igs.mha): the
-// frames with their timestamps, the tracker from one of their transforms, and
-// the frames' times on the tracker's clock.
+// Tracked image sequences as PLUS and 3D Slicer record them (.igs.mha,
+// .igs.nrrd, .seq.nrrd): the frames with their timestamps, the tracker from
+// one of their transforms, and the frames' times on the tracker's clock.
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Video/FrameSequence.h>
@@ -11,6 +11,8 @@
 #include "TestFolders.h"
 
 #include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
 
 #include <zlib.h>
 
@@ -44,11 +46,12 @@ unsigned char pixel(int f, int x, int y, int c)
   return static_cast<unsigned char>(40 * f + 7 * x + 3 * y + 50 * c);
 }
 
-std::string writeRecording(const std::string& path, const Recording& r)
+/// The recording's pixels, compressed as zlib (MetaImage) or gzip (NRRD)
+/// when asked, less `truncatedBytes`.
+std::string pixelData(const Recording& r, bool gzip)
 {
-  const int frames = static_cast<int>(r.status.size());
   std::string data;
-  for (int f = 0; f < frames; ++f)
+  for (int f = 0; f < static_cast<int>(r.status.size()); ++f)
   {
     for (int y = 0; y < r.height; ++y)
     {
@@ -63,14 +66,43 @@ std::string writeRecording(const std::string& path, const Recording& r)
   }
   if (r.compressed)
   {
-    uLongf size = compressBound(static_cast<uLong>(data.size()));
-    std::string packed(size, '\0');
-    compress(reinterpret_cast<Bytef*>(packed.data()), &size,
-      reinterpret_cast<const Bytef*>(data.data()), static_cast<uLong>(data.size()));
-    packed.resize(size);
+    z_stream stream{};
+    deflateInit2(
+      &stream, Z_DEFAULT_COMPRESSION, Z_DEFLATED, gzip ? 16 + 15 : 15, 8, Z_DEFAULT_STRATEGY);
+    std::string packed(deflateBound(&stream, static_cast<uLong>(data.size())) + 32, '\0');
+    stream.next_in = reinterpret_cast<Bytef*>(data.data());
+    stream.avail_in = static_cast<uInt>(data.size());
+    stream.next_out = reinterpret_cast<Bytef*>(packed.data());
+    stream.avail_out = static_cast<uInt>(packed.size());
+    deflate(&stream, Z_FINISH);
+    packed.resize(stream.total_out);
+    deflateEnd(&stream);
     data = packed;
   }
   data.resize(data.size() - r.truncatedBytes);
+  return data;
+}
+
+/// Frame f's transform (translated 10 mm a frame along x) and status fields.
+std::string frameFields(int f, const Recording& r, const std::string& separator)
+{
+  char prefix[32];
+  std::snprintf(prefix, sizeof(prefix), "Seq_Frame%04d_", f);
+  std::ostringstream out;
+  out << prefix << "ProbeToTrackerTransform" << separator << "1 0 0 " << 10.0 * f
+      << " 0 1 0 20 0 0 1 30 0 0 0 1\n"
+      << prefix << "ProbeToTrackerTransformStatus" << separator << "OK\n";
+  if (f < static_cast<int>(r.timestampsS.size()))
+  {
+    out << prefix << "Timestamp" << separator << r.timestampsS[f] << "\n";
+  }
+  out << prefix << "ImageStatus" << separator << r.status[f] << "\n";
+  return out.str();
+}
+
+std::string writeRecording(const std::string& path, const Recording& r)
+{
+  const int frames = static_cast<int>(r.status.size());
   std::ofstream out(path, std::ios::binary);
   out << "ObjectType = Image\nNDims = 3\nAnatomicalOrientation = RAI\nBinaryData = True\n"
       << "CompressedData = " << (r.compressed ? "True" : "False") << "\nDimSize = " << r.width
@@ -78,18 +110,54 @@ std::string writeRecording(const std::string& path, const Recording& r)
       << "\nElementType = " << r.elementType << "\nUltrasoundImageOrientation = MF\n";
   for (int f = 0; f < frames; ++f)
   {
-    char prefix[32];
-    std::snprintf(prefix, sizeof(prefix), "Seq_Frame%04d_", f);
-    out << prefix << "ProbeToTrackerTransform = 1 0 0 " << 10.0 * f
-        << " 0 1 0 20 0 0 1 30 0 0 0 1\n"
-        << prefix << "ProbeToTrackerTransformStatus = OK\n";
-    if (f < static_cast<int>(r.timestampsS.size()))
-    {
-      out << prefix << "Timestamp = " << r.timestampsS[f] << "\n";
-    }
-    out << prefix << "ImageStatus = " << r.status[f] << "\n";
+    out << frameFields(f, r, " = ");
   }
-  out << "ElementDataFile = LOCAL\n" << data;
+  out << "ElementDataFile = LOCAL\n" << pixelData(r, false);
+  return path;
+}
+
+/// How a NRRD recording carries its frames' times.
+enum class NrrdTimes
+{
+  /// PLUS's `.igs.nrrd`: `Seq_Frame<n>_Timestamp:=` keys.
+  FrameFields,
+  /// Slicer's `.seq.nrrd`: the sequence axis's index values, no frame keys.
+  SequenceIndex
+};
+
+/// The recording as PLUS writes it in NRRD (gzip when compressed), or as
+/// Slicer saves a volume sequence (MET_UCHAR written as NRRD's uchar).
+std::string writeNrrdRecording(const std::string& path, const Recording& r, NrrdTimes times,
+  const std::string& encoding = "", const std::string& unit = "s")
+{
+  const int frames = static_cast<int>(r.status.size());
+  std::ofstream out(path, std::ios::binary);
+  out << "NRRD0004\n# Complete NRRD file format specification at:\n"
+      << "type: " << (r.elementType == "MET_UCHAR" ? "uchar" : r.elementType)
+      << "\ndimension: " << (r.channels > 1 ? 5 : 4) << "\nspace: left-posterior-superior\nsizes: "
+      << (r.channels > 1 ? std::to_string(r.channels) + " " : "") << r.width << " " << r.height
+      << " 1 " << frames << "\nkinds: " << (r.channels > 1 ? "vector " : "")
+      << "domain domain domain list\nencoding: "
+      << (encoding.empty() ? (r.compressed ? "gzip" : "raw") : encoding) << "\n";
+  if (times == NrrdTimes::FrameFields)
+  {
+    out << "UltrasoundImageOrientation:=MF\n";
+    for (int f = 0; f < frames; ++f)
+    {
+      out << frameFields(f, r, ":=");
+    }
+  }
+  else
+  {
+    out << "units: " << (r.channels > 1 ? "\"\" " : "") << "\"\" \"\" \"\" \"" << unit
+        << "\"\naxis 3 index type:=numeric\naxis 3 index values:=";
+    for (const double t : r.timestampsS)
+    {
+      out << t << " ";
+    }
+    out << "\n";
+  }
+  out << "\n" << pixelData(r, true);
   return path;
 }
 
@@ -167,6 +235,84 @@ TEST(TrackedSequence, RefusesRecordingsItCannotReadWithTheReason)
   std::ofstream(dir + "/headless.mha") << "ObjectType = Image\nNDims = 3\n";
   EXPECT_EQ(errorMessageOf([&] { FrameSequence::load(dir + "/headless.mha"); }),
     "'" + dir + "/headless.mha': not a MetaImage (no ElementDataFile line ends its header)");
+}
+
+TEST(TrackedSequence, ReadsPlusAndSlicerNrrdRecordingsAsTheSameFrames)
+{
+  const std::string dir = fixtures::freshTestFolder("tracked-sequence-nrrd").string();
+  for (const bool compressed : { false, true })
+  {
+    SCOPED_TRACE(compressed ? "gzip" : "raw");
+    Recording r;
+    r.compressed = compressed;
+    r.status = { "OK", "INVALID", "OK" };
+    const FrameSequence plus = FrameSequence::load(
+      writeNrrdRecording(dir + "/recording.igs.nrrd", r, NrrdTimes::FrameFields));
+    const FrameSequence metaImage =
+      FrameSequence::load(writeRecording(dir + "/recording.igs.mha", r));
+    ASSERT_EQ(plus.size(), 2);
+    EXPECT_EQ(plus.ids(), metaImage.ids());
+    EXPECT_EQ(plus.timestampsS(), metaImage.timestampsS());
+    for (int f = 0; f < 2; ++f)
+    {
+      EXPECT_EQ(cv::norm(plus.frame(f), metaImage.frame(f), cv::NORM_INF), 0.0);
+    }
+  }
+  Recording grey;
+  grey.channels = 1;
+  const FrameSequence slicer = FrameSequence::load(
+    writeNrrdRecording(dir + "/video.seq.nrrd", grey, NrrdTimes::SequenceIndex));
+  EXPECT_EQ(slicer.timestampsS(), grey.timestampsS) << "the sequence index, in seconds";
+  EXPECT_NEAR(slicer.framesPerSecond(), 25.0, 1e-9);
+  EXPECT_EQ(slicer.frame(2).at<cv::Vec3b>(5, 7), cv::Vec3b::all(pixel(2, 7, 5, 0)));
+
+  // The transforms of a PLUS NRRD are read as those of its MetaImage.
+  const TrackerTrajectory tracker = TrackerTrajectory::readTrackedSequence(
+    writeNrrdRecording(dir + "/tracked.igs.nrrd", Recording(), NrrdTimes::FrameFields),
+    "ProbeToTracker");
+  ASSERT_EQ(tracker.samples().size(), 3u);
+  EXPECT_EQ(tracker.samples()[1].timeS, 100.04);
+  EXPECT_EQ(tracker.samples()[1].positionMm, Eigen::Vector3d(10.0, 20.0, 30.0));
+}
+
+TEST(TrackedSequence, RefusesNrrdRecordingsItCannotReadWithTheReason)
+{
+  const std::string dir = fixtures::freshTestFolder("tracked-sequence-nrrd-refusals").string();
+  const auto loadError = [&](const std::string& name, const Recording& r, NrrdTimes times,
+                           const std::string& encoding = "", const std::string& unit = "s")
+  {
+    const std::string path = writeNrrdRecording(dir + "/" + name, r, times, encoding, unit);
+    return errorMessageOf([&] { FrameSequence::load(path); });
+  };
+  Recording r;
+  r.elementType = "short";
+  EXPECT_EQ(loadError("short.igs.nrrd", r, NrrdTimes::FrameFields),
+    "'" + dir +
+      "/short.igs.nrrd': its pixels are 'short'; a tracked video needs 8-bit pixels "
+      "(uchar)");
+  EXPECT_EQ(loadError("bzip.igs.nrrd", Recording(), NrrdTimes::FrameFields, "bzip2"),
+    "'" + dir + "/bzip.igs.nrrd': its data are in 'bzip2' encoding; raw and gzip are read");
+  EXPECT_EQ(loadError("frames.seq.nrrd", Recording(), NrrdTimes::SequenceIndex, "", "frame"),
+    "'" + dir + "/frames.seq.nrrd': its sequence index is in 'frame', not in seconds (s)");
+  r = Recording();
+  r.timestampsS = { 100.0, 100.04 };
+  EXPECT_EQ(loadError("untimed.seq.nrrd", r, NrrdTimes::SequenceIndex),
+    "'" + dir +
+      "/untimed.seq.nrrd': frame 2 has no Seq_Frame2_Timestamp and no sequence index "
+      "value (axis 3 index values, in seconds)");
+  r = Recording();
+  r.compressed = true;
+  r.truncatedBytes = 20;
+  EXPECT_EQ(loadError("cut.igs.nrrd", r, NrrdTimes::FrameFields)
+              .rfind("'" + dir + "/cut.igs.nrrd': its data ends inside frame ", 0),
+    0u);
+  std::ofstream(dir + "/volume.nrrd") << "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 8 6 "
+                                         "5\nkinds: domain domain domain\nencoding: raw\n\n";
+  EXPECT_EQ(errorMessageOf([&] { FrameSequence::load(dir + "/volume.nrrd"); }),
+    "'" + dir + "/volume.nrrd': its last axis is of kind 'domain', not a list of frames");
+  std::ofstream(dir + "/endless.nrrd") << "NRRD0004\ntype: uchar\nsizes: 8 6 5\n";
+  EXPECT_EQ(errorMessageOf([&] { FrameSequence::load(dir + "/endless.nrrd"); }),
+    "'" + dir + "/endless.nrrd': its NRRD header has no blank line before the data");
 }
 
 TEST(TrackedSequence, TheTrackerIsTheOriginOfTheNamedTransformAtEachTimestamp)
