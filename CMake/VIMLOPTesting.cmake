@@ -44,19 +44,29 @@ function(vimlop_add_gtest name)
 endfunction()
 
 #   vimlop_add_cli_test(<name> COMMAND <args>... [PASS_REGEX <re>] [EXPECT_ERROR <re>]
-#                       [RENDERING])
+#                       [JSON_KEYS <key>...] [JSON_VALUES <key=value>...] [RENDERING])
 #
 # runs the `vimlop` program. PASS_REGEX checks the output of a successful run;
 # EXPECT_ERROR demands a non-zero exit code without a crash and an output that
-# matches <re> (the one-line message the user sees).
+# matches <re> (the one-line message the user sees). JSON_KEYS and
+# JSON_VALUES check a --json run: a successful one whose standard output is
+# one JSON object alone, with those keys and values (check-json-output.cmake).
 function(vimlop_add_cli_test name)
-  cmake_parse_arguments(arg "RENDERING" "PASS_REGEX;EXPECT_ERROR" "COMMAND" ${ARGN})
+  cmake_parse_arguments(arg "RENDERING" "PASS_REGEX;EXPECT_ERROR" "COMMAND;JSON_KEYS;JSON_VALUES"
+    ${ARGN})
   set(command $<TARGET_FILE:vimlop> ${arg_COMMAND})
   if(arg_RENDERING)
     set(command "${VIMLOP_DISPLAY_LAUNCHER}" ${command})
   endif()
   if(DEFINED arg_EXPECT_ERROR)
     set(command "${PROJECT_SOURCE_DIR}/CMake/expect-error.sh" "${arg_EXPECT_ERROR}" ${command})
+  endif()
+  if(DEFINED arg_JSON_KEYS OR DEFINED arg_JSON_VALUES)
+    # Commas between the items: a list would be split into arguments.
+    string(REPLACE ";" "," keys "${arg_JSON_KEYS}")
+    string(REPLACE ";" "," values "${arg_JSON_VALUES}")
+    set(command ${CMAKE_COMMAND} "-DKEYS=${keys}" "-DVALUES=${values}"
+      -P "${PROJECT_SOURCE_DIR}/CMake/check-json-output.cmake" -- ${command})
   endif()
   add_test(NAME ${name} COMMAND ${command} WORKING_DIRECTORY "${VIMLOP_TEST_OUTPUT_DIR}")
   if(arg_RENDERING)

@@ -25,6 +25,7 @@ struct CalibrateOptions
   std::string out;
   std::string board = "9x6";
   bool fisheye = false;
+  bool json = false;
   CameraCalibrationOptions calibration;
 };
 
@@ -65,11 +66,20 @@ void runCalibrate(CalibrateOptions o)
   {
     coefficients += formatText(i ? ", %.4g" : "%.4g", k.distortion[i]);
   }
-  std::printf("calibrate: %zu of %d views show the %s board; fx %.2f fy %.2f cx %.2f cy %.2f px, "
-              "%s (%s); RMS reprojection error %.3f px; wrote '%s'\n",
-    fit.viewsUsed.size(), views.size(), o.board.c_str(), k.fx, k.fy, k.cx, k.cy,
-    o.fisheye ? "fisheye" : "radial-tangential", coefficients.c_str(), fit.rmsReprojectionErrorPx,
-    o.out.c_str());
+  const char* lens = o.fisheye ? "fisheye" : "radial-tangential";
+  CommandSummary summary;
+  summary.lines.push_back(
+    formatText("calibrate: %zu of %d views show the %s board; fx %.2f fy %.2f cx %.2f cy %.2f px, "
+               "%s (%s); RMS reprojection error %.3f px; wrote '%s'",
+      fit.viewsUsed.size(), views.size(), o.board.c_str(), k.fx, k.fy, k.cx, k.cy, lens,
+      coefficients.c_str(), fit.rmsReprojectionErrorPx, o.out.c_str()));
+  summary.json = { { "views", views.size() }, { "views_used", fit.viewsUsed },
+    { "views_without_board", fit.viewsWithoutBoard }, { "board", o.board }, { "fx_px", k.fx },
+    { "fy_px", k.fy }, { "cx_px", k.cx }, { "cy_px", k.cy }, { "lens_model", lens },
+    { "distortion",
+      std::vector<double>(k.distortion.data(), k.distortion.data() + k.distortion.size()) },
+    { "rms_reprojection_error_px", fit.rmsReprojectionErrorPx }, { "intrinsics", o.out } };
+  printSummary(summary, o.json);
 }
 
 } // namespace
@@ -95,6 +105,7 @@ void addCalibrateCommand(CLI::App& app)
   calibrate->add_option("--min-views", o->calibration.minViews, "least views showing the board")
     ->capture_default_str()
     ->check(CLI::Range(3, 1000));
+  addJsonFlag(*calibrate, o->json);
   calibrate->callback([o] { runCalibrate(*o); });
 }
 

@@ -3,6 +3,7 @@
 #include "CommandLine.h"
 #include <vimlop/Core/CanonicalPoses.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
@@ -23,6 +24,7 @@ struct CanonicalCommandOptions
   std::string mesh;
   std::string ct;
   std::string out;
+  bool json = false;
   CanonicalPoseOptions poses;
 };
 
@@ -40,9 +42,15 @@ void runCanonical(CanonicalCommandOptions o)
     numbered.push_back({ static_cast<int>(i), poses[i] });
   }
   writeFramePoses(numbered, o.out);
-  std::printf("%zu canonical poses (%.1f mm apart, %d views per position, %zu rolls); wrote '%s'\n",
-    poses.size(), o.poses.spacingMm, o.poses.viewsPerPosition, o.poses.rollsDeg.size(),
-    o.out.c_str());
+  CommandSummary summary;
+  summary.lines.push_back(
+    formatText("%zu canonical poses (%.1f mm apart, %d views per position, %zu rolls); wrote '%s'",
+      poses.size(), o.poses.spacingMm, o.poses.viewsPerPosition, o.poses.rollsDeg.size(),
+      o.out.c_str()));
+  summary.json = { { "poses", poses.size() }, { "spacing_mm", o.poses.spacingMm },
+    { "views_per_position", o.poses.viewsPerPosition }, { "rolls_deg", o.poses.rollsDeg },
+    { "out", o.out } };
+  printSummary(summary, o.json);
 }
 
 } // namespace
@@ -71,6 +79,7 @@ void addCanonicalCommand(CLI::App& app)
   c->add_option("--rolls-deg", o->poses.rollsDeg, "rolls about the view axis, degrees (repeatable)")
     ->delimiter(',')
     ->capture_default_str();
+  addJsonFlag(*c, o->json);
   c->callback([o] { runCanonical(*o); });
 }
 

@@ -86,8 +86,9 @@ std::string counted(size_t count, const char* noun)
   return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
 }
 
-/// One line per finished row, as `cohort run` and a Slurm task print them.
-void printOutcome(const CohortRowOutcome& o, int done, int total)
+/// One line per finished row, as `cohort run` and a Slurm task print them
+/// (to stdout, or to stderr when stdout is for the JSON summary).
+void printOutcome(std::ostream& out, const CohortRowOutcome& o, int done, int total)
 {
   std::string line = formatText("cohort: [%d/%d] %s: ", done, total, o.id.c_str());
   if (o.state == CohortRowState::Running)
@@ -106,34 +107,45 @@ void printOutcome(const CohortRowOutcome& o, int done, int total)
       line += " (" + o.summary + ")";
     }
   }
-  std::cout << line << std::endl;
+  out << line << std::endl;
 }
 
 /// Runs rows with the terminal's progress and Ctrl-C; returns the exit code:
 /// 0 when every selected row has its result, 3 when some have none.
-int runRows(const CohortManifest& manifest, const CohortFolder& folder, CohortRunOptions options)
+int runRows(
+  const CohortManifest& manifest, const CohortFolder& folder, CohortRunOptions options, bool json)
 {
   const InterruptGuard guard;
+  std::ostream& progress = json ? std::cerr : std::cout;
   options.keepGoing = [] { return !InterruptGuard::requested(); };
-  options.onRowDone = printOutcome;
-  options.onNote = [](const std::string& note) { std::cout << "cohort: " << note << std::endl; };
+  options.onRowDone = [&progress](const CohortRowOutcome& o, int done, int total)
+  { printOutcome(progress, o, done, total); };
+  options.onNote = [&progress](const std::string& note)
+  { progress << "cohort: " << note << std::endl; };
   const CohortRunReport report = runCohort(manifest, folder, options);
   const int failed = report.count(CohortRowState::Failed);
-  std::cout << formatText("cohort: %s: %d complete before, %d ran now (%d complete, %d "
-                          "flagged, %d failed, %d interrupted)",
-                 counted(report.selected, "row").c_str(), report.alreadyComplete,
-                 static_cast<int>(report.outcomes.size()), report.count(CohortRowState::Complete),
-                 report.count(CohortRowState::Flagged), failed,
-                 report.count(CohortRowState::Interrupted))
-            << std::endl;
+  CommandSummary summary;
+  summary.lines.push_back(formatText("cohort: %s: %d complete before, %d ran now (%d complete, %d "
+                                     "flagged, %d failed, %d interrupted)",
+    counted(report.selected, "row").c_str(), report.alreadyComplete,
+    static_cast<int>(report.outcomes.size()), report.count(CohortRowState::Complete),
+    report.count(CohortRowState::Flagged), failed, report.count(CohortRowState::Interrupted)));
+  summary.json = { { "selected", report.selected }, { "complete_before", report.alreadyComplete },
+    { "ran", report.outcomes.size() }, { "complete", report.count(CohortRowState::Complete) },
+    { "flagged", report.count(CohortRowState::Flagged) }, { "failed", failed },
+    { "interrupted", report.count(CohortRowState::Interrupted) },
+    { "failures", nlohmann::json::array() } };
   for (const CohortRowOutcome& o : report.outcomes)
   {
     if (o.state == CohortRowState::Failed)
     {
-      std::cout << "cohort: failed: " << o.id << ": " << o.attempt.error
-                << " (log: " << folder.logPath(o.id) << ")" << std::endl;
+      summary.lines.push_back("cohort: failed: " + o.id + ": " + o.attempt.error +
+        " (log: " + folder.logPath(o.id) + ")");
+      summary.json["failures"].push_back(
+        { { "id", o.id }, { "error", o.attempt.error }, { "log", folder.logPath(o.id) } });
     }
   }
+  printSummary(summary, json);
   if (report.interrupted)
   {
     std::cerr << "vimlop: interrupted; run the same command again to finish the cohort\n";
@@ -214,7 +226,7 @@ std::vector<std::string> rowsToSubmit(
 }
 
 void submit(const CohortManifest& manifest, const CohortFolder& folder,
-  const std::vector<std::string>& ids, const SlurmSubmitOptions& options)
+  const std::vector<std::string>& ids, const SlurmSubmitOptions& options, bool json)
 {
   const SlurmSubmission s = submitCohortToSlurm(manifest, folder, ids, options);
   std::string arrays;
@@ -222,14 +234,22 @@ void submit(const CohortManifest& manifest, const CohortFolder& folder,
   {
     arrays += (arrays.empty() ? "" : ", ") + a.jobId + " (" + counted(a.taskCount, "task") + ")";
   }
-  std::cout << formatText("cohort: submission %d: %s in %s of at most %s: job %s %s; merge job %s "
-                          "(after every task ends well)",
-                 s.number, counted(ids.size(), "row").c_str(),
-                 counted(s.tasks.size(), "task").c_str(),
-                 counted(s.options.rowsPerTask, "row").c_str(),
-                 s.arrays.size() == 1 ? "array" : "arrays", arrays.c_str(), s.mergeJobId.c_str())
-            << std::endl;
-  std::cout << "cohort: follow it with 'vimlop cohort status " << folder.root() << "'" << std::endl;
+  CommandSummary summary;
+  summary.lines.push_back(
+    formatText("cohort: submission %d: %s in %s of at most %s: job %s %s; merge job %s (after "
+               "every task ends well)",
+      s.number, counted(ids.size(), "row").c_str(), counted(s.tasks.size(), "task").c_str(),
+      counted(s.options.rowsPerTask, "row").c_str(), s.arrays.size() == 1 ? "array" : "arrays",
+      arrays.c_str(), s.mergeJobId.c_str()));
+  summary.lines.push_back("cohort: follow it with 'vimlop cohort status " + folder.root() + "'");
+  summary.json = { { "submission", s.number }, { "rows", ids }, { "tasks", s.tasks.size() },
+    { "rows_per_task", s.options.rowsPerTask }, { "job_arrays", nlohmann::json::array() },
+    { "merge_job", s.mergeJobId }, { "folder", folder.root() } };
+  for (const SlurmSubmission::JobArray& a : s.arrays)
+  {
+    summary.json["job_arrays"].push_back({ { "job", a.jobId }, { "tasks", a.taskCount } });
+  }
+  printSummary(summary, json);
 }
 
 /// `vimlop cohort status`: every row's state, the failures, the Slurm jobs.
@@ -330,25 +350,28 @@ void printStatus(const CohortManifest& manifest, const CohortFolder& folder, boo
   }
 }
 
-void merge(const CohortManifest& manifest, const CohortFolder& folder)
+void merge(const CohortManifest& manifest, const CohortFolder& folder, bool json)
 {
   const CohortTable table = mergeCohortTable(manifest, folder);
   writeFileAtomically(folder.tableCsvPath(), table.csv());
   writeFileAtomically(folder.tableJsonPath(), table.toJson().dump(2) + "\n");
   writeCohortReportPage(table, fs::path(manifest.path).filename().string(), folder.reportFolder());
   const auto without = table.rowsIn({ "failed", "interrupted", "changed", "not run", "running" });
-  std::cout << formatText("cohort: merged %s (%zu without a result) into '%s', '%s' and "
-                          "'%s/index.html'",
-                 counted(table.rows.size(), "row").c_str(), without.size(),
-                 folder.tableCsvPath().c_str(), folder.tableJsonPath().c_str(),
-                 folder.reportFolder().c_str())
-            << std::endl;
+  CommandSummary summary;
+  summary.lines.push_back(
+    formatText("cohort: merged %s (%zu without a result) into '%s', '%s' and '%s/index.html'",
+      counted(table.rows.size(), "row").c_str(), without.size(), folder.tableCsvPath().c_str(),
+      folder.tableJsonPath().c_str(), folder.reportFolder().c_str()));
+  summary.json = { { "rows", table.rows.size() }, { "without_result", nlohmann::json::array() },
+    { "table_csv", folder.tableCsvPath() }, { "table_json", folder.tableJsonPath() },
+    { "report", folder.reportFolder() + "/index.html" } };
   for (const nlohmann::json* row : without)
   {
-    std::cout << "cohort: " << row->value("state", "") << ": " << row->value("id", "")
-              << (row->contains("error") ? ": " + row->at("error").get<std::string>() : "")
-              << std::endl;
+    summary.lines.push_back("cohort: " + row->value("state", "") + ": " + row->value("id", "") +
+      (row->contains("error") ? ": " + row->at("error").get<std::string>() : ""));
+    summary.json["without_result"].push_back(*row);
   }
+  printSummary(summary, json);
 }
 
 } // namespace
@@ -366,6 +389,7 @@ void addCohortCommand(CLI::App& app)
     std::string manifest, out;
     CohortRunOptions options;
     std::string rows;
+    bool json = false;
   };
   auto r = std::make_shared<RunFlags>();
   CLI::App* run = cohort->add_subcommand("run",
@@ -384,6 +408,7 @@ void addCohortCommand(CLI::App& app)
   run->add_option("--rows", r->rows, "only these rows: ids separated by commas");
   run->add_flag(
     "--failed", r->options.onlyFailed, "only rows that failed or were interrupted before");
+  addJsonFlag(*run, r->json);
   run->callback(
     [r, root]
     {
@@ -394,7 +419,7 @@ void addCohortCommand(CLI::App& app)
       {
         r->options.rows = parseList(r->rows, "--rows");
       }
-      const int code = runRows(manifest, folder, r->options);
+      const int code = runRows(manifest, folder, r->options, r->json);
       if (code != 0)
       {
         throw ExitRequest{ code };
@@ -405,6 +430,7 @@ void addCohortCommand(CLI::App& app)
   {
     std::string manifest, out;
     SlurmFlags slurm;
+    bool json = false;
   };
   auto s = std::make_shared<SubmitFlags>();
   CLI::App* submitCommand = cohort->add_subcommand("submit",
@@ -414,6 +440,7 @@ void addCohortCommand(CLI::App& app)
     ->required();
   submitCommand->add_flag("--slurm", s->slurm.slurm, "submit to Slurm (sbatch)")->required();
   addSlurmFlags(*submitCommand, s->slurm);
+  addJsonFlag(*submitCommand, s->json);
   submitCommand->callback(
     [s, root]
     {
@@ -422,7 +449,7 @@ void addCohortCommand(CLI::App& app)
       folder.prepare(manifest);
       requireNoJobsInQueue(folder, s->slurm.options.squeue);
       s->slurm.options.extraArguments = s->slurm.extra;
-      submit(manifest, folder, rowsToSubmit(manifest, folder, false), s->slurm.options);
+      submit(manifest, folder, rowsToSubmit(manifest, folder, false), s->slurm.options, s->json);
     });
 
   struct ResubmitFlags
@@ -430,6 +457,7 @@ void addCohortCommand(CLI::App& app)
     std::string folder;
     bool failed = false;
     SlurmFlags slurm;
+    bool json = false;
   };
   auto u = std::make_shared<ResubmitFlags>();
   CLI::App* resubmit = cohort->add_subcommand("resubmit",
@@ -438,6 +466,7 @@ void addCohortCommand(CLI::App& app)
     "the last submission's settings unless given");
   resubmit->add_option("folder", u->folder, "the cohort folder")->required();
   resubmit->add_flag("--failed", u->failed, "only rows that failed or were interrupted");
+  addJsonFlag(*resubmit, u->json);
   addSlurmFlags(*resubmit, u->slurm);
   resubmit->callback(
     [u, root, resubmit]
@@ -466,13 +495,14 @@ void addCohortCommand(CLI::App& app)
       const std::vector<std::string> ids = rowsToSubmit(manifest, folder, u->failed);
       if (ids.empty())
       {
-        std::cout << "cohort: nothing to resubmit: "
-                  << (u->failed ? "no row failed or was interrupted"
-                                : "every row has its result or is running")
-                  << std::endl;
+        const std::string reason =
+          u->failed ? "no row failed or was interrupted" : "every row has its result or is running";
+        printSummary({ { "cohort: nothing to resubmit: " + reason },
+                       { { "submission", nullptr }, { "reason", reason } } },
+          u->json);
         return;
       }
-      submit(manifest, folder, ids, o);
+      submit(manifest, folder, ids, o, u->json);
     });
 
   auto statusFolder = std::make_shared<std::string>();
@@ -480,7 +510,7 @@ void addCohortCommand(CLI::App& app)
   CLI::App* status = cohort->add_subcommand(
     "status", "Where each row of a cohort stands, its failures and its Slurm jobs");
   status->add_option("folder", *statusFolder, "the cohort folder")->required();
-  status->add_flag("--json", *statusJson, "print JSON");
+  addJsonFlag(*status, *statusJson);
   status->callback(
     [statusFolder, statusJson, root]
     {
@@ -489,15 +519,17 @@ void addCohortCommand(CLI::App& app)
     });
 
   auto mergeFolder = std::make_shared<std::string>();
+  auto mergeJson = std::make_shared<bool>(false);
   CLI::App* mergeCommand = cohort->add_subcommand("merge",
     "One table of every row's figures and provenance (table.csv, table.json) and the cohort's "
     "report page (report/index.html)");
   mergeCommand->add_option("folder", *mergeFolder, "the cohort folder")->required();
+  addJsonFlag(*mergeCommand, *mergeJson);
   mergeCommand->callback(
-    [mergeFolder, root]
+    [mergeFolder, mergeJson, root]
     {
       const CohortFolder folder(*mergeFolder);
-      merge(folder.manifest(catalogOf(*root)), folder);
+      merge(folder.manifest(catalogOf(*root)), folder, *mergeJson);
     });
 
   struct TaskFlags
@@ -541,7 +573,7 @@ void addCohortCommand(CLI::App& app)
       const char* index = std::getenv("SLURM_ARRAY_TASK_ID");
       options.slurmJob = job && index ? std::string(job) + "_" + index : std::string();
       // A row without a result is in its record; the task itself ended well.
-      runRows(manifest, folder, options);
+      runRows(manifest, folder, options, false);
     });
 }
 

@@ -97,6 +97,22 @@ void printLines(const std::vector<std::string>& lines)
   }
 }
 
+void addJsonFlag(CLI::App& command, bool& json)
+{
+  command.add_flag("--json", json,
+    "print the summary as JSON (machine-readable) on stdout, and nothing else there");
+}
+
+void printSummary(const CommandSummary& summary, bool json)
+{
+  if (json)
+  {
+    std::printf("%s\n", summary.json.dump(2).c_str());
+    return;
+  }
+  printLines(summary.lines);
+}
+
 void writeJsonFile(const nlohmann::json& json, const std::string& path)
 {
   writeFileAtomically(path, json.dump(2) + "\n");

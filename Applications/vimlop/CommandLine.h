@@ -128,6 +128,27 @@ std::vector<std::string>& commandWords();
 void printLines(const std::vector<std::string>& lines);
 
 /**
+ * @brief What a subcommand prints when it is done: its lines for a person,
+ * and the same facts (numbers with their units in the key, paths written)
+ * for a program, printed instead with `--json`.
+ */
+struct CommandSummary
+{
+  std::vector<std::string> lines;
+  nlohmann::json json = nlohmann::json::object();
+};
+
+/**
+ * @brief Adds `--json` to `command`, stored into `json`: the summary as JSON
+ * on stdout and nothing else there (notes, warnings and progress go to
+ * stderr as always).
+ */
+void addJsonFlag(CLI::App& command, bool& json);
+
+/// @brief Prints the summary's lines to stdout, or with `json` its JSON alone.
+void printSummary(const CommandSummary& summary, bool json);
+
+/**
  * @brief Writes `json` to `path` through a temporary file and a rename, so an
  * interrupted run never leaves a half-written file.
  * @throws vimlop::Error if the file cannot be written.

@@ -1,6 +1,8 @@
+#include "CommandLine.h"
 #include "Commands.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Video/FrameContoursIO.h>
 #include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Video/IntrinsicsIO.h>
@@ -28,6 +30,7 @@ struct ContoursOptions
   std::string intrinsics;
   std::string out;
   std::string overlay;
+  bool json = false;
   // vimlop register's default (ContourDetectionOptions), so that its --contours reuses the same
   // points.
   std::string channel =
@@ -81,8 +84,18 @@ void runContours(ContoursOptions o)
     }
   }
   writeFrameContours(frames, pictures, o.out);
-  std::printf("contours: %zu points in %d frames (%.0f per frame); wrote '%s'\n", total,
-    sequence.size(), static_cast<double>(total) / sequence.size(), o.out.c_str());
+  CommandSummary summary;
+  summary.lines.push_back(
+    formatText("contours: %zu points in %d frames (%.0f per frame); wrote '%s'", total,
+      sequence.size(), static_cast<double>(total) / sequence.size(), o.out.c_str()));
+  nlohmann::json perFrame = nlohmann::json::array();
+  for (const FrameContours& frame : frames)
+  {
+    perFrame.push_back({ { "frame", frame.name }, { "points", frame.points.size() } });
+  }
+  summary.json = { { "points", total }, { "frames", perFrame },
+    { "undistorted", pictures.undistorted }, { "out", o.out } };
+  printSummary(summary, o.json);
 }
 
 } // namespace
@@ -118,6 +131,7 @@ void addContoursCommand(CLI::App& app)
     ->add_option("--spacing-px", o->detector.spacingPx, "least distance between points, pixels")
     ->capture_default_str()
     ->check(CLI::NonNegativeNumber);
+  addJsonFlag(*contours, o->json);
   contours->callback([o] { runContours(*o); });
 }
 

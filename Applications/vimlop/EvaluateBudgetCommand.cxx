@@ -25,6 +25,7 @@ struct BudgetCommand
   std::string sources;
   std::string levels = joinNumbers(protocol.levels);
   std::string methods = "vimlop,imlp,trimmed-icp";
+  bool json = false;
   std::string starts = "canonical,perturbed";
   std::string perturbMm = joinNumbers({ protocol.perturbMinMm, protocol.perturbMaxMm });
   std::string perturbDeg = joinNumbers({ protocol.perturbMinDeg, protocol.perturbMaxDeg });
@@ -70,7 +71,7 @@ void runBudget(BudgetCommand c)
   }
   std::error_code ec;
   fs::remove_all(o.workFolder, ec);
-  printLines(report.summaryLines());
+  printSummary({ report.summaryLines(), report.toJson() }, c.json);
 }
 
 } // namespace
@@ -114,6 +115,7 @@ void addEvaluateBudgetCommand(CLI::App& evaluate)
     ->check(CLI::PositiveNumber);
   p5->add_flag("--no-report", c->noReport, "skip the report page");
   addPipelineOptions(*p5, o.pipeline);
+  addJsonFlag(*p5, c->json);
   p5->callback([c] { runBudget(*c); });
 }
 

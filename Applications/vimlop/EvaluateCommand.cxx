@@ -37,6 +37,7 @@ struct SyntheticCommand
   std::string misalignDeg =
     joinNumbers({ protocol.synthetic.misalignMinDeg, protocol.synthetic.misalignMaxDeg });
   std::string dataSurface = "model";
+  bool json = false;
 };
 
 /// P1's model and the surface its data are drawn from (the model by default).
@@ -78,7 +79,7 @@ void runSynthetic(SyntheticCommand c)
   const SyntheticProtocolReport report =
     runSyntheticProtocol(mesh, options, terminalEvaluationProgress());
   writeJsonFile(report.toJson(), c.out);
-  printLines(report.summaryLines());
+  printSummary({ report.summaryLines(), report.toJson() }, c.json);
 }
 
 struct VideoCommand
@@ -89,6 +90,7 @@ struct VideoCommand
   WorldSettings world;
   std::string perturbMm = joinNumbers({ protocol.perturbMinMm, protocol.perturbMaxMm });
   std::string perturbDeg = joinNumbers({ protocol.perturbMinDeg, protocol.perturbMaxDeg });
+  bool json = false;
 };
 
 void runVideo(VideoCommand c)
@@ -119,7 +121,7 @@ void runVideo(VideoCommand c)
     : makeSimulatedWorld(readCTVolume(c.ct), c.world.model, terminalEvaluationProgress());
   const VideoProtocolReport report = runVideoProtocol(world, options, terminalEvaluationProgress());
   writeJsonFile(report.toJson(), c.out);
-  printLines(report.summaryLines());
+  printSummary({ report.summaryLines(), report.toJson() }, c.json);
 }
 
 struct PerturbationCommand
@@ -128,6 +130,7 @@ struct PerturbationCommand
   PerturbationProtocolOptions protocol;
   std::string offsets = joinNumbers(protocol.offsets);
   bool noReport = false;
+  bool json = false;
 };
 
 void runPerturbation(PerturbationCommand c)
@@ -148,7 +151,7 @@ void runPerturbation(PerturbationCommand c)
       nullptr, "", p3.runs, (fs::path(c.out) / "report").string(), RegistrationReportOptions());
   }
   writeJsonFile(p3.toJson(), (fs::path(c.out) / "p3.json").string());
-  printLines(p3.summaryLines());
+  printSummary({ p3.summaryLines(), p3.toJson() }, c.json);
 }
 
 } // namespace
@@ -218,6 +221,7 @@ CLI::App* addEvaluateCommand(CLI::App& app)
     "also write trial 0 and its registration (by the first of vimlop, imlp, trimmed-icp in "
     "--methods) as a result folder for vimlop report, with the model rendered from the true "
     "cameras as frame pictures");
+  addJsonFlag(*p1, synthetic->json);
   p1->callback([synthetic] { runSynthetic(*synthetic); });
 
   auto video = std::make_shared<VideoCommand>();
@@ -254,6 +258,7 @@ CLI::App* addEvaluateCommand(CLI::App& app)
   addSimulationOptions(*p2, video->world.video);
   addWorldOptions(*p2, video->world.model);
   addPipelineOptions(*p2, p2Options.pipeline);
+  addJsonFlag(*p2, video->json);
   p2->callback([video] { runVideo(*video); });
 
   auto perturbation = std::make_shared<PerturbationCommand>();
@@ -282,6 +287,7 @@ CLI::App* addEvaluateCommand(CLI::App& app)
       "threads over runs, 0 for all cores")
     ->capture_default_str();
   p3->add_flag("--no-report", perturbation->noReport, "skip the rendered report");
+  addJsonFlag(*p3, perturbation->json);
   p3->callback([perturbation] { runPerturbation(*perturbation); });
   return evaluate;
 }

@@ -25,6 +25,7 @@ struct SpeedCommand
   std::string frames = "6,30,60,100";
   std::string threads = "1,2";
   std::string out, keep;
+  bool json = false;
 };
 
 /// Removes the temporary work folder (not a --keep folder) unless a child failed.
@@ -82,13 +83,15 @@ void runSpeed(SpeedCommand c)
   report.version = VIMLOP_VERSION;
   report.commit = commit;
   writeJsonFile(report.toJson(), c.out);
-  printLines(report.tableLines());
-  printLines(report.scalingLines());
   for (const std::string& w : report.warnings())
   {
     std::cerr << "vimlop: warning: " << w << "\n";
   }
-  std::cout << "wrote '" << c.out << "'\n";
+  CommandSummary summary{ report.tableLines(), report.toJson() };
+  const std::vector<std::string> scaling = report.scalingLines();
+  summary.lines.insert(summary.lines.end(), scaling.begin(), scaling.end());
+  summary.lines.push_back("wrote '" + c.out + "'");
+  printSummary(summary, c.json);
 }
 
 } // namespace
@@ -118,6 +121,7 @@ void addEvaluateSpeedCommand(CLI::App& evaluate)
   speed->add_option("--keep", c->keep,
     "keep the sequences, results and the children's logs in this folder (default: a "
     "temporary folder, removed)");
+  addJsonFlag(*speed, c->json);
   speed->callback([c] { runSpeed(*c); });
 }
 

@@ -29,6 +29,7 @@ struct EvaluateWarpOptions
   std::string elastixParameters = defaultElastixParametersFolder();
   double requireMeanMm = -1.0;
   double requireP95Mm = -1.0;
+  bool json = false;
 };
 
 void runEvaluateWarp(EvaluateWarpOptions options)
@@ -62,8 +63,8 @@ void runEvaluateWarp(EvaluateWarpOptions options)
   json["ct"] = options.ct;
   // Atomically: a cohort takes a result file that exists for a complete one.
   writeJsonFile(json, options.out);
-  std::printf(
-    "vimlop evaluate warp: %s -> %s\n", report.summaryText().c_str(), options.out.c_str());
+  printSummary({ { "vimlop evaluate warp: " + report.summaryText() + " -> " + options.out }, json },
+    options.json);
   std::fflush(stdout);
   report.requireErrorsAtMost(options.requireMeanMm, options.requireP95Mm);
 }
@@ -103,6 +104,7 @@ void addEvaluateWarpCommand(CLI::App& evaluate)
     "Fail (exit 1) when the mean vertex error exceeds this (mm)");
   warp->add_option("--require-p95-mm", options->requireP95Mm,
     "Fail (exit 1) when the 95th percentile vertex error exceeds this (mm)");
+  addJsonFlag(*warp, options->json);
   warp->callback([options] { runEvaluateWarp(*options); });
 }
 

@@ -2,6 +2,7 @@
 #include "Commands.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Results/SlicerSceneExport.h>
 
 #include <CLI/CLI.hpp>
@@ -23,6 +24,7 @@ struct ExportOptions
   bool noCT = false;
   std::string transformFormat = "tfm";
   bool force = false;
+  bool json = false;
 };
 
 void runExport(const ExportOptions& o)
@@ -38,10 +40,15 @@ void runExport(const ExportOptions& o)
   options.onProgress = [](const std::string& step)
   { std::fprintf(stderr, "export: %s\n", step.c_str()); };
   const SlicerSceneFiles files = exportResultForSlicer(o.result, o.out, o.force, options);
-  std::printf("export: %s/Scene.mrml with %s%d camera poses (CameraToCT.seq.mha, "
-              "Transforms/*.%s) and %zu files in all\n",
+  CommandSummary summary;
+  summary.lines.push_back(formatText("export: %s/Scene.mrml with %s%d camera poses "
+                                     "(CameraToCT.seq.mha, Transforms/*.%s) and %zu files in all",
     o.out.c_str(), files.withCT ? "the CT, " : "no CT, ", files.frames, o.transformFormat.c_str(),
-    files.files.size());
+    files.files.size()));
+  summary.json = { { "folder", o.out }, { "scene", files.files.front() },
+    { "camera_poses", files.frames }, { "with_ct", files.withCT },
+    { "transform_format", o.transformFormat }, { "files", files.files } };
+  printSummary(summary, o.json);
 }
 
 } // namespace
@@ -66,6 +73,7 @@ void addExportCommand(CLI::App& app)
     ->capture_default_str()
     ->check(CLI::IsMember({ "tfm", "h5", "mat" }));
   command->add_flag("--force", options->force, "replace an earlier export in --out");
+  addJsonFlag(*command, options->json);
   command->callback([options] { runExport(*options); });
 }
 

@@ -2,6 +2,7 @@
 #include "Commands.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/MeshIO.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
@@ -12,6 +13,7 @@
 #include <vtkPolyData.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -26,9 +28,10 @@ struct InfoOptions
 {
   std::string path;
   CTReadOptions ct;
+  bool json = false;
 };
 
-void printCT(const std::string& path, const CTReadOptions& options)
+CommandSummary ctInfo(const std::string& path, const CTReadOptions& options)
 {
   const CTVolume v = readCTVolume(path, options);
   for (const std::string& warning : v.warnings)
@@ -36,35 +39,47 @@ void printCT(const std::string& path, const CTReadOptions& options)
     std::cerr << "vimlop info: warning: " << warning << "\n";
   }
   const auto [lo, hi] = std::minmax_element(v.intensities.begin(), v.intensities.end());
-  std::printf("file:        %s\n", path.c_str());
-  std::printf("kind:        CT volume (%s)\n", v.format.c_str());
-  std::printf("dimensions:  %d x %d x %d voxels\n", v.dims[0], v.dims[1], v.dims[2]);
-  std::printf(
-    "spacing:     %.4f x %.4f x %.4f mm\n", v.spacingMm[0], v.spacingMm[1], v.spacingMm[2]);
-  std::printf("size:        %.1f x %.1f x %.1f mm\n", v.spacingMm[0] * (v.dims[0] - 1),
-    v.spacingMm[1] * (v.dims[1] - 1), v.spacingMm[2] * (v.dims[2] - 1));
-  std::printf(
-    "origin:      (%.3f, %.3f, %.3f) mm, LPS\n", v.originMm[0], v.originMm[1], v.originMm[2]);
+  const std::array<double, 3> sizeMm{ v.spacingMm[0] * (v.dims[0] - 1),
+    v.spacingMm[1] * (v.dims[1] - 1), v.spacingMm[2] * (v.dims[2] - 1) };
+  CommandSummary info;
+  info.lines = { "file:        " + path, "kind:        CT volume (" + v.format + ")",
+    formatText("dimensions:  %d x %d x %d voxels", v.dims[0], v.dims[1], v.dims[2]),
+    formatText(
+      "spacing:     %.4f x %.4f x %.4f mm", v.spacingMm[0], v.spacingMm[1], v.spacingMm[2]),
+    formatText("size:        %.1f x %.1f x %.1f mm", sizeMm[0], sizeMm[1], sizeMm[2]),
+    formatText(
+      "origin:      (%.3f, %.3f, %.3f) mm, LPS", v.originMm[0], v.originMm[1], v.originMm[2]) };
   for (int row = 0; row < 3; ++row)
   {
-    std::printf("%s [%7.4f %7.4f %7.4f]\n", row == 0 ? "direction:  " : "            ",
-      v.direction[3 * row], v.direction[3 * row + 1], v.direction[3 * row + 2]);
+    info.lines.push_back(
+      formatText("%s [%7.4f %7.4f %7.4f]", row == 0 ? "direction:  " : "            ",
+        v.direction[3 * row], v.direction[3 * row + 1], v.direction[3 * row + 2]));
   }
-  std::printf("intensity:   %.0f .. %.0f\n", static_cast<double>(*lo), static_cast<double>(*hi));
+  info.lines.push_back(
+    formatText("intensity:   %.0f .. %.0f", static_cast<double>(*lo), static_cast<double>(*hi)));
+  info.json = { { "file", path }, { "kind", "ct" }, { "format", v.format },
+    { "dimensions", v.dims }, { "spacing_mm", v.spacingMm }, { "size_mm", sizeMm },
+    { "origin_mm_lps", v.originMm }, { "direction_row_major", v.direction },
+    { "intensity_range", { static_cast<double>(*lo), static_cast<double>(*hi) } },
+    { "warnings", v.warnings } };
+  return info;
 }
 
-void printMesh(const std::string& path)
+CommandSummary meshInfo(const std::string& path)
 {
   const vtkSmartPointer<vtkPolyData> polyData = readPolyData(path);
-  std::printf("file:        %s\n", path.c_str());
-  std::printf("kind:        surface mesh\n");
-  std::printf("points:      %lld\n", static_cast<long long>(polyData->GetNumberOfPoints()));
-  std::printf("polygons:    %lld\n", static_cast<long long>(polyData->GetNumberOfPolys()));
-  double b[6];
-  polyData->GetBounds(b);
-  std::printf("bounds:      x %.2f .. %.2f, y %.2f .. %.2f, z %.2f .. %.2f mm\n", b[0], b[1], b[2],
-    b[3], b[4], b[5]);
-  if (polyData->GetNumberOfPolys() > 0)
+  const long long points = polyData->GetNumberOfPoints();
+  const long long polygons = polyData->GetNumberOfPolys();
+  std::array<double, 6> b{};
+  polyData->GetBounds(b.data());
+  CommandSummary info;
+  info.lines = { "file:        " + path, "kind:        surface mesh",
+    formatText("points:      %lld", points), formatText("polygons:    %lld", polygons),
+    formatText("bounds:      x %.2f .. %.2f, y %.2f .. %.2f, z %.2f .. %.2f mm", b[0], b[1], b[2],
+      b[3], b[4], b[5]) };
+  info.json = { { "file", path }, { "kind", "mesh" }, { "points", points },
+    { "polygons", polygons }, { "bounds_mm", b } };
+  if (polygons > 0)
   {
     TriangleMesh mesh;
     try
@@ -75,35 +90,38 @@ void printMesh(const std::string& path)
     {
       throw Error("'" + path + "': " + e.what());
     }
-    std::printf("triangles:   %d\n", mesh.numberOfFaces());
-    std::printf("area:        %.1f mm^2\n", mesh.totalArea());
-    std::printf("open edges:  %d\n", mesh.numberOfBoundaryEdges());
-    std::printf("non-manifold edges: %d\n", mesh.numberOfNonManifoldEdges());
+    info.lines.push_back(formatText("triangles:   %d", mesh.numberOfFaces()));
+    info.lines.push_back(formatText("area:        %.1f mm^2", mesh.totalArea()));
+    info.lines.push_back(formatText("open edges:  %d", mesh.numberOfBoundaryEdges()));
+    info.lines.push_back(formatText("non-manifold edges: %d", mesh.numberOfNonManifoldEdges()));
+    info.json["triangles"] = mesh.numberOfFaces();
+    info.json["area_mm2"] = mesh.totalArea();
+    info.json["open_edges"] = mesh.numberOfBoundaryEdges();
+    info.json["non_manifold_edges"] = mesh.numberOfNonManifoldEdges();
   }
+  return info;
 }
 
-void printIntrinsics(const std::string& path)
+CommandSummary intrinsicsInfo(const std::string& path)
 {
   const PinholeCamera k = readIntrinsics(path);
-  std::printf("file:        %s\n", path.c_str());
-  std::printf("kind:        camera intrinsics\n");
-  std::printf("image:       %d x %d pixels\n", k.widthPx, k.heightPx);
-  std::printf("focal:       fx %.3f, fy %.3f pixels\n", k.fx, k.fy);
-  std::printf("principal:   cx %.3f, cy %.3f pixels\n", k.cx, k.cy);
-  std::printf("distortion:  ");
-  if (k.distortion.size() == 0)
-  {
-    std::printf("none");
-  }
-  else if (k.lensModel == LensModel::Fisheye)
-  {
-    std::printf("fisheye ");
-  }
+  const bool fisheye = k.lensModel == LensModel::Fisheye;
+  std::string distortion = k.distortion.size() == 0 ? "none" : (fisheye ? "fisheye " : "");
   for (Eigen::Index i = 0; i < k.distortion.size(); ++i)
   {
-    std::printf("%s%g", i ? ", " : "", k.distortion[i]);
+    distortion += formatText("%s%g", i ? ", " : "", k.distortion[i]);
   }
-  std::printf("\n");
+  CommandSummary info;
+  info.lines = { "file:        " + path, "kind:        camera intrinsics",
+    formatText("image:       %d x %d pixels", k.widthPx, k.heightPx),
+    formatText("focal:       fx %.3f, fy %.3f pixels", k.fx, k.fy),
+    formatText("principal:   cx %.3f, cy %.3f pixels", k.cx, k.cy), "distortion:  " + distortion };
+  info.json = { { "file", path }, { "kind", "intrinsics" }, { "width_px", k.widthPx },
+    { "height_px", k.heightPx }, { "fx_px", k.fx }, { "fy_px", k.fy }, { "cx_px", k.cx },
+    { "cy_px", k.cy }, { "lens_model", fisheye ? "fisheye" : "radial-tangential" },
+    { "distortion",
+      std::vector<double>(k.distortion.data(), k.distortion.data() + k.distortion.size()) } };
+  return info;
 }
 
 void runInfo(const InfoOptions& options)
@@ -111,15 +129,15 @@ void runInfo(const InfoOptions& options)
   const std::string& path = options.path;
   if (isCTVolumePath(path))
   {
-    printCT(path, options.ct);
+    printSummary(ctInfo(path, options.ct), options.json);
   }
   else if (isMeshPath(path))
   {
-    printMesh(path);
+    printSummary(meshInfo(path), options.json);
   }
   else if (isIntrinsicsPath(path))
   {
-    printIntrinsics(path);
+    printSummary(intrinsicsInfo(path), options.json);
   }
   else
   {
@@ -140,6 +158,7 @@ void addInfoCommand(CLI::App& app)
     ->add_option("file", options->path, "CT volume (file or DICOM folder), mesh or intrinsics file")
     ->required();
   addCTReadOptions(*info, options->ct);
+  addJsonFlag(*info, options->json);
   info->callback([options] { runInfo(*options); });
 }
 

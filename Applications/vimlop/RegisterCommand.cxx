@@ -282,8 +282,8 @@ void addRegisterCommand(CLI::App& app)
     ->excludes(
       r->add_option("--mesh", in.meshPath, "airway surface (CT frame, normals into the air)"));
   r->add_option("--frames", in.framesPath,
-     "folder of frames, or a tracked sequence of PLUS or 3D Slicer (.igs.mha, .igs.nrrd, .seq.nrrd, .seq.mha) with "
-     "its frames' timestamps")
+     "folder of frames, or a tracked sequence of PLUS or 3D Slicer (.igs.mha, .igs.nrrd, "
+     ".seq.nrrd, .seq.mha) with its frames' timestamps")
     ->excludes(r->add_option("--video", c->video, "video file"));
   r->add_option("--intrinsics", in.intrinsicsPath, "camera intrinsics (OpenCV YAML/JSON/XML)")
     ->required();

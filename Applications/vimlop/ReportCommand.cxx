@@ -2,6 +2,7 @@
 
 #include "CommandLine.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Rendering/OffscreenRendering.h>
 #include <vimlop/Report/RegistrationReport.h>
 #include <vimlop/Results/PerturbationRuns.h>
@@ -11,6 +12,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 
 namespace vimlop
@@ -27,6 +29,7 @@ struct ReportCommandOptions
   int maxOverlays = 0;
   std::string ct;
   bool noCtSlices = false;
+  bool json = false;
 };
 
 void runReport(const ReportCommandOptions& o)
@@ -59,25 +62,38 @@ void runReport(const ReportCommandOptions& o)
     RegistrationReport::write(record ? &*record : nullptr, o.result, runs, o.out, options);
 
   const std::string index = (std::filesystem::path(o.out) / "index.html").string();
-  std::printf("report: %zu pictures in %s", report.pictures.size(), index.c_str());
+  CommandSummary summary;
+  std::string line =
+    formatText("report: %zu pictures in %s", report.pictures.size(), index.c_str());
   if (record)
   {
-    std::printf("; contour error %.2f px before, %.2f px after", report.contourErrorBeforePx,
+    line += formatText("; contour error %.2f px before, %.2f px after", report.contourErrorBeforePx,
       report.contourErrorAfterPx);
     if (report.treAfterMm)
     {
-      std::printf("; TRE %.3f mm before, %.3f mm after", *report.treBeforeMm, *report.treAfterMm);
+      line +=
+        formatText("; TRE %.3f mm before, %.3f mm after", *report.treBeforeMm, *report.treAfterMm);
     }
   }
   if (!runs.empty())
   {
-    std::printf("; %zu perturbation runs", runs.size());
+    line += formatText("; %zu perturbation runs", runs.size());
   }
-  std::printf("\n");
+  summary.lines.push_back(line);
   if (report.verdict)
   {
-    std::printf("verdict: %s\n", report.verdict->headline().c_str());
+    summary.lines.push_back("verdict: " + report.verdict->headline());
   }
+  // The report's own numbers, as its report.json holds them.
+  const std::string numbers = (std::filesystem::path(o.out) / "report.json").string();
+  std::ifstream file(numbers);
+  summary.json = nlohmann::json::parse(file, nullptr, false);
+  if (summary.json.is_discarded() || !summary.json.is_object())
+  {
+    throw Error("'" + numbers + "': the report just written cannot be read back");
+  }
+  summary.json["index"] = index;
+  printSummary(summary, o.json);
 }
 
 } // namespace
@@ -104,6 +120,7 @@ void addReportCommand(CLI::App& app)
     "the CT to draw the scope's slices from (default: the CT the result names, when it is there)");
   report->add_flag("--no-ct-slices", options->noCtSlices, "no CT slices (e.g. a CT slow to read)")
     ->excludes(ct);
+  addJsonFlag(*report, options->json);
   report->callback([options] { runReport(*options); });
 }
 

@@ -3,6 +3,7 @@
 
 #include "TerminalProgress.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Imaging/AirwaySurface.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
@@ -31,6 +32,7 @@ struct SegmentOptions
   std::string out;
   std::string labelOut;
   std::string seed;
+  bool json = false;
   AirwaySegmentationOptions segmentation;
   AirwaySurfaceOptions surface;
 };
@@ -94,9 +96,23 @@ void runSegment(SegmentOptions options)
   {
     std::cerr << "vimlop segment: warning: " << warning << "\n";
   }
-  std::printf("vimlop segment: %s\n", airway.summaryText().c_str());
-  std::printf("vimlop segment: %s, %.1f s -> %s\n", surface.summaryText().c_str(), seconds,
-    options.out.c_str());
+  CommandSummary summary;
+  summary.lines.push_back("vimlop segment: " + airway.summaryText());
+  summary.lines.push_back(formatText("vimlop segment: %s, %.1f s -> %s",
+    surface.summaryText().c_str(), seconds, options.out.c_str()));
+  summary.json = { { "airway",
+                     { { "volume_mm3", airway.volumeMm3 }, { "selection", airway.selection },
+                       { "interior_air_components", airway.interiorAirComponents },
+                       { "next_largest_volume_mm3", airway.nextLargestVolumeMm3 },
+                       { "included_sinuses", airway.includedSinuses },
+                       { "centroid_mm_lps", airway.centroidMm } } },
+    { "surface",
+      { { "triangles", surface.triangles }, { "vertices", surface.vertices },
+        { "enclosed_volume_mm3", surface.enclosedVolumeMm3 }, { "area_mm2", surface.areaMm2 },
+        { "open_edges", surface.boundaryEdges },
+        { "non_manifold_edges", surface.nonManifoldEdges } } },
+    { "seconds", seconds }, { "out", options.out }, { "label_out", options.labelOut } };
+  printSummary(summary, options.json);
 }
 
 } // namespace
@@ -130,6 +146,7 @@ void addSegmentCommand(CLI::App& app)
     ->capture_default_str();
   segment->add_option(
     "--label-out", options->labelOut, "Also write the airway label volume (.nii.gz, .nrrd, .mha)");
+  addJsonFlag(*segment, options->json);
   segment->callback([options] { runSegment(*options); });
 }
 

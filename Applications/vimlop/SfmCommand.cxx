@@ -1,6 +1,8 @@
+#include "CommandLine.h"
 #include "Commands.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Video/IntrinsicsIO.h>
 #include <vimlop/Video/SfmReconstructionIO.h>
 #include <vimlop/Video/VideoInput.h>
@@ -29,6 +31,7 @@ struct SfmOptions
   double fps = 0.0;
   double timeOffset = 0.0;
   int threads = 0;
+  bool json = false;
 };
 
 void runSfm(const SfmOptions& o)
@@ -103,6 +106,7 @@ void runSfm(const SfmOptions& o)
       ids[f] = static_cast<int>(f);
     }
   }
+  CommandSummary summary;
   if (tracker)
   {
     std::string warning;
@@ -114,14 +118,25 @@ void runSfm(const SfmOptions& o)
     }
     const TrackerScaleResult scale = scaleFromTracker(*tracker, sfm, timesS, &std::cerr);
     sfm.trackerScale = scale.scale;
-    std::printf("tracker scale: 1 SfM unit = %.4f mm (tracked %.2f mm over %zu frames)\n",
-      scale.scale, scale.trackerLengthMm, scale.framesUsed.size());
+    summary.lines.push_back(
+      formatText("tracker scale: 1 SfM unit = %.4f mm (tracked %.2f mm over %zu frames)",
+        scale.scale, scale.trackerLengthMm, scale.framesUsed.size()));
+    summary.json["tracker_scale_mm_per_unit"] = scale.scale;
+    summary.json["tracker_length_mm"] = scale.trackerLengthMm;
+    summary.json["tracker_frames_used"] = scale.framesUsed.size();
   }
   writeSfmReconstruction(sfm, o.out);
-  std::printf(
-    "SfM (%s): %d/%zu frames registered, %zu points, RMS reprojection error %.3f px; wrote '%s'\n",
+  summary.lines.push_back(formatText(
+    "SfM (%s): %d/%zu frames registered, %zu points, RMS reprojection error %.3f px; wrote '%s'",
     sfm.source.c_str(), sfm.numberOfRegisteredFrames(), sfm.frames.size(), sfm.points.size(),
-    sfm.rmsReprojectionErrorPx(), o.out.c_str());
+    sfm.rmsReprojectionErrorPx(), o.out.c_str()));
+  summary.json["source"] = sfm.source;
+  summary.json["frames"] = sfm.frames.size();
+  summary.json["frames_registered"] = sfm.numberOfRegisteredFrames();
+  summary.json["points"] = sfm.points.size();
+  summary.json["rms_reprojection_error_px"] = sfm.rmsReprojectionErrorPx();
+  summary.json["out"] = o.out;
+  printSummary(summary, o.json);
 }
 
 } // namespace
@@ -133,7 +148,8 @@ void addSfmCommand(CLI::App& app)
     "Structure from motion of a frame sequence: points, SfM-frame camera poses and covariances "
     "(built in, or imported from a COLMAP model)");
   sfm->add_option("--frames", o->frames,
-    "folder of frames, a video file or a tracked sequence (PLUS/Slicer .igs.mha, .igs.nrrd, .seq.nrrd)");
+    "folder of frames, a video file or a tracked sequence (PLUS/Slicer .igs.mha, .igs.nrrd, "
+    ".seq.nrrd)");
   sfm->add_option("--intrinsics", o->intrinsics, "camera intrinsics (OpenCV YAML/JSON/XML)");
   sfm->add_option(
     "--colmap", o->colmap, "import this COLMAP sparse model folder (text or binary) instead");
@@ -156,6 +172,7 @@ void addSfmCommand(CLI::App& app)
   sfm->add_option("--threads", o->threads, "threads, 0 for all cores (results do not depend on it)")
     ->capture_default_str()
     ->check(CLI::Range(0, 1024));
+  addJsonFlag(*sfm, o->json);
   sfm->callback([o] { runSfm(*o); });
 }
 

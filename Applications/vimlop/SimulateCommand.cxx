@@ -3,6 +3,7 @@
 #include "CommandLine.h"
 #include "TerminalEvaluationProgress.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Evaluation/WorldPreset.h>
@@ -29,6 +30,7 @@ struct SimulateOptions
   std::string mesh;
   std::string ct;
   std::string out;
+  bool json = false;
   /// The world: its model errors and its video's (an ideal world by default).
   WorldSettings settings;
 };
@@ -62,11 +64,19 @@ void runSimulate(SimulateOptions o)
     simulateEndoscopeVideo(model, o.settings.video, terminalEvaluationProgress());
   writeSimulatedVideo(video, o.out);
   writeSimulatedWorld(world, o.out);
-  std::printf("simulated %d frames of %dx%d px along a %.1f mm path (least wall distance %.2f mm) "
-              "in %.1f s; wrote '%s'\n",
-    o.settings.video.frames, k.widthPx, k.heightPx, video.pathLengthMm(),
-    video.leastWallDistanceMm(model),
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), o.out.c_str());
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double pathMm = video.pathLengthMm();
+  const double wallMm = video.leastWallDistanceMm(model);
+  CommandSummary summary;
+  summary.lines.push_back(
+    formatText("simulated %d frames of %dx%d px along a %.1f mm path (least wall distance %.2f "
+               "mm) in %.1f s; wrote '%s'",
+      o.settings.video.frames, k.widthPx, k.heightPx, pathMm, wallMm, seconds, o.out.c_str()));
+  summary.json = { { "frames", o.settings.video.frames }, { "width_px", k.widthPx },
+    { "height_px", k.heightPx }, { "path_length_mm", pathMm }, { "least_wall_distance_mm", wallMm },
+    { "seconds", seconds }, { "out", o.out } };
+  printSummary(summary, o.json);
 }
 
 } // namespace
@@ -114,6 +124,7 @@ void addSimulateCommand(CLI::App& app)
   addWorldPresetOption(*simulate, o->settings);
   addSimulationOptions(*simulate, o->settings.video);
   addWorldOptions(*simulate, o->settings.model);
+  addJsonFlag(*simulate, o->json);
   simulate->callback([o] { runSimulate(*o); });
 }
 

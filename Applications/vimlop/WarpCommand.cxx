@@ -1,6 +1,8 @@
+#include "CommandLine.h"
 #include "Commands.h"
 
 #include "TerminalProgress.h"
+#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/TemplateWarpJob.h>
 
 #include <CLI/CLI.hpp>
@@ -15,16 +17,21 @@ namespace vimlop
 namespace
 {
 
-void runWarp(const TemplateWarpJobOptions& options)
+void runWarp(const TemplateWarpJobOptions& options, bool json)
 {
   const TemplateWarpJobReport report = runTemplateWarpJob(options, terminalProgress("warp"),
     [](const std::string& warning) { std::cerr << "vimlop warp: warning: " << warning << "\n"; });
   const TemplateRegistration& r = report.registration;
-  std::printf(
-    "vimlop warp: %zu meshes, %zu poses to the patient; correlation %.3f -> %.3f (affine) "
-    "-> %.3f (SyN), %.1f s -> %s\n",
-    report.meshCount, report.poseCount, r.initialCorrelation, r.affineCorrelation,
-    r.finalCorrelation, report.totalSeconds, options.outputFolder.c_str());
+  CommandSummary summary;
+  summary.lines.push_back(
+    formatText("vimlop warp: %zu meshes, %zu poses to the patient; correlation %.3f -> %.3f "
+               "(affine) -> %.3f (SyN), %.1f s -> %s",
+      report.meshCount, report.poseCount, r.initialCorrelation, r.affineCorrelation,
+      r.finalCorrelation, report.totalSeconds, options.outputFolder.c_str()));
+  // What registration.json holds, and where it and the other files are.
+  summary.json = report.toJson();
+  summary.json["out"] = options.outputFolder;
+  printSummary(summary, json);
 }
 
 } // namespace
@@ -32,6 +39,7 @@ void runWarp(const TemplateWarpJobOptions& options)
 void addWarpCommand(CLI::App& app)
 {
   auto options = std::make_shared<TemplateWarpJobOptions>();
+  auto json = std::make_shared<bool>(false);
   CLI::App* warp = app.add_subcommand("warp",
     "Register a template CT to a patient CT (affine + SyN) and carry template meshes and camera "
     "poses into the patient");
@@ -51,7 +59,8 @@ void addWarpCommand(CLI::App& app)
     ->add_option("--out", options->outputFolder,
       "Output folder: warped meshes (.vtp), poses.json, displacement fields, registration.json")
     ->required();
-  warp->callback([options] { runWarp(*options); });
+  addJsonFlag(*warp, *json);
+  warp->callback([options, json] { runWarp(*options, *json); });
 }
 
 } // namespace vimlop
