@@ -65,7 +65,8 @@ find_package(ITK 5.2 REQUIRED COMPONENTS
   ITKThresholding
   ITKTransform)
 
-find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio features2d calib3d)
+# aruco (OpenCV's contributed modules, libopencv-contrib-dev): ChArUco boards for calibration.
+find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio features2d calib3d aruco)
 
 # Python wrapping (VIMLOP_WRAP_PYTHON) uses VTK's own wrapping tools and
 # extends VTK's Python package, so it needs the interpreter that package

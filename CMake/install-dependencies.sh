@@ -22,6 +22,7 @@ libinsighttoolkit5-dev
 libgdcm-dev
 libgdcm-tools
 libopencv-dev
+libopencv-contrib-dev
 ffmpeg
 libgtest-dev
 libgmock-dev

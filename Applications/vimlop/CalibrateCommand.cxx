@@ -24,6 +24,7 @@ struct CalibrateOptions
   std::string frames;
   std::string out;
   std::string board = "9x6";
+  std::string pattern = "chessboard";
   bool fisheye = false;
   bool json = false;
   CameraCalibrationOptions calibration;
@@ -42,6 +43,8 @@ void runCalibrate(CalibrateOptions o)
   o.calibration.innerCornersX = x;
   o.calibration.innerCornersY = y;
   o.calibration.lensModel = o.fisheye ? LensModel::Fisheye : LensModel::RadialTangential;
+  o.calibration.pattern =
+    o.pattern == "charuco" ? CalibrationPattern::Charuco : CalibrationPattern::Chessboard;
   if (!isIntrinsicsPath(o.out))
   {
     throw Error("--out: '" + o.out + "' is not an intrinsics file name (.yaml, .yml, .json, .xml)");
@@ -53,10 +56,13 @@ void runCalibrate(CalibrateOptions o)
     pictures.push_back(views.frame(v));
   }
   const CameraCalibrationResult fit = calibrateCamera(pictures, views.names(), o.calibration);
+  const bool charuco = o.calibration.pattern == CalibrationPattern::Charuco;
   if (!fit.viewsWithoutBoard.empty())
   {
-    std::cerr << "vimlop: warning: the board was not found whole in "
-              << fit.viewsWithoutBoard.size()
+    std::cerr << "vimlop: warning: the board was not found "
+              << (charuco ? formatText("(%d corners or more) ", o.calibration.minCornersPerView)
+                          : std::string("whole "))
+              << "in " << fit.viewsWithoutBoard.size()
               << " view(s), left out: " << joinList(fit.viewsWithoutBoard) << "\n";
   }
   writeIntrinsics(fit.intrinsics, o.out);
@@ -69,12 +75,14 @@ void runCalibrate(CalibrateOptions o)
   const char* lens = o.fisheye ? "fisheye" : "radial-tangential";
   CommandSummary summary;
   summary.lines.push_back(
-    formatText("calibrate: %zu of %d views show the %s board; fx %.2f fy %.2f cx %.2f cy %.2f px, "
-               "%s (%s); RMS reprojection error %.3f px; wrote '%s'",
-      fit.viewsUsed.size(), views.size(), o.board.c_str(), k.fx, k.fy, k.cx, k.cy, lens,
-      coefficients.c_str(), fit.rmsReprojectionErrorPx, o.out.c_str()));
+    formatText("calibrate: %zu of %d views show the %s %s (%d corners); fx %.2f fy %.2f cx %.2f cy "
+               "%.2f px, %s (%s); RMS reprojection error %.3f px; wrote '%s'",
+      fit.viewsUsed.size(), views.size(), o.board.c_str(), charuco ? "ChArUco board" : "board",
+      fit.cornersUsed, k.fx, k.fy, k.cx, k.cy, lens, coefficients.c_str(),
+      fit.rmsReprojectionErrorPx, o.out.c_str()));
   summary.json = { { "views", views.size() }, { "views_used", fit.viewsUsed },
-    { "views_without_board", fit.viewsWithoutBoard }, { "board", o.board }, { "fx_px", k.fx },
+    { "views_without_board", fit.viewsWithoutBoard }, { "board", o.board },
+    { "pattern", o.pattern }, { "corners_used", fit.cornersUsed }, { "fx_px", k.fx },
     { "fy_px", k.fy }, { "cx_px", k.cx }, { "cy_px", k.cy }, { "lens_model", lens },
     { "distortion",
       std::vector<double>(k.distortion.data(), k.distortion.data() + k.distortion.size()) },
@@ -88,14 +96,35 @@ void addCalibrateCommand(CLI::App& app)
 {
   auto o = std::make_shared<CalibrateOptions>();
   CLI::App* calibrate = app.add_subcommand("calibrate",
-    "Calibrate the endoscope's camera from views of a chessboard (OpenCV): the intrinsics file "
+    "Calibrate the endoscope's camera from views of a chessboard or ChArUco board (OpenCV): the "
+    "intrinsics file "
     "register, sfm and contours read");
-  calibrate->add_option("--frames", o->frames, "folder of pictures (or a video) of the chessboard")
+  calibrate->add_option("--frames", o->frames, "folder of pictures (or a video) of the board")
     ->required();
   calibrate->add_option("--out", o->out, "intrinsics file to write (.yaml, .json, .xml)")
     ->required();
-  calibrate->add_option("--board", o->board, "inner corners of the board, COLUMNSxROWS")
+  calibrate
+    ->add_option("--board", o->board,
+      "inner corners of the board, COLUMNSxROWS (a ChArUco board has one square more each way)")
     ->capture_default_str();
+  calibrate
+    ->add_option("--pattern", o->pattern,
+      "chessboard (every inner corner in every view used) or charuco (a ChArUco board: its "
+      "markers name the corners, so views that show part of it count)")
+    ->capture_default_str()
+    ->check(CLI::IsMember({ "chessboard", "charuco" }));
+  calibrate->add_option("--marker-mm", o->calibration.markerMm, "ChArUco: side of one marker, mm")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  calibrate
+    ->add_option("--dictionary", o->calibration.dictionary,
+      "ChArUco: the ArUco dictionary of the markers (OpenCV's name without DICT_)")
+    ->capture_default_str();
+  calibrate
+    ->add_option("--min-corners", o->calibration.minCornersPerView,
+      "ChArUco: least corners a view must show to be used")
+    ->capture_default_str()
+    ->check(CLI::Range(6, 100000));
   calibrate->add_option("--square-mm", o->calibration.squareMm, "side of one square, mm")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);

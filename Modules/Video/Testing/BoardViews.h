@@ -1,16 +1,18 @@
 #ifndef vimlop_BoardViews_h
 #define vimlop_BoardViews_h
 
-// Rendered views of a chessboard through a known lens, for the calibration
-// tests (TestCameraCalibration.cxx and, written to files by
-// VIMLOPWriteBoardViews, the `vimlop calibrate` tests).
+// Rendered views of a chessboard or a ChArUco board through a known lens,
+// for the calibration tests (TestCameraCalibration.cxx and, written to files
+// by VIMLOPWriteBoardViews, the `vimlop calibrate` tests).
 
 #include <vimlop/Core/PinholeCamera.h>
 
+#include <opencv2/aruco/charuco.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 
 #include <cmath>
+#include <functional>
 #include <vector>
 
 namespace vimlop::fixtures
@@ -52,14 +54,57 @@ inline std::vector<cv::Point2d> raysOf(
   return rays;
 }
 
+/// What a board shows at (x, y) mm in its plane, the first inner corner at
+/// the origin: a grey level (20 black, 235 white, 128 the grey around it).
+using BoardPattern = std::function<double(double x, double y)>;
+
+/// A 9 x 6 (inner corners) chessboard with a white margin of one square.
+inline double chessboardAt(double x, double y)
+{
+  const int ix = static_cast<int>(std::floor(x / squareMm)) + 1;
+  const int iy = static_cast<int>(std::floor(y / squareMm)) + 1;
+  if (ix < -1 || ix > 11 || iy < -1 || iy > 8)
+  {
+    return 128.0;
+  }
+  const bool square = ix >= 0 && ix <= 9 && iy >= 0 && iy <= 6;
+  return square && (ix + iy) % 2 == 0 ? 20.0 : 235.0;
+}
+
+/// The same board as a ChArUco board (10 x 7 squares, 3.5 mm markers of
+/// DICT_4X4_50), as OpenCV draws it, with the same white margin.
+inline BoardPattern charucoBoard()
+{
+  constexpr int pxPerSquare = 60;
+  const cv::Ptr<cv::aruco::CharucoBoard> board = cv::aruco::CharucoBoard::create(
+    10, 7, 5.0f, 3.5f, cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50));
+  cv::Mat picture;
+  board->draw(cv::Size(10 * pxPerSquare, 7 * pxPerSquare), picture, 0, 1);
+  return [picture](double x, double y)
+  {
+    // The board's outer corner is one square before the first inner corner.
+    const double u = (x / squareMm + 1.0) * pxPerSquare;
+    const double v = (y / squareMm + 1.0) * pxPerSquare;
+    if (u < -pxPerSquare || v < -pxPerSquare || u >= 11 * pxPerSquare || v >= 8 * pxPerSquare)
+    {
+      return 128.0;
+    }
+    if (u < 0.0 || v < 0.0 || u >= picture.cols || v >= picture.rows)
+    {
+      return 235.0;
+    }
+    const double value = picture.at<unsigned char>(static_cast<int>(v), static_cast<int>(u));
+    return 20.0 + (235.0 - 20.0) * value / 255.0;
+  };
+}
+
 /**
- * A 9 x 6 (inner corners) chessboard with a white margin of one square, on
- * grey, seen by camera `k` from the board pose (rotation vector, translation
- * in mm; board x, y in its plane): each pixel averages 2 x 2 rays traced
- * through the lens to the board's plane.
+ * The board `pattern` on grey, seen by camera `k` from the board pose
+ * (rotation vector, translation in mm; board x, y in its plane): each pixel
+ * averages 2 x 2 rays traced through the lens to the board's plane.
  */
-inline cv::Mat renderBoard(
-  const PinholeCamera& k, const cv::Vec3d& rotationVector, const cv::Vec3d& t)
+inline cv::Mat renderBoard(const PinholeCamera& k, const cv::Vec3d& rotationVector,
+  const cv::Vec3d& t, const BoardPattern& pattern = chessboardAt)
 {
   cv::Matx33d r;
   cv::Rodrigues(rotationVector, r);
@@ -89,17 +134,7 @@ inline cv::Mat renderBoard(
       const cv::Point2d& ray = rays[static_cast<size_t>(4 * p + s)];
       const cv::Vec3d d = rt * cv::Vec3d(ray.x, ray.y, 1.0);
       const double depth = tBoard[2] / d[2];
-      const double bx = depth * d[0] - tBoard[0];
-      const double by = depth * d[1] - tBoard[1];
-      const int ix = static_cast<int>(std::floor(bx / squareMm)) + 1;
-      const int iy = static_cast<int>(std::floor(by / squareMm)) + 1;
-      double value = 128.0;
-      if (depth > 0.0 && ix >= -1 && ix <= 11 && iy >= -1 && iy <= 8)
-      {
-        const bool square = ix >= 0 && ix <= 9 && iy >= 0 && iy <= 6;
-        value = square && (ix + iy) % 2 == 0 ? 20.0 : 235.0;
-      }
-      sum += value;
+      sum += depth > 0.0 ? pattern(depth * d[0] - tBoard[0], depth * d[1] - tBoard[1]) : 128.0;
     }
     view.at<unsigned char>(p / widthPx, p % widthPx) = static_cast<unsigned char>(sum / 4.0);
   }
@@ -108,14 +143,17 @@ inline cv::Mat renderBoard(
 
 /// Twelve views of the board 60-70 mm away, turned 20 degrees, its centre
 /// moved over the image so that its corners reach most of the field: a
-/// calibration only knows the lens where it saw corners.
-inline std::vector<cv::Mat> boardViews(const PinholeCamera& k)
+/// calibration only knows the lens where it saw corners. `spread` scales
+/// the moves: at 1.6 the board leaves the image in the outer views, as it
+/// does in an endoscope's small field.
+inline std::vector<cv::Mat> boardViews(
+  const PinholeCamera& k, const BoardPattern& pattern = chessboardAt, double spread = 1.0)
 {
   std::vector<cv::Mat> views;
   int n = 0;
-  for (double offsetY : { -16.0, 0.0, 16.0 })
+  for (double offsetY : { -16.0 * spread, 0.0, 16.0 * spread })
   {
-    for (double offsetX : { -24.0, -8.0, 8.0, 24.0 })
+    for (double offsetX : { -24.0 * spread, -8.0 * spread, 8.0 * spread, 24.0 * spread })
     {
       // Turned 20 degrees about both of its axes, the signs alternating: tilt
       // is what tells the focal length from the distance.
@@ -124,7 +162,7 @@ inline std::vector<cv::Mat> boardViews(const PinholeCamera& k)
       const cv::Vec3d centre(offsetX, offsetY, 60.0 + 2.5 * (n % 5));
       cv::Matx33d r;
       cv::Rodrigues(turn, r);
-      views.push_back(renderBoard(k, turn, centre - r * cv::Vec3d(22.5, 12.5, 0.0)));
+      views.push_back(renderBoard(k, turn, centre - r * cv::Vec3d(22.5, 12.5, 0.0), pattern));
       ++n;
     }
   }
