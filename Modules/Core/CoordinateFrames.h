@@ -32,6 +32,20 @@ inline Eigen::Matrix4d intoRas(const Eigen::Matrix4d& intoLps)
   return lpsRasFlip() * intoLps;
 }
 
+/**
+ * @brief A transform into the CT frame (LPS) from a frame taken as it is
+ * (e.g. a tracker's, whose numbers Slicer uses unchanged), read from the
+ * ITK transform file 3D Slicer saved for its node A-to-RAS (e.g.
+ * "TrackerToRAS", the tracker registered to the patient). Slicer writes the
+ * inverse point map and takes both of its spaces as LPS
+ * (Documentation/Exchange.md): the file holds F (A-to-RAS)^-1 F, with F =
+ * lpsRasFlip(), and A-to-LPS, F (A-to-RAS), is the file's inverse times F.
+ */
+inline Eigen::Matrix4d intoLpsFromSlicerFile(const Eigen::Matrix4d& pointMapInFile)
+{
+  return pointMapInFile.inverse() * lpsRasFlip();
+}
+
 } // namespace vimlop
 
 #endif

@@ -48,6 +48,13 @@ struct VideoRegistrationInputs
   /// "ProbeToTracker"): read from `trackerPath`, or from the frames' own file
   /// when `trackerPath` is empty. Empty: the tracker is a CSV.
   std::string trackerTransform;
+  /// The tracker registered to the patient, as 3D Slicer saves its
+  /// tracker-to-RAS transform (an ITK transform file, read by
+  /// intoLpsFromSlicerFile() in CoordinateFrames.h); empty: none. With a
+  /// tracked sequence whose transform is the camera's (x right, y down, z
+  /// forward), the tracked camera pose turns the canonical starts
+  /// (turnedAsTracked() in CanonicalStarts.h): a rotation prior.
+  std::string trackerToCTPath;
   double initialScale = 0.0;
   /// Frame times on the tracker's clock: the frames' own timestamps (a
   /// tracked sequence) plus `timeOffsetS`, or their video's rate; a positive

@@ -2,10 +2,12 @@
 
 #include "VideoRegistrationPipelineInternals.h"
 #include <vimlop/Core/CanonicalStarts.h>
+#include <vimlop/Core/CoordinateFrames.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
+#include <vimlop/Imaging/LinearTransformIO.h>
 #include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Pipeline/VideoRegistrationData.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
@@ -18,6 +20,8 @@
 #include <vimlop/Video/SfmReconstructionIO.h>
 #include <vimlop/Video/TrackerScale.h>
 #include <vimlop/Video/VideoInput.h>
+
+#include <Eigen/SVD>
 
 #include <opencv2/core/mat.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -194,6 +198,42 @@ void VideoRegistrationPipeline::makeData()
   d.Timings.set("data", watch);
 }
 
+std::vector<CameraPose> VideoRegistrationPipeline::Internals::turnedAsTracked(
+  const std::vector<CameraPose>& canonical) const
+{
+  const int frameId = this->Data.frames[canonicalAnchorIndex(this->Data)].frameId;
+  const auto at = std::find(this->Ids.begin(), this->Ids.end(), frameId);
+  const std::optional<Eigen::Matrix4d> sensor = at == this->Ids.end() || this->TimesS.empty()
+    ? std::nullopt
+    : this->Tracker->poseAt(this->TimesS[static_cast<size_t>(at - this->Ids.begin())]);
+  if (!sensor)
+  {
+    this->Warn("the tracker has no pose at frame " + std::to_string(frameId) +
+      "'s time: the canonical starts keep their own rotations");
+    return canonical;
+  }
+  const Eigen::Matrix4d cameraToCT = *this->TrackerToCT * *sensor;
+  // A registration with scale or shear is not a rotation: its nearest one.
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(
+    cameraToCT.topLeftCorner<3, 3>(), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  CameraPose tracked;
+  tracked.rotation = svd.matrixU() * svd.matrixV().transpose();
+  tracked.centre = cameraToCT.topRightCorner<3, 1>();
+  std::vector<CameraPose> poses = vimlop::turnedAsTracked(canonical, tracked);
+  const bool inside = this->Model->isInside(tracked.centre);
+  if (!inside)
+  {
+    poses.erase(poses.begin());
+  }
+  std::ostringstream text;
+  text << "rotation prior: frame " << frameId << " turned as the tracker registered to the CT "
+       << "says, at " << poses.size() - (inside ? 1 : 0) << " canonical positions"
+       << (inside ? " and at its tracked position"
+                  : " (its tracked position is outside the airway)");
+  this->say(text.str());
+  return poses;
+}
+
 void VideoRegistrationPipeline::makeCanonicalStarts(
   const std::vector<CameraPose>* posesCT, const std::string& source)
 {
@@ -231,6 +271,10 @@ void VideoRegistrationPipeline::makeCanonicalStarts(
       throw Error((source.empty() ? std::string() : "'" + source + "': ") +
         "no canonical pose lies inside the patient's airway");
     }
+  }
+  if (d.TrackerToCT && d.Tracker)
+  {
+    poses = d.turnedAsTracked(poses);
   }
   d.Starts = canonicalStarts(d.Data, d.Scale, poses, &d.Anchor);
   d.Mode = StartMode::Canonical;
@@ -376,7 +420,7 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
   else if (!in.trackerPath.empty())
   {
     const std::string extension = lowerCaseExtension(in.trackerPath);
-    if (extension == ".mha" || extension == ".mhd")
+    if (extension == ".mha" || extension == ".mhd" || extension == ".nrrd" || extension == ".nhdr")
     {
       throw Error("'" + in.trackerPath +
         "' is a tracked sequence: name the transform that "
@@ -392,6 +436,19 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
   else if (!(in.initialScale > 0.0))
   {
     throw Error("give a tracker recording or an initial scale: SfM alone has no metric scale");
+  }
+  d.TrackerToCT.reset();
+  if (!in.trackerToCTPath.empty())
+  {
+    if (in.trackerTransform.empty())
+    {
+      throw Error("'" + in.trackerToCTPath +
+        "': a tracker registered to the CT turns the starts only with a tracked sequence's "
+        "transform (--tracker-transform): a CSV tracker records positions only");
+    }
+    const AffineMatrix4 m = readLinearTransformFile(in.trackerToCTPath);
+    d.TrackerToCT = intoLpsFromSlicerFile(
+      Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(m.data()));
   }
   d.StartPoses.clear();
   if (!in.startPosesPath.empty())
@@ -423,8 +480,9 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
   // Identified as they are when the run starts, in a thread of its own.
   const std::vector<std::pair<std::string, std::string>> files = { { "ct", in.ctPath },
     { "mesh", in.meshPath }, { "frames", in.framesPath }, { "intrinsics", in.intrinsicsPath },
-    { "tracker", in.trackerPath }, { "start_poses", in.startPosesPath },
-    { "colmap", in.colmapFolder }, { "sfm", in.sfmFile }, { "contours", in.contoursFile } };
+    { "tracker", in.trackerPath }, { "tracker_to_ct", in.trackerToCTPath },
+    { "start_poses", in.startPosesPath }, { "colmap", in.colmapFolder }, { "sfm", in.sfmFile },
+    { "contours", in.contoursFile } };
   d.InputIdentities = std::async(std::launch::async,
     [files]
     {

@@ -63,6 +63,9 @@ struct VideoRegistrationPipeline::Internals
   // prepare(): the inputs and the small files read from them.
   std::optional<VideoRegistrationInputs> Inputs;
   std::optional<TrackerTrajectory> Tracker;
+  /// The tracker registered to the patient (tracker to CT, LPS), read from
+  /// VideoRegistrationInputs::trackerToCTPath: the canonical starts' rotation prior.
+  std::optional<Eigen::Matrix4d> TrackerToCT;
   std::vector<FramePose> StartPoses;
   /// Earlier stages' outputs given as files (read by prepare()).
   std::optional<SfmReconstruction> GivenSfm;
@@ -137,6 +140,11 @@ struct VideoRegistrationPipeline::Internals
     }
     return times;
   }
+
+  /// The canonical poses under the tracker's rotation prior (turnedAsTracked()
+  /// in CanonicalStarts.h), from the tracked camera pose at the anchor frame's
+  /// time; the poses as they are when the tracker has no pose then.
+  std::vector<CameraPose> turnedAsTracked(const std::vector<CameraPose>& canonical) const;
 
   /// The ids of the SfM frames: the loaded frames' (SfM keeps every frame,
   /// registered or not, in their order).

@@ -130,6 +130,7 @@ int vtkVIMLOPVideoRegistration::RequestData(
     inputs.trackerPath = this->TrackerFileName;
     inputs.initialScale = this->InitialScale;
     inputs.trackerTransform = this->TrackerTransformName;
+    inputs.trackerToCTPath = this->TrackerToCTFileName;
     inputs.framesPerSecond = this->FramesPerSecond;
     inputs.timeOffsetS = this->TimeOffset;
     inputs.startMode =
@@ -167,6 +168,7 @@ void vtkVIMLOPVideoRegistration::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TrackerFileName: " << this->TrackerFileName << "\n";
   os << indent << "InitialScale: " << this->InitialScale << "\n";
   os << indent << "TrackerTransformName: " << this->TrackerTransformName << "\n";
+  os << indent << "TrackerToCTFileName: " << this->TrackerToCTFileName << "\n";
   os << indent << "FramesPerSecond: " << this->FramesPerSecond << "\n";
   os << indent << "TimeOffset: " << this->TimeOffset << "\n";
   os << indent << "ColmapFolder: " << this->ColmapFolder << "\n";

@@ -88,6 +88,11 @@ public:
   /// from FramesPath; empty (the default): the tracker is a CSV.
   vtkSetStdStringFromCharMacro(TrackerTransformName);
   vtkGetCharFromStdStringMacro(TrackerTransformName);
+  /// The tracker registered to the patient, as 3D Slicer saves its
+  /// TrackerToRAS transform (an ITK transform file): the tracked camera
+  /// turns the canonical starts, a rotation prior (empty, the default: none).
+  vtkSetStdStringFromCharMacro(TrackerToCTFileName);
+  vtkGetCharFromStdStringMacro(TrackerToCTFileName);
   /// Frame times on the tracker's clock: the frames' own timestamps (a
   /// tracked sequence) plus TimeOffset, or their video's rate; a positive
   /// FramesPerSecond overrides either (frame f at TimeOffset + f /
@@ -213,6 +218,7 @@ private:
   bool StartFromManualPose = false;
   double InitialScale = 0.0;
   std::string TrackerTransformName;
+  std::string TrackerToCTFileName;
   double FramesPerSecond = 0.0;
   double TimeOffset = 0.0;
   int MaxFrames = 1000;

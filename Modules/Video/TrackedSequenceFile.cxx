@@ -79,7 +79,10 @@ FrameLayout metaImageLayout(const SequenceMetafileHeader& header, const std::str
       "its pixels are " + (type == header.fields.end() ? "of no type" : type->second) +
         "; a tracked video needs 8-bit pixels (MET_UCHAR)");
   }
-  FrameLayout layout{ sizes[0], sizes[1], sizes[2] };
+  FrameLayout layout;
+  layout.width = sizes[0];
+  layout.height = sizes[1];
+  layout.frames = sizes[2];
   if (const auto channels = header.fields.find("ElementNumberOfChannels");
       channels != header.fields.end())
   {

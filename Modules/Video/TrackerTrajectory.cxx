@@ -4,6 +4,8 @@
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/TransformSequenceFile.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -154,7 +156,8 @@ TrackerTrajectory TrackerTrajectory::readTrackedSequence(
   std::vector<Sample> samples;
   for (const TimedTransform& item : readTransformSequenceFile(path, transformName))
   {
-    samples.push_back({ item.timeS, item.matrix.topRightCorner<3, 1>() });
+    samples.push_back({ item.timeS, item.matrix.topRightCorner<3, 1>(),
+      Eigen::Matrix3d(item.matrix.topLeftCorner<3, 3>()) });
   }
   if (samples.size() < 2)
   {
@@ -332,6 +335,31 @@ std::optional<Eigen::Vector3d> TrackerTrajectory::positionAt(double timeS, doubl
   }
   // Intercept of the weighted line p(t) = a + b (t - timeS).
   return Eigen::Vector3d((w2 * s0 - w1 * s1) / determinant);
+}
+
+std::optional<Eigen::Matrix4d> TrackerTrajectory::poseAt(double timeS) const
+{
+  if (this->Samples.empty() || timeS < this->startS() || timeS > this->endS())
+  {
+    return std::nullopt;
+  }
+  const auto after = std::lower_bound(this->Samples.begin(), this->Samples.end(), timeS,
+    [](const Sample& s, double t) { return s.timeS < t; });
+  const Sample& b = *after;
+  const Sample& a = after == this->Samples.begin() ? b : *(after - 1);
+  if (!a.rotation || !b.rotation)
+  {
+    return std::nullopt;
+  }
+  const double w = b.timeS > a.timeS ? (timeS - a.timeS) / (b.timeS - a.timeS) : 0.0;
+  // A tracker's matrix may carry rounding away from a rotation: the nearest
+  // unit quaternions are interpolated.
+  const Eigen::Quaterniond qa(*a.rotation);
+  const Eigen::Quaterniond qb(*b.rotation);
+  Eigen::Matrix4d pose = Eigen::Matrix4d::Identity();
+  pose.topLeftCorner<3, 3>() = qa.normalized().slerp(w, qb.normalized()).toRotationMatrix();
+  pose.topRightCorner<3, 1>() = (1.0 - w) * a.positionMm + w * b.positionMm;
+  return pose;
 }
 
 } // namespace vimlop

@@ -26,6 +26,9 @@ public:
   {
     double timeS = 0.0;
     Eigen::Vector3d positionMm = Eigen::Vector3d::Zero();
+    /// The sensor's rotation into the tracker's frame, when the recording
+    /// has it (a tracked sequence's transform; a CSV has positions only).
+    std::optional<Eigen::Matrix3d> rotation;
   };
 
   TrackerTrajectory() = default;
@@ -79,6 +82,14 @@ public:
    * Empty outside [startS(), endS()].
    */
   std::optional<Eigen::Vector3d> positionAt(double timeS, double smoothingS = 0.0) const;
+
+  /**
+   * @brief The sensor's pose (its frame to the tracker's, mm) at `timeS`:
+   * position and rotation interpolated between the neighbouring samples
+   * (linearly, and along the shorter arc). Empty outside [startS(), endS()]
+   * or when those samples have no rotation.
+   */
+  std::optional<Eigen::Matrix4d> poseAt(double timeS) const;
 
 private:
   std::vector<Sample> Samples;

@@ -38,6 +38,30 @@ TEST(CanonicalStarts, PutTheMiddleFrameAtEveryPoseAtTheGivenScale)
   }
 }
 
+TEST(CanonicalStarts, ATrackedRotationTurnsEveryCanonicalPositionOnce)
+{
+  // Two positions, the first with two views and a roll: three poses, two places.
+  std::vector<CameraPose> canonical(3);
+  canonical[0].centre = Eigen::Vector3d(1.0, 2.0, 3.0);
+  canonical[1].centre = Eigen::Vector3d(1.2, 2.0, 3.0);
+  canonical[1].rotation = rotationFromVector(Eigen::Vector3d(0.0, 0.0, 2.0));
+  canonical[2].centre = Eigen::Vector3d(-4.0, 0.0, 3.0);
+  canonical[2].rotation = rotationFromVector(Eigen::Vector3d(0.5, 0.0, 0.0));
+  CameraPose tracked;
+  tracked.centre = Eigen::Vector3d(0.0, 1.0, 3.0);
+  tracked.rotation = rotationFromVector(Eigen::Vector3d(0.1, -0.4, 2.8));
+  const std::vector<CameraPose> poses = turnedAsTracked(canonical, tracked);
+  ASSERT_EQ(poses.size(), 3u) << "the tracked pose, then the two places";
+  EXPECT_EQ(poses[0].centre, tracked.centre);
+  EXPECT_EQ(poses[1].centre, canonical[0].centre);
+  EXPECT_EQ(poses[2].centre, canonical[2].centre);
+  for (const CameraPose& p : poses)
+  {
+    EXPECT_EQ(p.rotation, tracked.rotation);
+  }
+  EXPECT_EQ(turnedAsTracked(canonical, tracked, 0.1).size(), 4u) << "0.2 mm apart: two places";
+}
+
 TEST(CanonicalStarts, DataWithoutFramesAreAnError)
 {
   try

@@ -35,7 +35,7 @@ class RegistrationError(RuntimeError):
 def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0.0,
                    fps=0.0, time_offset_s=0.0, colmap=None, start_poses=None,
                    manual_start=False, threads=0, tracker_transform=None, sfm=None,
-                   contours=None):
+                   contours=None, tracker_to_ct=None):
     """Registers a video sequence to a CT: the main job, with `vimlop register`'s defaults.
 
     frames: a folder of pictures, a video file or a tracked sequence (PLUS or
@@ -44,7 +44,9 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
     frame, normals into the air); tracker (CSV time_s,x_mm,y_mm,z_mm, or a
     tracked sequence with tracker_transform, e.g. "ProbeToTracker", which
     alone reads the tracker from the frames' file) or scale (mm per SfM unit)
-    for the initial scale; fps overrides the frames' own timestamps or video
+    for the initial scale; tracker_to_ct: the tracker registered to the
+    patient as 3D Slicer saves its TrackerToRAS transform (ITK .tfm/.h5), so
+    that the tracked camera turns the canonical starts (a rotation prior); fps overrides the frames' own timestamps or video
     rate (0: them, else 30 fps); colmap: a COLMAP sparse model
     folder instead of the built-in SfM; sfm, contours: the outputs of `vimlop
     sfm` and `vimlop contours`, reused instead of computing them; start_poses: a FramePose JSON file of
@@ -71,6 +73,7 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
     registration.SetCTFileName(str(ct) if ct is not None else "")
     registration.SetTrackerFileName(str(tracker) if tracker is not None else "")
     registration.SetTrackerTransformName(str(tracker_transform) if tracker_transform else "")
+    registration.SetTrackerToCTFileName(str(tracker_to_ct) if tracker_to_ct is not None else "")
     registration.SetInitialScale(float(scale))
     registration.SetFramesPerSecond(float(fps))
     registration.SetTimeOffset(float(time_offset_s))

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <opencv2/core.hpp>
 
 #include <zlib.h>
@@ -328,6 +330,27 @@ TEST(TrackedSequence, TheTrackerIsTheOriginOfTheNamedTransformAtEachTimestamp)
     "'" + path +
       "': holds no frame of the transform 'StylusToTracker' (no field "
       "Seq_Frame<n>_StylusToTrackerTransform with status OK)");
+}
+
+TEST(TrackedSequence, TheSensorsPoseIsInterpolatedBetweenSamplesAlongTheShorterArc)
+{
+  using Sample = TrackerTrajectory::Sample;
+  const Eigen::Matrix3d quarterTurn =
+    Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const TrackerTrajectory tracker(
+    { Sample{ 10.0, Eigen::Vector3d(0, 0, 0), Eigen::Matrix3d::Identity() },
+      Sample{ 11.0, Eigen::Vector3d(4, 0, 0), quarterTurn } });
+  const std::optional<Eigen::Matrix4d> middle = tracker.poseAt(10.5);
+  ASSERT_TRUE(middle.has_value());
+  const Eigen::Matrix3d eighthTurn =
+    Eigen::AngleAxisd(0.25 * M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  EXPECT_LT((middle->topLeftCorner<3, 3>() - eighthTurn).norm(), 1e-12);
+  EXPECT_LT((middle->topRightCorner<3, 1>() - Eigen::Vector3d(2, 0, 0)).norm(), 1e-12);
+  EXPECT_LT((tracker.poseAt(11.0)->topLeftCorner<3, 3>() - quarterTurn).norm(), 1e-12);
+  EXPECT_FALSE(tracker.poseAt(11.5).has_value()) << "after the recording";
+  const TrackerTrajectory positionsOnly(
+    { Sample{ 10.0, Eigen::Vector3d(0, 0, 0) }, Sample{ 11.0, Eigen::Vector3d(4, 0, 0) } });
+  EXPECT_FALSE(positionsOnly.poseAt(10.5).has_value()) << "a CSV tracker has no rotation";
 }
 
 TEST(TrackedSequence, FrameTimesComeFromTheTimestampsUnlessAFrameRateOverridesThem)
