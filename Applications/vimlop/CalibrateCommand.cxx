@@ -82,11 +82,9 @@ void runCalibrate(CalibrateOptions o)
       fit.rmsReprojectionErrorPx, o.out.c_str()));
   summary.json = { { "views", views.size() }, { "views_used", fit.viewsUsed },
     { "views_without_board", fit.viewsWithoutBoard }, { "board", o.board },
-    { "pattern", o.pattern }, { "corners_used", fit.cornersUsed }, { "fx_px", k.fx },
-    { "fy_px", k.fy }, { "cx_px", k.cx }, { "cy_px", k.cy }, { "lens_model", lens },
-    { "distortion",
-      std::vector<double>(k.distortion.data(), k.distortion.data() + k.distortion.size()) },
+    { "pattern", o.pattern }, { "corners_used", fit.cornersUsed },
     { "rms_reprojection_error_px", fit.rmsReprojectionErrorPx }, { "intrinsics", o.out } };
+  summary.json.update(intrinsicsJson(k));
   printSummary(summary, o.json);
 }
 

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/PinholeCamera.h>
 
 #include <CLI/CLI.hpp>
 
@@ -111,6 +112,15 @@ void printSummary(const CommandSummary& summary, bool json)
     return;
   }
   printLines(summary.lines);
+}
+
+nlohmann::json intrinsicsJson(const PinholeCamera& k)
+{
+  return { { "width_px", k.widthPx }, { "height_px", k.heightPx }, { "fx_px", k.fx },
+    { "fy_px", k.fy }, { "cx_px", k.cx }, { "cy_px", k.cy },
+    { "lens_model", k.lensModel == LensModel::Fisheye ? "fisheye" : "radial-tangential" },
+    { "distortion",
+      std::vector<double>(k.distortion.data(), k.distortion.data() + k.distortion.size()) } };
 }
 
 void writeJsonFile(const nlohmann::json& json, const std::string& path)

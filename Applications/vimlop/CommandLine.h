@@ -24,6 +24,7 @@ namespace vimlop
 
 struct CTReadOptions;
 struct EndoscopeSimulationOptions;
+struct PinholeCamera;
 struct PoseServingOptions;
 struct RegistrationRecord;
 struct ServedPoses;
@@ -120,7 +121,8 @@ std::string parseErrorMessage(const CLI::ParseError& error, const std::string& c
 
 /**
  * @brief The words this program was started with (argv), set once by
- * main(): the command line a result folder records (joinCommandLine()).
+ * main(): the command line a result folder records (joinCommandLine() in
+ * Cohort/CommandLineWords.h).
  */
 std::vector<std::string>& commandWords();
 
@@ -147,6 +149,10 @@ void addJsonFlag(CLI::App& command, bool& json);
 
 /// @brief Prints the summary's lines to stdout, or with `json` its JSON alone.
 void printSummary(const CommandSummary& summary, bool json);
+
+/// @brief A camera's intrinsics as a summary's JSON says them: `width_px`,
+/// `height_px`, `fx_px`, `fy_px`, `cx_px`, `cy_px`, `lens_model`, `distortion`.
+nlohmann::json intrinsicsJson(const PinholeCamera& k);
 
 /**
  * @brief Writes `json` to `path` through a temporary file and a rename, so an

@@ -116,11 +116,9 @@ CommandSummary intrinsicsInfo(const std::string& path)
     formatText("image:       %d x %d pixels", k.widthPx, k.heightPx),
     formatText("focal:       fx %.3f, fy %.3f pixels", k.fx, k.fy),
     formatText("principal:   cx %.3f, cy %.3f pixels", k.cx, k.cy), "distortion:  " + distortion };
-  info.json = { { "file", path }, { "kind", "intrinsics" }, { "width_px", k.widthPx },
-    { "height_px", k.heightPx }, { "fx_px", k.fx }, { "fy_px", k.fy }, { "cx_px", k.cx },
-    { "cy_px", k.cy }, { "lens_model", fisheye ? "fisheye" : "radial-tangential" },
-    { "distortion",
-      std::vector<double>(k.distortion.data(), k.distortion.data() + k.distortion.size()) } };
+  info.json = intrinsicsJson(k);
+  info.json["file"] = path;
+  info.json["kind"] = "intrinsics";
   return info;
 }
 

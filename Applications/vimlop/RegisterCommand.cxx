@@ -1,6 +1,6 @@
 #include "CommandLine.h"
 #include "Commands.h"
-#include <vimlop/Cohort/CohortManifest.h>
+#include <vimlop/Cohort/CommandLineWords.h>
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/ProcessMemory.h>

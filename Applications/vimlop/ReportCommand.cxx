@@ -12,7 +12,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 
 namespace vimlop
@@ -85,13 +84,7 @@ void runReport(const ReportCommandOptions& o)
     summary.lines.push_back("verdict: " + report.verdict->headline());
   }
   // The report's own numbers, as its report.json holds them.
-  const std::string numbers = (std::filesystem::path(o.out) / "report.json").string();
-  std::ifstream file(numbers);
-  summary.json = nlohmann::json::parse(file, nullptr, false);
-  if (summary.json.is_discarded() || !summary.json.is_object())
-  {
-    throw Error("'" + numbers + "': the report just written cannot be read back");
-  }
+  summary.json = nlohmann::json::parse(report.reportJson);
   summary.json["index"] = index;
   printSummary(summary, o.json);
 }

@@ -4,6 +4,7 @@
 #include <vimlop/Cohort/CohortManifest.h>
 #include <vimlop/Cohort/CohortRowCommand.h>
 #include <vimlop/Cohort/CohortRowStatus.h>
+#include <vimlop/Cohort/CommandLineWords.h>
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/ChildProcess.h>
 #include <vimlop/Core/Error.h>

@@ -26,82 +26,6 @@ namespace
 
 const std::string framePrefix = "Seq_Frame";
 
-} // namespace
-
-void writeTransformSequenceFile(
-  const std::vector<TimedTransform>& items, const std::string& name, const std::string& path)
-{
-  if (items.empty())
-  {
-    fail(path, "the transform sequence to write is empty");
-  }
-  if (name.empty() ||
-    !std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isalnum(c); }))
-  {
-    fail(path, "the transform name '" + name + "' is not letters and digits");
-  }
-  for (size_t i = 0; i < items.size(); ++i)
-  {
-    if (!std::isfinite(items[i].timeS) || !items[i].matrix.allFinite())
-    {
-      fail(path, "item " + std::to_string(i) + " of the sequence has a value that is not finite");
-    }
-    // Slicer indexes the items by their time rounded to the millisecond.
-    if (i > 0 && items[i].timeS - items[i - 1].timeS < 1e-3)
-    {
-      fail(path,
-        "the times of items " + std::to_string(i - 1) + " and " + std::to_string(i) + " (" +
-          formatText("%.17g", items[i - 1].timeS) + " s, " + formatText("%.17g", items[i].timeS) +
-          " s) do not increase by at least 1 ms");
-    }
-  }
-  std::ostringstream header;
-  header << "ObjectType = Image\nNDims = 3\nAnatomicalOrientation = RAI\nBinaryData = True\n"
-            "CompressedData = False\nDimSize = 0 0 "
-         << items.size()
-         << "\nElementSpacing = 1 1 1\nOffset = 0 0 0\nTransformMatrix = 1 0 0 0 1 0 0 0 1\n"
-            "ElementType = MET_UCHAR\nKinds = domain domain list\n";
-  for (size_t i = 0; i < items.size(); ++i)
-  {
-    char frame[32];
-    std::snprintf(frame, sizeof(frame), "%s%04zu_", framePrefix.c_str(), i);
-    header << frame << name << "Transform =";
-    for (int k = 0; k < 16; ++k)
-    {
-      header << ' ' << formatText("%.17g", items[i].matrix(k / 4, k % 4));
-    }
-    header << '\n' << frame << name << "TransformStatus = OK\n";
-    header << frame << "Timestamp = " << formatText("%.17g", items[i].timeS) << '\n';
-  }
-  header << "ElementDataFile = LOCAL\n";
-  writeFileAtomically(path, header.str());
-}
-
-std::optional<double> SequenceMetafileHeader::timestampS(long frame, const std::string& path) const
-{
-  const auto fieldsOfFrame = this->frames.find(frame);
-  if (fieldsOfFrame == this->frames.end())
-  {
-    return std::nullopt;
-  }
-  const auto value = fieldsOfFrame->second.find("Timestamp");
-  if (value == fieldsOfFrame->second.end())
-  {
-    return std::nullopt;
-  }
-  std::istringstream number(value->second);
-  double t = 0.0;
-  if (!(number >> t) || !std::isfinite(t))
-  {
-    fail(path,
-      "frame " + std::to_string(frame) + "'s timestamp '" + value->second + "' is not a number");
-  }
-  return t;
-}
-
-namespace
-{
-
 /// Files a `Seq_Frame<n>_<name>` field under frame n, any other as the header's own.
 void addField(SequenceMetafileHeader& header, const std::string& key, const std::string& value,
   int lineNumber, const std::string& path)
@@ -177,6 +101,77 @@ void timestampsFromSequenceIndex(SequenceMetafileHeader& header, const std::stri
 }
 
 } // namespace
+
+void writeTransformSequenceFile(
+  const std::vector<TimedTransform>& items, const std::string& name, const std::string& path)
+{
+  if (items.empty())
+  {
+    fail(path, "the transform sequence to write is empty");
+  }
+  if (name.empty() ||
+    !std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isalnum(c); }))
+  {
+    fail(path, "the transform name '" + name + "' is not letters and digits");
+  }
+  for (size_t i = 0; i < items.size(); ++i)
+  {
+    if (!std::isfinite(items[i].timeS) || !items[i].matrix.allFinite())
+    {
+      fail(path, "item " + std::to_string(i) + " of the sequence has a value that is not finite");
+    }
+    // Slicer indexes the items by their time rounded to the millisecond.
+    if (i > 0 && items[i].timeS - items[i - 1].timeS < 1e-3)
+    {
+      fail(path,
+        "the times of items " + std::to_string(i - 1) + " and " + std::to_string(i) + " (" +
+          formatText("%.17g", items[i - 1].timeS) + " s, " + formatText("%.17g", items[i].timeS) +
+          " s) do not increase by at least 1 ms");
+    }
+  }
+  std::ostringstream header;
+  header << "ObjectType = Image\nNDims = 3\nAnatomicalOrientation = RAI\nBinaryData = True\n"
+            "CompressedData = False\nDimSize = 0 0 "
+         << items.size()
+         << "\nElementSpacing = 1 1 1\nOffset = 0 0 0\nTransformMatrix = 1 0 0 0 1 0 0 0 1\n"
+            "ElementType = MET_UCHAR\nKinds = domain domain list\n";
+  for (size_t i = 0; i < items.size(); ++i)
+  {
+    char frame[32];
+    std::snprintf(frame, sizeof(frame), "%s%04zu_", framePrefix.c_str(), i);
+    header << frame << name << "Transform =";
+    for (int k = 0; k < 16; ++k)
+    {
+      header << ' ' << formatText("%.17g", items[i].matrix(k / 4, k % 4));
+    }
+    header << '\n' << frame << name << "TransformStatus = OK\n";
+    header << frame << "Timestamp = " << formatText("%.17g", items[i].timeS) << '\n';
+  }
+  header << "ElementDataFile = LOCAL\n";
+  writeFileAtomically(path, header.str());
+}
+
+std::optional<double> SequenceMetafileHeader::timestampS(long frame, const std::string& path) const
+{
+  const auto fieldsOfFrame = this->frames.find(frame);
+  if (fieldsOfFrame == this->frames.end())
+  {
+    return std::nullopt;
+  }
+  const auto value = fieldsOfFrame->second.find("Timestamp");
+  if (value == fieldsOfFrame->second.end())
+  {
+    return std::nullopt;
+  }
+  std::istringstream number(value->second);
+  double t = 0.0;
+  if (!(number >> t) || !std::isfinite(t))
+  {
+    fail(path,
+      "frame " + std::to_string(frame) + "'s timestamp '" + value->second + "' is not a number");
+  }
+  return t;
+}
 
 SequenceMetafileHeader readSequenceMetafileHeader(std::istream& in, const std::string& path)
 {

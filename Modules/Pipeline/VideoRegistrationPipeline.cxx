@@ -419,8 +419,7 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
   }
   else if (!in.trackerPath.empty())
   {
-    const std::string extension = lowerCaseExtension(in.trackerPath);
-    if (extension == ".mha" || extension == ".mhd" || extension == ".nrrd" || extension == ".nhdr")
+    if (FrameSequence::isTrackedSequenceName(in.trackerPath))
     {
       throw Error("'" + in.trackerPath +
         "' is a tracked sequence: name the transform that "

@@ -557,7 +557,8 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
   }
   html << "<p>Numbers: <a href=\"report.json\">report.json</a>.</p>\n</body></html>\n";
   reportJson["pictures"] = report.pictures;
-  writeText(reportJson.dump(2) + "\n", out / "report.json");
+  report.reportJson = reportJson.dump(2) + "\n";
+  writeText(report.reportJson, out / "report.json");
   writeText(html.str(), out / "index.html");
   return report;
 }

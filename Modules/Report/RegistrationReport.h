@@ -115,6 +115,8 @@ public:
   std::optional<RegistrationVerdict> verdict;
   /// Every picture written, relative to the report folder.
   std::vector<std::string> pictures;
+  /// The text of report.json, as written (e.g. for `vimlop report --json`).
+  std::string reportJson;
 };
 
 } // namespace vimlop

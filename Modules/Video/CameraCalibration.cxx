@@ -30,13 +30,13 @@ cv::Ptr<cv::aruco::Dictionary> dictionaryNamed(const std::string& name)
     { "ARUCO_ORIGINAL", cv::aruco::DICT_ARUCO_ORIGINAL }
   };
   std::string names;
-  for (const auto& [known_name, id] : known)
+  for (const auto& [knownName, id] : known)
   {
-    if (known_name == name)
+    if (knownName == name)
     {
       return cv::aruco::getPredefinedDictionary(id);
     }
-    names += (names.empty() ? "" : ", ") + known_name;
+    names += (names.empty() ? "" : ", ") + knownName;
   }
   throw Error("calibration: no ArUco dictionary '" + name + "' (" + names + ")");
 }

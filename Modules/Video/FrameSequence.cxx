@@ -212,6 +212,12 @@ bool FrameSequence::isImageFileName(const std::string& name)
     ext == ".tiff";
 }
 
+bool FrameSequence::isTrackedSequenceName(const std::string& name)
+{
+  const std::string ext = lowerCaseExtension(name);
+  return ext == ".mha" || ext == ".mhd" || ext == ".nrrd" || ext == ".nhdr";
+}
+
 FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
 {
   namespace fs = std::filesystem;

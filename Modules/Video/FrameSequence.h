@@ -88,6 +88,11 @@ public:
   /// @brief True when the name looks like an image file this class reads.
   static bool isImageFileName(const std::string& name);
 
+  /// @brief True when the name ends as a tracked sequence's (`.mha`, `.mhd`,
+  /// `.nrrd`, `.nhdr`): a file of frames, and of the transforms a tracker is
+  /// read from (TrackerTrajectory::readTrackedSequence()).
+  static bool isTrackedSequenceName(const std::string& name);
+
 private:
   std::vector<cv::Mat> Frames;
   std::vector<std::string> Names;

@@ -243,9 +243,8 @@ std::string dataOf(std::ifstream& file, const SequenceMetafileHeader& header,
 
 bool isTrackedSequencePath(const std::string& path)
 {
-  const std::string ext = lowerCaseExtension(path);
   std::error_code error;
-  return (ext == ".mha" || ext == ".mhd" || ext == ".nrrd" || ext == ".nhdr") &&
+  return FrameSequence::isTrackedSequenceName(path) &&
     std::filesystem::is_regular_file(path, error);
 }
 

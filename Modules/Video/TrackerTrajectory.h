@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vimlop
@@ -24,6 +25,17 @@ public:
   /// @brief One tracker reading.
   struct Sample
   {
+    Sample() = default;
+    /// A reading; with a rotation when the recording has one (so that
+    /// `{ t, position }` reads as a position-only sample).
+    Sample(double t, const Eigen::Vector3d& position,
+      std::optional<Eigen::Matrix3d> sensorRotation = std::nullopt)
+      : timeS(t)
+      , positionMm(position)
+      , rotation(std::move(sensorRotation))
+    {
+    }
+
     double timeS = 0.0;
     Eigen::Vector3d positionMm = Eigen::Vector3d::Zero();
     /// The sensor's rotation into the tracker's frame, when the recording

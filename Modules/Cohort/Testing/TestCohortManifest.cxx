@@ -1,4 +1,5 @@
 #include <vimlop/Cohort/CohortManifest.h>
+#include <vimlop/Cohort/CommandLineWords.h>
 
 #include "ErrorMessage.h"
 #include "TestFolders.h"
