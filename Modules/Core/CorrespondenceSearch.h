@@ -54,7 +54,7 @@ private:
 
   const RegistrationModel& Model;
   const RegistrationData& Data;
-  const RegistrationOptions& Options;
+  const RegistrationOptions Options; // a copy: callers may pass a temporary
   TaskPool& Pool;
   MethodDescriptor Method;
   std::vector<Eigen::Matrix3d> Covariances;

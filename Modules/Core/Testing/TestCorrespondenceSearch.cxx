@@ -2,6 +2,7 @@
 #include <vimlop/Core/CorrespondenceSearch.h>
 #include <vimlop/Core/SyntheticExperiment.h>
 #include <vimlop/Core/TaskPool.h>
+#include <vimlop/Core/VisibleModelContours.h>
 
 #include <gtest/gtest.h>
 
@@ -139,4 +140,65 @@ TEST(CorrespondenceSearch, EqualInfluenceScalesTheCovariancesOfContourMethodsOnl
   const CorrespondenceSearch pointsOnly(
     cavityModel(), data, optionsFor(RegistrationMethod::IMLP), pool);
   EXPECT_EQ(pointsOnly.covariances()[5], data.pointCovariances[5]);
+}
+
+// V4 in the loop: the model contours a video contour may match are the ones
+// the camera sees. Video contour points are put exactly where the outline of
+// a far blob is hidden behind a near one: were hidden samples candidates,
+// each would match one at zero distance with the same normal.
+TEST(CorrespondenceSearch, VideoContoursMatchOnlyModelContoursTheCameraSees)
+{
+  const RegistrationModel model(
+    fixtures::merge({ fixtures::makeSphere(3.0, 3, { 1.5, 0.0, 30.0 }, true),
+      fixtures::makeSphere(8.0, 3, { 0.0, 0.0, 60.0 }, true) }));
+  PinholeCamera k;
+  k.fx = k.fy = 300.0;
+  k.cx = 159.5;
+  k.cy = 119.5;
+  k.widthPx = 320;
+  k.heightPx = 240;
+  const CameraPose camera; // at the origin, looking along +z
+  const std::vector<ModelContourPoint> all = extractOccludingContours(model.mesh(), k, camera);
+  const std::vector<ModelContourPoint> seen = visibleModelContours(model, k, camera);
+
+  RegistrationData data;
+  VideoFrame frame;
+  frame.intrinsics = k;
+  frame.cameraToSfm = camera;
+  // Both lists are in extraction order: the samples missing from `seen` are the hidden ones.
+  size_t next = 0;
+  for (const ModelContourPoint& s : all)
+  {
+    if (next < seen.size() && seen[next].point == s.point)
+    {
+      ++next;
+      continue;
+    }
+    frame.contour.push_back({ s.pixel, s.pixelNormal });
+  }
+  ASSERT_EQ(next, seen.size());
+  ASSERT_GE(frame.contour.size(), 20u);
+  data.frames.push_back(frame);
+  for (int i = 0; i < 10; ++i)
+  {
+    data.points.push_back(model.mesh().vertices()[static_cast<size_t>(7 * i)]);
+    data.pointCovariances.push_back(0.09 * Eigen::Matrix3d::Identity());
+  }
+
+  const RegistrationOptions options = optionsFor(RegistrationMethod::VIMLOP);
+  TaskPool pool(1);
+  CorrespondenceSearch search(model, data, options, pool);
+  const Correspondences c = search.find(SimilarityTransform(), true, false);
+  const FrameCorrespondences& f = c.frames.at(0);
+  EXPECT_EQ(f.visibleSamples.size(), seen.size());
+  int atTheirOwnPixel = 0;
+  for (const ContourMatch& m : f.matches)
+  {
+    if (m.model >= 0)
+    {
+      atTheirOwnPixel += m.errorPx.norm() < 0.5;
+    }
+  }
+  // Only where the hidden arc meets the near outline can a visible sample lie that close.
+  EXPECT_LE(atTheirOwnPixel, 2);
 }
