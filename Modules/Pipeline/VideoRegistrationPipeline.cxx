@@ -365,6 +365,7 @@ void VideoRegistrationPipeline::run()
     }
     d.Timings.set("final", watch);
     d.warnAtScaleBound();
+    d.hintAtRoll();
     return;
   }
   // A single start uses every thread inside the registration instead.

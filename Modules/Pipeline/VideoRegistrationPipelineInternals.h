@@ -126,6 +126,22 @@ struct VideoRegistrationPipeline::Internals
     }
   }
 
+  /// A flagged result from upright canonical starts may be a scope turned
+  /// about its axis, which those starts cannot reach (issue 15: the
+  /// simulator's freely rolled scope ends 6.3 mm and 135 deg off, flagged).
+  void hintAtRoll() const
+  {
+    const bool rotationPrior = this->TrackerToCT && this->Tracker;
+    if (this->Outcome->failure && this->Mode == StartMode::Canonical && !rotationPrior &&
+      this->Opts.canonical.rollsDeg.size() < 2)
+    {
+      this->Warn("if the endoscope was turned about its axis, canonical starts held upright "
+                 "cannot reach it: give the tracker's registration to the CT as a rotation "
+                 "prior (register --tracker-to-ct), or canonical poses in several rolls "
+                 "(vimlop canonical --rolls-deg, then --init canonical:FILE)");
+    }
+  }
+
   /// The loaded frames' times on the tracker's clock (frameTimesS() in
   /// VideoInput.h); the warnings about the frame rate only when a tracker
   /// makes the times matter.
