@@ -209,6 +209,8 @@ CLI::App* addEvaluateCommand(CLI::App& app)
       "misspecified noise: the registration's noise model (point covariances, contour variance) "
       "is this times the true one")
     ->capture_default_str();
+  p1->add_flag("--robust-contour-inflation", p1Options.robustContourInflation,
+    "V8: inflate V-IMLOP's contour tests by the median match error, not the mean");
   p1->add_option("--start-scale-error", p1Options.synthetic.startScaleError,
       "wrong start scale: the registration starts from (1 + this) times the true scale")
     ->capture_default_str();

@@ -151,27 +151,13 @@ void CorrespondenceSearch::rejectOutliers(
   {
     return;
   }
-  double sumDistance2 = 0.0;
-  double sumAngle2 = 0.0;
-  int matched = 0;
-  for (const FrameCorrespondences& f : c.frames)
-  {
-    for (const ContourMatch& m : f.matches)
-    {
-      if (m.model >= 0)
-      {
-        sumDistance2 += m.errorPx.squaredNorm();
-        sumAngle2 += m.angleRad * m.angleRad;
-        ++matched;
-      }
-    }
-  }
-  const double meanDistance2 = matched ? sumDistance2 / matched : 0.0;
-  const double meanAngle2 = matched ? sumAngle2 / matched : 0.0;
+  const ContourErrorSpread spread =
+    contourErrorSpread(c.frames, this->Options.robustContourInflation);
   for (FrameCorrespondences& f : c.frames)
   {
-    f.inliers = rejectContourOutliers(f.matches, this->Options.contourMatch, meanDistance2,
-      meanAngle2, this->Options.chiSquareProbability, this->Options.maxContourOutlierFraction);
+    f.inliers = rejectContourOutliers(f.matches, this->Options.contourMatch,
+      spread.squaredDistancePx2, spread.squaredAngleRad2, this->Options.chiSquareProbability,
+      this->Options.maxContourOutlierFraction);
   }
 }
 

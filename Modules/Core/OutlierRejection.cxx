@@ -1,6 +1,7 @@
 #include <vimlop/Core/OutlierRejection.h>
 
 #include <vimlop/Core/ChiSquare.h>
+#include <vimlop/Core/Correspondences.h>
 
 #include <Eigen/Dense>
 
@@ -58,16 +59,16 @@ std::vector<char> rejectPointOutliers(const std::vector<Eigen::Vector3d>& residu
 }
 
 std::vector<char> rejectContourOutliers(const std::vector<ContourMatch>& matches,
-  const ContourMatchOptions& matchOptions, double meanSquaredDistancePx2,
-  double meanSquaredAngleRad2, double chiSquareProbability, double maxOutlierFraction)
+  const ContourMatchOptions& matchOptions, double squaredDistancePx2, double squaredAngleRad2,
+  double chiSquareProbability, double maxOutlierFraction)
 {
   const double positionThreshold = chiSquareQuantile(chiSquareProbability, 2);
   const double angleThreshold = chiSquareQuantile(chiSquareProbability, 1);
   const Eigen::Matrix2d inflated =
-    matchOptions.positionCovariancePx2 + meanSquaredDistancePx2 * Eigen::Matrix2d::Identity();
+    matchOptions.positionCovariancePx2 + squaredDistancePx2 * Eigen::Matrix2d::Identity();
   const Eigen::Matrix2d information = inflated.inverse();
   const double angleVariance =
-    (matchOptions.kappa > 0.0 ? 1.0 / matchOptions.kappa : 1e300) + meanSquaredAngleRad2;
+    (matchOptions.kappa > 0.0 ? 1.0 / matchOptions.kappa : 1e300) + squaredAngleRad2;
 
   std::vector<char> inlier(matches.size(), 0);
   // Each matched point's worst test statistic relative to its threshold.
@@ -106,6 +107,49 @@ std::vector<char> rejectContourOutliers(const std::vector<ContourMatch>& matches
     }
   }
   return inlier;
+}
+
+namespace
+{
+
+/// The mean of `values`, or their median scaled to the mean of σ² χ²_k.
+double spread(std::vector<double>& values, bool robust, int degreesOfFreedom)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  if (!robust)
+  {
+    return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+  }
+  // The upper median: deterministic, and the same whatever the order.
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle * degreesOfFreedom / chiSquareQuantile(0.5, degreesOfFreedom);
+}
+
+} // namespace
+
+ContourErrorSpread contourErrorSpread(const std::vector<FrameCorrespondences>& frames, bool robust)
+{
+  std::vector<double> distances2;
+  std::vector<double> angles2;
+  for (const FrameCorrespondences& f : frames)
+  {
+    for (const ContourMatch& m : f.matches)
+    {
+      if (m.model >= 0)
+      {
+        distances2.push_back(m.errorPx.squaredNorm());
+        angles2.push_back(m.angleRad * m.angleRad);
+      }
+    }
+  }
+  ContourErrorSpread s;
+  s.squaredDistancePx2 = spread(distances2, robust, 2);
+  s.squaredAngleRad2 = spread(angles2, robust, 1);
+  return s;
 }
 
 } // namespace vimlop

@@ -74,7 +74,10 @@
   X(Accelerate, accelerate, "accelerate", "--accelerate", \
     "Besl-McKay extrapolation along consistent updates") \
   X(PointsFirst, pointsFirst, "points_first", "--points-first", \
-    "V-IMLOP: leave the contours out until the points alone converge")
+    "V-IMLOP: leave the contours out until the points alone converge") \
+  X(RobustContourInflation, robustContourInflation, "robust_contour_inflation", \
+    "--robust-contour-inflation", \
+    "V8: inflate the contour tests by the median match error, not the mean")
 // clang-format on
 
 #endif

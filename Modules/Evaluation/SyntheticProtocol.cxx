@@ -51,6 +51,7 @@ RegistrationOptions registrationOptions(
   o.contourMatch.positionCovariancePx2 =
     options.assumedNoiseScale * options.contourVariancePx2 * Eigen::Matrix2d::Identity();
   o.contourMatch.kappa = options.kappa / options.assumedNoiseScale;
+  o.robustContourInflation = options.robustContourInflation;
   o.stallRelativeDecrease = options.stallRelativeDecrease;
   o.stallIterations = options.stallIterations;
   o.maxIterations = options.maxIterations;
@@ -86,6 +87,7 @@ nlohmann::json SyntheticProtocolReport::toJson() const
   modelError["assumed_noise_scale"] = this->assumedNoiseScale;
   modelError["start_scale_error"] = this->startScaleError;
   report["model_error"] = modelError;
+  report["robust_contour_inflation"] = this->robustContourInflation;
   nlohmann::json methodsJson = nlohmann::json::object();
   for (const SyntheticProtocolMethodReport& m : this->methods)
   {
@@ -256,6 +258,7 @@ SyntheticProtocolReport runSyntheticProtocol(const TriangleMesh& mesh,
   report.dataSurface = options.dataSurfaceMaking;
   report.dataSurfaceTriangles = options.dataSurface.numberOfFaces();
   report.assumedNoiseScale = options.assumedNoiseScale;
+  report.robustContourInflation = options.robustContourInflation;
   report.startScaleError = options.synthetic.startScaleError;
   for (size_t m = 0; m < options.methods.size(); ++m)
   {

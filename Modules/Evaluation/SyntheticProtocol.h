@@ -63,6 +63,8 @@ struct SyntheticProtocolOptions
   /// noise, as the paper). Finite and > 0. (A wrong start scale is
   /// `synthetic.startScaleError`.)
   double assumedNoiseScale = 1.0;
+  /// RegistrationOptions::robustContourInflation for V-IMLOP (default off, as there).
+  bool robustContourInflation = false;
   /// When not empty: trial 0 and its registration by the first of V-IMLOP,
   /// IMLP, trimmed ICP among `methods` are written to this result folder
   /// (see TrialSaving.h; needs an X display). Default empty.
@@ -103,6 +105,7 @@ struct SyntheticProtocolReport
   SyntheticDataSurfaceOptions dataSurface;
   int dataSurfaceTriangles = 0;
   double assumedNoiseScale = 1.0;
+  bool robustContourInflation = false;
   double startScaleError = 0.0;
   /// In the order of the options' methods.
   std::vector<SyntheticProtocolMethodReport> methods;

@@ -1,5 +1,6 @@
 #include "RandomGeometry.h"
 #include <vimlop/Core/ChiSquare.h>
+#include <vimlop/Core/Correspondences.h>
 #include <vimlop/Core/OutlierRejection.h>
 
 #include <gtest/gtest.h>
@@ -78,4 +79,96 @@ TEST(OutlierRejection, ContourTestsAndPerFrameCap)
   // A large mean squared error inflates the test: the 50 px point passes.
   inliers = rejectContourOutliers(matches, options, 900.0, 0.0, 0.95, 0.5);
   EXPECT_EQ(inliers[3], 1);
+}
+
+namespace
+{
+
+/// Two frames of contour matches with Gaussian errors, σ = 2 px per axis and
+/// 0.05 rad, one unmatched point per frame.
+std::vector<FrameCorrespondences> gaussianContourMatches(std::mt19937& rng, int perFrame)
+{
+  std::normal_distribution<double> px(0.0, 2.0);
+  std::normal_distribution<double> rad(0.0, 0.05);
+  std::vector<FrameCorrespondences> frames(2);
+  for (FrameCorrespondences& f : frames)
+  {
+    for (int i = 0; i < perFrame; ++i)
+    {
+      ContourMatch m;
+      m.video = i;
+      m.model = i == 0 ? -1 : i;
+      m.errorPx = Eigen::Vector2d(px(rng), px(rng));
+      m.angleRad = rad(rng);
+      f.matches.push_back(m);
+    }
+  }
+  return frames;
+}
+
+} // namespace
+
+TEST(OutlierRejection, ContourSpreadIsTheMeanSquaredErrorOfTheMatchedPoints)
+{
+  std::vector<FrameCorrespondences> frames(2);
+  frames[0].matches.resize(2);
+  frames[0].matches[0].model = 0;
+  frames[0].matches[0].errorPx = Eigen::Vector2d(3.0, 4.0); // 25 px²
+  frames[0].matches[0].angleRad = 0.1;
+  frames[0].matches[1].model = -1; // unmatched: not counted
+  frames[0].matches[1].errorPx = Eigen::Vector2d(1000.0, 0.0);
+  frames[1].matches.resize(1);
+  frames[1].matches[0].model = 4;
+  frames[1].matches[0].errorPx = Eigen::Vector2d(1.0, 0.0); // 1 px²
+  frames[1].matches[0].angleRad = 0.3;
+  const ContourErrorSpread mean = contourErrorSpread(frames, false);
+  EXPECT_DOUBLE_EQ(mean.squaredDistancePx2, 13.0);
+  EXPECT_DOUBLE_EQ(mean.squaredAngleRad2, 0.05);
+  const ContourErrorSpread none = contourErrorSpread({}, true);
+  EXPECT_EQ(none.squaredDistancePx2, 0.0);
+  EXPECT_EQ(none.squaredAngleRad2, 0.0);
+}
+
+TEST(OutlierRejection, RobustContourSpreadAgreesWithTheMeanForGaussianErrors)
+{
+  std::mt19937 rng(5);
+  const std::vector<FrameCorrespondences> frames = gaussianContourMatches(rng, 4000);
+  const ContourErrorSpread mean = contourErrorSpread(frames, false);
+  const ContourErrorSpread robust = contourErrorSpread(frames, true);
+  // E|e|² = 2 σ² = 8 px², E θ² = 0.0025 rad²: both estimate them.
+  EXPECT_NEAR(mean.squaredDistancePx2, 8.0, 0.4);
+  EXPECT_NEAR(robust.squaredDistancePx2, 8.0, 0.4);
+  EXPECT_NEAR(mean.squaredAngleRad2, 0.0025, 0.00015);
+  EXPECT_NEAR(robust.squaredAngleRad2, 0.0025, 0.00015);
+}
+
+TEST(OutlierRejection, ContoursTheModelLacksDoNotWidenTheRobustTest)
+{
+  std::mt19937 rng(6);
+  std::vector<FrameCorrespondences> frames = gaussianContourMatches(rng, 500);
+  // 20 % of all points, 40 % of the first frame's: a structure the model
+  // lacks, matched 20 px away.
+  for (int i = 1; i <= 200; ++i)
+  {
+    frames[0].matches[static_cast<size_t>(i)].errorPx = Eigen::Vector2d(0.0, 20.0);
+  }
+  const ContourErrorSpread mean = contourErrorSpread(frames, false);
+  const ContourErrorSpread robust = contourErrorSpread(frames, true);
+  EXPECT_GT(mean.squaredDistancePx2, 80.0); // 200 x 400 px² over 998 points, and the rest
+  EXPECT_LT(robust.squaredDistancePx2, 12.0);
+  ContourMatchOptions options;
+  options.positionCovariancePx2 = Eigen::Matrix2d::Identity();
+  int keptByMean = 0;
+  int keptByRobust = 0;
+  const std::vector<char> byMean = rejectContourOutliers(
+    frames[0].matches, options, mean.squaredDistancePx2, mean.squaredAngleRad2, 0.95, 0.5);
+  const std::vector<char> byRobust = rejectContourOutliers(
+    frames[0].matches, options, robust.squaredDistancePx2, robust.squaredAngleRad2, 0.95, 0.5);
+  for (int i = 1; i <= 200; ++i)
+  {
+    keptByMean += byMean[static_cast<size_t>(i)];
+    keptByRobust += byRobust[static_cast<size_t>(i)];
+  }
+  EXPECT_EQ(keptByMean, 200); // the mean lets every one of them in
+  EXPECT_EQ(keptByRobust, 0); // the median rejects them all
 }
