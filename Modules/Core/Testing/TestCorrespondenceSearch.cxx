@@ -148,15 +148,8 @@ TEST(CorrespondenceSearch, EqualInfluenceScalesTheCovariancesOfContourMethodsOnl
 // each would match one at zero distance with the same normal.
 TEST(CorrespondenceSearch, VideoContoursMatchOnlyModelContoursTheCameraSees)
 {
-  const RegistrationModel model(
-    fixtures::merge({ fixtures::makeSphere(3.0, 3, { 1.5, 0.0, 30.0 }, true),
-      fixtures::makeSphere(8.0, 3, { 0.0, 0.0, 60.0 }, true) }));
-  PinholeCamera k;
-  k.fx = k.fy = 300.0;
-  k.cx = 159.5;
-  k.cy = 119.5;
-  k.widthPx = 320;
-  k.heightPx = 240;
+  const RegistrationModel model(fixtures::twoBlobs());
+  const PinholeCamera k = fixtures::twoBlobsCamera();
   const CameraPose camera; // at the origin, looking along +z
   const std::vector<ModelContourPoint> all = extractOccludingContours(model.mesh(), k, camera);
   const std::vector<ModelContourPoint> seen = visibleModelContours(model, k, camera);

@@ -3,6 +3,7 @@
 
 // Meshes that tests build in memory, with known geometry.
 
+#include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Core/TriangleMesh.h>
 
 #include <Eigen/Core>
@@ -108,6 +109,27 @@ inline TriangleMesh merge(const std::vector<TriangleMesh>& parts)
     }
   }
   return TriangleMesh(std::move(v), std::move(f));
+}
+
+/// A blob in front of a larger blob, off its axis so that, seen by
+/// twoBlobsCamera() from the origin along +z, it hides part of the larger
+/// one's outline; both solid (normals out, into the air).
+inline TriangleMesh twoBlobs()
+{
+  return merge(
+    { makeSphere(3.0, 3, { 1.5, 0.0, 30.0 }, true), makeSphere(8.0, 3, { 0.0, 0.0, 60.0 }, true) });
+}
+
+/// The 320 x 240 px camera (f = 300 px) of twoBlobs().
+inline PinholeCamera twoBlobsCamera()
+{
+  PinholeCamera k;
+  k.fx = k.fy = 300.0;
+  k.cx = 159.5;
+  k.cy = 119.5;
+  k.widthPx = 320;
+  k.heightPx = 240;
+  return k;
 }
 
 /// An airway-like test model: a bumpy cavity of radius about 20 mm holding two

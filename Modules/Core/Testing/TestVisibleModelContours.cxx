@@ -7,34 +7,13 @@
 
 using namespace vimlop;
 
-namespace
-{
-
-PinholeCamera makeCamera()
-{
-  PinholeCamera k;
-  k.fx = k.fy = 300.0;
-  k.cx = 159.5;
-  k.cy = 119.5;
-  k.widthPx = 320;
-  k.heightPx = 240;
-  return k;
-}
-
-/// A blob in front of a larger blob, off its axis so that it hides part of
-/// the larger one's outline; both solid (normals out, into the air).
-TriangleMesh twoBlobs()
-{
-  return fixtures::merge({ fixtures::makeSphere(3.0, 3, { 1.5, 0.0, 30.0 }, true),
-    fixtures::makeSphere(8.0, 3, { 0.0, 0.0, 60.0 }, true) });
-}
-
-} // namespace
+using fixtures::twoBlobs;
+using fixtures::twoBlobsCamera;
 
 TEST(VisibleModelContours, KeepsExactlyTheSamplesTheVisibilityBackendSees)
 {
   const RegistrationModel model(twoBlobs());
-  const PinholeCamera k = makeCamera();
+  const PinholeCamera k = twoBlobsCamera();
   const CameraPose camera;
   const std::vector<ModelContourPoint> all = extractOccludingContours(model.mesh(), k, camera);
   std::vector<Eigen::Vector3d> points;
@@ -79,7 +58,7 @@ TEST(VisibleModelContours, AddsTheTimeOfBothStages)
   const RegistrationModel model(twoBlobs());
   StageTimes times;
   times.contoursMs = 1000.0;
-  visibleModelContours(model, makeCamera(), CameraPose(), OccludingContourOptions(), &times);
+  visibleModelContours(model, twoBlobsCamera(), CameraPose(), OccludingContourOptions(), &times);
   EXPECT_GE(times.contoursMs, 1000.0);
   EXPECT_LT(times.contoursMs, 1000.0 + 10000.0);
   EXPECT_GE(times.visibilityMs, 0.0);
@@ -93,7 +72,7 @@ TEST(VisibleModelContours, SpacingSetsTheNumberOfSamples)
   dense.sampleSpacingPx = 0.5;
   OccludingContourOptions sparse;
   sparse.sampleSpacingPx = 2.0;
-  const size_t many = visibleModelContours(model, makeCamera(), CameraPose(), dense).size();
-  const size_t few = visibleModelContours(model, makeCamera(), CameraPose(), sparse).size();
+  const size_t many = visibleModelContours(model, twoBlobsCamera(), CameraPose(), dense).size();
+  const size_t few = visibleModelContours(model, twoBlobsCamera(), CameraPose(), sparse).size();
   EXPECT_GT(static_cast<double>(many), 2.0 * static_cast<double>(few));
 }
