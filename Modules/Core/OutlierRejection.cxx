@@ -112,16 +112,12 @@ std::vector<char> rejectContourOutliers(const std::vector<ContourMatch>& matches
 namespace
 {
 
-/// The mean of `values`, or their median scaled to the mean of σ² χ²_k.
-double spread(std::vector<double>& values, bool robust, int degreesOfFreedom)
+/// The median of `values` scaled to the mean of σ² χ²_k (0 for none).
+double scaledMedian(std::vector<double>& values, int degreesOfFreedom)
 {
   if (values.empty())
   {
     return 0.0;
-  }
-  if (!robust)
-  {
-    return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
   }
   // The upper median: deterministic, and the same whatever the order.
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
@@ -133,22 +129,44 @@ double spread(std::vector<double>& values, bool robust, int degreesOfFreedom)
 
 ContourErrorSpread contourErrorSpread(const std::vector<FrameCorrespondences>& frames, bool robust)
 {
+  // The means need only sums; the medians keep the values (every iteration
+  // of a registration calls this, so the default path allocates nothing).
+  double sumDistance2 = 0.0;
+  double sumAngle2 = 0.0;
+  int matched = 0;
   std::vector<double> distances2;
   std::vector<double> angles2;
   for (const FrameCorrespondences& f : frames)
   {
     for (const ContourMatch& m : f.matches)
     {
-      if (m.model >= 0)
+      if (m.model < 0)
       {
-        distances2.push_back(m.errorPx.squaredNorm());
-        angles2.push_back(m.angleRad * m.angleRad);
+        continue;
+      }
+      const double d2 = m.errorPx.squaredNorm();
+      const double a2 = m.angleRad * m.angleRad;
+      sumDistance2 += d2;
+      sumAngle2 += a2;
+      ++matched;
+      if (robust)
+      {
+        distances2.push_back(d2);
+        angles2.push_back(a2);
       }
     }
   }
   ContourErrorSpread s;
-  s.squaredDistancePx2 = spread(distances2, robust, 2);
-  s.squaredAngleRad2 = spread(angles2, robust, 1);
+  if (robust)
+  {
+    s.squaredDistancePx2 = scaledMedian(distances2, 2);
+    s.squaredAngleRad2 = scaledMedian(angles2, 1);
+  }
+  else if (matched > 0)
+  {
+    s.squaredDistancePx2 = sumDistance2 / matched;
+    s.squaredAngleRad2 = sumAngle2 / matched;
+  }
   return s;
 }
 

@@ -120,15 +120,12 @@ inline TriangleMesh twoBlobs()
     { makeSphere(3.0, 3, { 1.5, 0.0, 30.0 }, true), makeSphere(8.0, 3, { 0.0, 0.0, 60.0 }, true) });
 }
 
-/// The 320 x 240 px camera (f = 300 px) of twoBlobs().
+/// The camera of twoBlobs(): the simulated endoscope's 320 x 240 px image
+/// with a focal length of 300 px.
 inline PinholeCamera twoBlobsCamera()
 {
-  PinholeCamera k;
+  PinholeCamera k = PinholeCamera::simulatedEndoscope();
   k.fx = k.fy = 300.0;
-  k.cx = 159.5;
-  k.cy = 119.5;
-  k.widthPx = 320;
-  k.heightPx = 240;
   return k;
 }
 
