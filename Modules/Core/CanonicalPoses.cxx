@@ -7,6 +7,7 @@
 #include <vimlop/Core/RayClearance.h>
 #include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/SurfaceLocator.h>
+#include <vimlop/Core/TaskPool.h>
 
 #include <algorithm>
 #include <cmath>
@@ -91,6 +92,10 @@ void CanonicalPoseOptions::validate() const
   {
     throw Error("canonical poses: need at least one view per position, one roll and one pose");
   }
+  if (this->threads < 0)
+  {
+    throw Error("canonical poses: the thread count must not be negative");
+  }
   if (!(this->upCT.norm() > 0.0) || !this->upCT.allFinite())
   {
     throw Error("canonical poses: the up direction must be a non-zero vector");
@@ -109,25 +114,39 @@ std::vector<CameraPose> makeCanonicalPoses(
     Eigen::Vector3d position;
     double clearanceMm;
   };
-  std::vector<Site> sites;
+  // Each slice of the grid, and below each position, is one task; their
+  // results are joined in order, so the poses do not depend on the threads.
+  TaskPool pool(o.threads);
+  std::vector<double> slices;
   for (double z = bounds(2, 0) + step; z < bounds(2, 1); z += step)
   {
-    for (double y = bounds(1, 0) + step; y < bounds(1, 1); y += step)
+    slices.push_back(z);
+  }
+  std::vector<std::vector<Site>> sitesOfSlice(slices.size());
+  pool.run(static_cast<int>(slices.size()),
+    [&](int k)
     {
-      for (double x = bounds(0, 0) + step; x < bounds(0, 1); x += step)
+      for (double y = bounds(1, 0) + step; y < bounds(1, 1); y += step)
       {
-        const Eigen::Vector3d p(x, y, z);
-        if (!model.isInside(p))
+        for (double x = bounds(0, 0) + step; x < bounds(0, 1); x += step)
         {
-          continue;
-        }
-        const double clearance = model.locator().closestPoint(p).distanceMm;
-        if (clearance >= o.minClearanceMm)
-        {
-          sites.push_back({ p, clearance });
+          const Eigen::Vector3d p(x, y, slices[k]);
+          if (!model.isInside(p))
+          {
+            continue;
+          }
+          const double clearance = model.locator().closestPoint(p).distanceMm;
+          if (clearance >= o.minClearanceMm)
+          {
+            sitesOfSlice[k].push_back({ p, clearance });
+          }
         }
       }
-    }
+    });
+  std::vector<Site> sites;
+  for (const std::vector<Site>& slice : sitesOfSlice)
+  {
+    sites.insert(sites.end(), slice.begin(), slice.end());
   }
   if (sites.empty())
   {
@@ -159,50 +178,59 @@ std::vector<CameraPose> makeCanonicalPoses(
   const std::vector<Eigen::Vector3d> directions = sphereDirections(400);
   const double separation = std::cos(o.minViewSeparationDeg * Degree);
   const Eigen::Vector3d up = o.upCT.normalized();
+  std::vector<std::vector<CameraPose>> posesAt(positions.size());
+  pool.run(static_cast<int>(positions.size()),
+    [&](int k)
+    {
+      const Eigen::Vector3d& p = positions[k];
+      std::vector<std::pair<double, int>> open;
+      for (size_t d = 0; d < directions.size(); ++d)
+      {
+        const double clearance = clearanceAlong(model, p, directions[d], o.lookAheadMm);
+        if (clearance > 0.0)
+        {
+          open.emplace_back(-clearance, static_cast<int>(d));
+        }
+      }
+      std::sort(open.begin(), open.end());
+      std::vector<Eigen::Vector3d> views;
+      for (const auto& [negativeClearance, d] : open)
+      {
+        const Eigen::Vector3d& v = directions[d];
+        if (std::all_of(
+              views.begin(), views.end(), [&](const auto& w) { return v.dot(w) < separation; }))
+        {
+          views.push_back(v);
+          if (static_cast<int>(views.size()) == o.viewsPerPosition)
+          {
+            break;
+          }
+        }
+      }
+      for (Eigen::Vector3d look : views)
+      {
+        look = refineView(model, p, look, o.lookAheadMm);
+        const Eigen::Vector3d hint =
+          std::abs(look.dot(up)) < 0.95 ? up : Eigen::Vector3d(-Eigen::Vector3d::UnitY());
+        const CameraPose upright = CameraPose::lookAt(p, p + look, hint);
+        for (double roll : o.rollsDeg)
+        {
+          CameraPose pose = upright;
+          pose.rotation = rotationFromVector(roll * Degree * look) * upright.rotation;
+          posesAt[k].push_back(pose);
+        }
+      }
+    });
   std::vector<CameraPose> poses;
-  for (const Eigen::Vector3d& p : positions)
+  for (const std::vector<CameraPose>& at : posesAt)
   {
-    std::vector<std::pair<double, int>> open;
-    for (size_t d = 0; d < directions.size(); ++d)
+    for (const CameraPose& pose : at)
     {
-      const double clearance = clearanceAlong(model, p, directions[d], o.lookAheadMm);
-      if (clearance > 0.0)
+      if (static_cast<int>(poses.size()) == o.maxPoses)
       {
-        open.emplace_back(-clearance, static_cast<int>(d));
+        return poses;
       }
-    }
-    std::sort(open.begin(), open.end());
-    std::vector<Eigen::Vector3d> views;
-    for (const auto& [negativeClearance, d] : open)
-    {
-      const Eigen::Vector3d& v = directions[d];
-      if (std::all_of(
-            views.begin(), views.end(), [&](const auto& w) { return v.dot(w) < separation; }))
-      {
-        views.push_back(v);
-        if (static_cast<int>(views.size()) == o.viewsPerPosition)
-        {
-          break;
-        }
-      }
-    }
-    for (Eigen::Vector3d look : views)
-    {
-      look = refineView(model, p, look, o.lookAheadMm);
-      // Looking straight up or down, "up" is the anterior (-y in LPS).
-      const Eigen::Vector3d hint =
-        std::abs(look.dot(up)) < 0.95 ? up : Eigen::Vector3d(-Eigen::Vector3d::UnitY());
-      const CameraPose upright = CameraPose::lookAt(p, p + look, hint);
-      for (double roll : o.rollsDeg)
-      {
-        CameraPose pose = upright;
-        pose.rotation = rotationFromVector(roll * Degree * look) * upright.rotation;
-        poses.push_back(pose);
-        if (static_cast<int>(poses.size()) == o.maxPoses)
-        {
-          return poses;
-        }
-      }
+      poses.push_back(pose);
     }
   }
   return poses;

@@ -39,6 +39,9 @@ struct CanonicalPoseOptions
   Eigen::Vector3d upCT = Eigen::Vector3d::UnitZ();
   /// At most this many poses (default 20000); the deepest positions first.
   int maxPoses = 20000;
+  /// Threads over the grid and the positions (default 0: all cores). The
+  /// poses do not depend on it.
+  int threads = 0;
   /// @throws vimlop::Error naming the first invalid field.
   void validate() const;
 };

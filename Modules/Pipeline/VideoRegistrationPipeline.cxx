@@ -244,7 +244,9 @@ void VideoRegistrationPipeline::makeCanonicalStarts(
   std::vector<CameraPose> poses;
   if (!posesCT)
   {
-    poses = makeCanonicalPoses(*d.Model, d.Opts.canonical);
+    CanonicalPoseOptions canonical = d.Opts.canonical;
+    canonical.threads = d.Opts.registration.threads;
+    poses = makeCanonicalPoses(*d.Model, canonical);
   }
   else
   {

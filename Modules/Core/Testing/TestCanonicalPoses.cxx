@@ -58,6 +58,7 @@ TEST(CanonicalPoses, RollsAndBoundsAndDeterminism)
   CanonicalPoseOptions options;
   options.rollsDeg = { -20.0, 0.0, 20.0 };
   options.viewsPerPosition = 1;
+  options.threads = 2;
   const std::vector<CameraPose> poses = makeCanonicalPoses(tubeModel(), options);
   ASSERT_EQ(poses.size() % 3, 0u);
   // The three rolls of a view share its centre and axis, 20 degrees apart.
@@ -69,9 +70,14 @@ TEST(CanonicalPoses, RollsAndBoundsAndDeterminism)
   // Looking along +z or -z with up +z: the anterior (-y) is up instead.
   EXPECT_GT(-b.rotation.col(1).dot(-Eigen::Vector3d::UnitY()), 0.99);
 
+  // The deepest first: a bound keeps the first poses. One thread gives the
+  // same poses as two.
   options.maxPoses = 7;
-  EXPECT_EQ(makeCanonicalPoses(tubeModel(), options).size(), 7u);
+  const std::vector<CameraPose> first = makeCanonicalPoses(tubeModel(), options);
+  ASSERT_EQ(first.size(), 7u);
+  EXPECT_EQ(first[6].matrix(), poses[6].matrix());
   options.maxPoses = 20000;
+  options.threads = 1;
   const std::vector<CameraPose> again = makeCanonicalPoses(tubeModel(), options);
   ASSERT_EQ(again.size(), poses.size());
   for (size_t i = 0; i < poses.size(); ++i)
@@ -88,6 +94,18 @@ TEST(CanonicalPoses, BadOptionsAndNarrowAirwaysGetClearErrors)
   options = CanonicalPoseOptions();
   options.rollsDeg.clear();
   EXPECT_THROW(makeCanonicalPoses(tubeModel(), options), Error);
+  options = CanonicalPoseOptions();
+  options.threads = -1;
+  try
+  {
+    makeCanonicalPoses(tubeModel(), options);
+    FAIL() << "expected an error";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("thread count must not be negative"), std::string::npos)
+      << e.what();
+  }
   options = CanonicalPoseOptions();
   options.minClearanceMm = 10.0; // wider than the tube
   try
