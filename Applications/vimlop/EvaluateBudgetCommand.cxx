@@ -113,6 +113,11 @@ void addEvaluateBudgetCommand(CLI::App& evaluate)
       "a registration succeeds when its mean camera position error is at most this, mm")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
+  p5->add_option("--good-mm", o.goodMm,
+      "a registration is good when its mean camera position error is below this, mm; the "
+      "failure flag's false flags are flagged good ones")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
   p5->add_flag("--no-report", c->noReport, "skip the report page");
   addPipelineOptions(*p5, o.pipeline);
   addJsonFlag(*p5, c->json);

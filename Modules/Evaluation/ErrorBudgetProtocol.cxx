@@ -1,6 +1,7 @@
 #include <vimlop/Evaluation/ErrorBudgetProtocol.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/MultiStartRegistration.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/SimulatedVideoCase.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
@@ -116,15 +117,11 @@ std::vector<Eigen::Vector3d> targetPoints(const TriangleMesh& truth)
   return targets;
 }
 
-/// One registration's outcome.
+/// One registration's outcome, with its errors at the targets.
 struct Run
 {
-  double positionMm = 0.0;
-  double angleDeg = 0.0;
+  BudgetRegistration record;
   std::vector<double> treMm;
-  double contourErrorPx = 0.0;
-  bool flagged = false;
-  double seconds = 0.0;
 };
 
 /// The figures of a method over its runs.
@@ -140,12 +137,13 @@ BudgetMethodFigures figuresOf(const std::vector<Run>& runs, double successMm)
   double seconds = 0.0;
   int successes = 0;
   int flagged = 0;
-  for (const Run& r : runs)
+  for (const Run& run : runs)
   {
-    position.push_back(r.positionMm);
-    angle.push_back(r.angleDeg);
-    tre.insert(tre.end(), r.treMm.begin(), r.treMm.end());
-    const bool success = r.positionMm <= successMm;
+    const BudgetRegistration& r = run.record;
+    position.push_back(r.cameraPositionMm);
+    angle.push_back(r.cameraAngleDeg);
+    tre.insert(tre.end(), run.treMm.begin(), run.treMm.end());
+    const bool success = r.cameraPositionMm <= successMm;
     successes += success ? 1 : 0;
     flagged += r.flagged ? 1 : 0;
     (success ? succeeded : failed).push_back(r.contourErrorPx);
@@ -187,6 +185,44 @@ nlohmann::json methodsJson(const std::map<std::string, BudgetMethodFigures>& met
 
 } // namespace
 
+FailureFlagFigures assessFailureFlag(
+  const std::vector<BudgetRegistration>& registrations, double successMm, double goodMm)
+{
+  FailureFlagFigures f;
+  std::vector<double> failed, succeeded;
+  for (const BudgetRegistration& r : registrations)
+  {
+    ++f.registrations;
+    const bool failure = !(r.cameraPositionMm <= successMm);
+    (failure ? failed : succeeded).push_back(r.contourErrorPx);
+    f.failures += failure ? 1 : 0;
+    f.missed += failure && !r.flagged ? 1 : 0;
+    const bool good = r.cameraPositionMm < goodMm;
+    f.good += good ? 1 : 0;
+    f.falseFlags += good && r.flagged ? 1 : 0;
+  }
+  if (!failed.empty() && !succeeded.empty())
+  {
+    f.contourErrorAuc = rocAuc(failed, succeeded);
+  }
+  return f;
+}
+
+std::map<std::string, FailureFlagFigures> ErrorBudgetReport::failureFlag() const
+{
+  std::map<std::string, std::vector<BudgetRegistration>> byMethod;
+  for (const BudgetRegistration& r : this->registrations)
+  {
+    byMethod[r.method].push_back(r);
+  }
+  std::map<std::string, FailureFlagFigures> figures;
+  for (const auto& [method, registrations] : byMethod)
+  {
+    figures[method] = assessFailureFlag(registrations, this->successMm, this->goodMm);
+  }
+  return figures;
+}
+
 void ErrorBudgetOptions::validate() const
 {
   if (this->seeds < 1)
@@ -220,6 +256,10 @@ void ErrorBudgetOptions::validate() const
   {
     throw Error("P5: the success threshold must be positive");
   }
+  if (!(this->goodMm > 0.0 && this->goodMm <= this->successMm))
+  {
+    throw Error("P5: the good threshold must be positive and at most the success threshold");
+  }
   if (this->workFolder.empty())
   {
     throw Error("P5: a work folder is required");
@@ -237,6 +277,8 @@ ErrorBudgetReport runErrorBudgetProtocol(
   ErrorBudgetReport report;
   report.seeds = o.seeds;
   report.frames = o.frames;
+  report.successMm = o.successMm;
+  report.goodMm = o.goodMm;
   const int total = static_cast<int>(plans.size()) * o.seeds;
   int done = 0;
 
@@ -281,7 +323,8 @@ ErrorBudgetReport runErrorBudgetProtocol(
         floorAngle.push_back(c.floor.angleMeanDeg);
         const SimilarityTransform sfmFromCT = c.truth.inverse();
 
-        auto registerEach = [&](std::map<std::string, std::vector<Run>>& runs)
+        auto registerEach = [&](
+                              std::map<std::string, std::vector<Run>>& runs, const char* startKind)
         {
           for (RegistrationMethod method : o.methods)
           {
@@ -291,18 +334,25 @@ ErrorBudgetReport runErrorBudgetProtocol(
             const auto t0 = std::chrono::steady_clock::now();
             pipeline.run();
             Run run;
-            run.seconds = secondsSince(t0);
+            BudgetRegistration& record = run.record;
+            record.condition = condition.name;
+            record.seed = seed;
+            record.start = startKind;
+            record.method = toString(method);
+            record.seconds = secondsSince(t0);
             const SimilarityTransform& estimate = pipeline.result().sfmToCT;
-            const VideoCameraErrors e = cameraErrors(c, estimate, run.seconds);
-            run.positionMm = e.positionMeanMm;
-            run.angleDeg = e.angleMeanDeg;
+            const VideoCameraErrors e = cameraErrors(c, estimate, record.seconds);
+            record.cameraPositionMm = e.positionMeanMm;
+            record.cameraAngleDeg = e.angleMeanDeg;
             for (const Eigen::Vector3d& t : targets)
             {
               run.treMm.push_back((estimate.apply(sfmFromCT.apply(t)) - t).norm());
             }
-            run.contourErrorPx = pipeline.result().contourErrorPx;
-            run.flagged = pipeline.flaggedAsFailure();
-            runs[toString(method)].push_back(run);
+            record.contourErrorPx = pipeline.result().contourErrorPx;
+            record.matchedFraction = matchedContourFraction(pipeline.result());
+            record.flagged = pipeline.flaggedAsFailure();
+            report.registrations.push_back(record);
+            runs[record.method].push_back(run);
           }
         };
         if (o.canonicalStarts)
@@ -310,7 +360,7 @@ ErrorBudgetReport runErrorBudgetProtocol(
           pipeline.makeCanonicalStarts(
             world.canonicalPosesCT.empty() ? nullptr : &world.canonicalPosesCT,
             "the template's canonical poses");
-          registerEach(canonicalRuns);
+          registerEach(canonicalRuns, "canonical");
         }
         if (o.perturbedStarts)
         {
@@ -318,7 +368,7 @@ ErrorBudgetReport runErrorBudgetProtocol(
           pipeline.setStarts({ perturbedStart(c, pipeline.model(), rng, o.perturbMinMm,
                                o.perturbMaxMm, o.perturbMinDeg, o.perturbMaxDeg) },
             StartMode::Manual);
-          registerEach(perturbedRuns);
+          registerEach(perturbedRuns, "perturbed");
         }
       }
       catch (const PipelineCancelled&)
@@ -349,7 +399,9 @@ ErrorBudgetReport runErrorBudgetProtocol(
     condition.floorAngleDeg = summarize(floorAngle);
     condition.runtimeS = secondsSince(conditionStart);
     report.conditions.push_back(condition);
-    for (const std::string& line : ErrorBudgetReport{ 0, 0, { condition }, 0.0 }.summaryLines())
+    ErrorBudgetReport one;
+    one.conditions = { condition };
+    for (const std::string& line : one.summaryLines())
     {
       reportEvaluationNote(progress, line);
     }
@@ -379,8 +431,28 @@ nlohmann::json ErrorBudgetReport::toJson() const
     j["runtime_s"] = c.runtimeS;
     conditions[c.name] = j;
   }
+  nlohmann::json registrations = nlohmann::json::array();
+  for (const BudgetRegistration& r : this->registrations)
+  {
+    registrations.push_back({ { "condition", r.condition }, { "seed", r.seed },
+      { "start", r.start }, { "method", r.method }, { "camera_position_mm", r.cameraPositionMm },
+      { "camera_angle_deg", r.cameraAngleDeg }, { "contour_error_px", r.contourErrorPx },
+      { "matched_fraction", r.matchedFraction }, { "flagged", r.flagged },
+      { "runtime_s", r.seconds } });
+  }
+  nlohmann::json flag = nlohmann::json::object();
+  for (const auto& [method, f] : this->failureFlag())
+  {
+    flag[method] = { { "registrations", f.registrations }, { "failures", f.failures },
+      { "missed", f.missed }, { "good", f.good }, { "false_flags", f.falseFlags },
+      { "contour_error_auc",
+        f.contourErrorAuc ? nlohmann::json(*f.contourErrorAuc) : nlohmann::json(nullptr) } };
+  }
   return { { "protocol", "P5" }, { "seeds", this->seeds }, { "frames", this->frames },
-    { "conditions", conditions }, { "runtime_s", this->runtimeS } };
+    { "conditions", conditions }, { "registrations", registrations },
+    { "failure_flag",
+      { { "success_mm", this->successMm }, { "good_mm", this->goodMm }, { "methods", flag } } },
+    { "runtime_s", this->runtimeS } };
 }
 
 std::vector<std::string> ErrorBudgetReport::summaryLines() const
@@ -406,6 +478,17 @@ std::vector<std::string> ErrorBudgetReport::summaryLines() const
                                "%zu sequences failed",
       c.name.c_str(), c.floorPositionMm.median, c.floorAngleDeg.median, c.truthToModelMeanMm,
       c.failedSequences.size()));
+  }
+  auto percentOf = [](int part, int whole)
+  { return whole > 0 ? formatText("%.0f %%", 100.0 * part / whole) : std::string("-"); };
+  for (const auto& [method, f] : this->failureFlag())
+  {
+    lines.push_back(formatText("P5 failure flag %-11s %d registrations pooled: missed %d of %d "
+                               "failures (%s), flagged %d of %d good (%s), contour error AUC %s",
+      method.c_str(), f.registrations, f.missed, f.failures,
+      percentOf(f.missed, f.failures).c_str(), f.falseFlags, f.good,
+      percentOf(f.falseFlags, f.good).c_str(),
+      f.contourErrorAuc ? formatText("%.3f", *f.contourErrorAuc).c_str() : "-"));
   }
   return lines;
 }

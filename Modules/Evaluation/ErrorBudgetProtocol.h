@@ -50,6 +50,9 @@ struct ErrorBudgetOptions
   /// A registration succeeds when its mean camera position error is at most
   /// this, mm (default 1, P3's).
   double successMm = 1.0;
+  /// A registration is good when its mean camera position error is below
+  /// this, mm (default 0.5): flagging a good one is a false flag (issue 15).
+  double goodMm = 0.5;
   /// The main job's settings (the production defaults).
   VideoRegistrationOptions pipeline;
   /// Where each sequence's user files are written for the pipeline to read
@@ -79,6 +82,42 @@ struct BudgetMethodFigures
   int registrations = 0;
 };
 
+/// @brief One registration of P5: what the failure flag saw and how far off it was.
+struct BudgetRegistration
+{
+  std::string condition;
+  std::uint64_t seed = 0;
+  std::string start; ///< "canonical" or "perturbed"
+  std::string method;
+  double cameraPositionMm = 0.0; ///< mean over the frames
+  double cameraAngleDeg = 0.0;   ///< mean over the frames
+  double contourErrorPx = 0.0;   ///< the result's mean contour error
+  double matchedFraction = 0.0;  ///< of the video contour points, matched at the end
+  bool flagged = false;          ///< by the main job's failure flag
+  double seconds = 0.0;
+};
+
+/**
+ * @brief How a failure flag fares over registrations pooled across
+ * conditions and starts (issue 15): failures (mean camera error above
+ * `successMm`) it missed, good registrations (below `goodMm`) it flagged.
+ */
+struct FailureFlagFigures
+{
+  int registrations = 0;
+  int failures = 0;
+  int missed = 0; ///< failures not flagged
+  int good = 0;
+  int falseFlags = 0; ///< good registrations flagged
+  /// ROC AUC of the contour error as a detector of failures (null without a
+  /// failure or a success).
+  std::optional<double> contourErrorAuc;
+};
+
+/// @brief The flag's figures over `registrations` (all of them, whatever their method).
+FailureFlagFigures assessFailureFlag(
+  const std::vector<BudgetRegistration>& registrations, double successMm, double goodMm);
+
 /// @brief One condition of P5: the ideal world, a source at a level, or the clinical world.
 struct BudgetCondition
 {
@@ -106,11 +145,21 @@ struct ErrorBudgetReport
   int seeds = 0;
   int frames = 0;
   std::vector<BudgetCondition> conditions;
+  /// Every registration, in the order they ran.
+  std::vector<BudgetRegistration> registrations;
+  /// The thresholds of success and of a good registration, mm.
+  double successMm = 1.0;
+  double goodMm = 0.5;
   double runtimeS = 0.0;
+
+  /// @brief Per method, the failure flag over its registrations pooled across
+  /// conditions and starts.
+  std::map<std::string, FailureFlagFigures> failureFlag() const;
 
   /// @brief The report as `vimlop evaluate budget` writes it (layout in the user guide).
   nlohmann::json toJson() const;
-  /// @brief One line per condition and method (canonical starts), as printed.
+  /// @brief One line per condition and method (canonical starts), then one
+  /// per method for the pooled failure flag, as printed.
   std::vector<std::string> summaryLines() const;
 };
 

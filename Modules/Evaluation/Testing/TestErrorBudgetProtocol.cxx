@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <string>
+#include <tuple>
 
 using namespace vimlop;
 
@@ -42,6 +43,64 @@ TEST(ErrorBudgetProtocol, RefusesSettingsItCannotRun)
   bad = o;
   bad.canonicalStarts = bad.perturbedStarts = false;
   EXPECT_EQ(errorOf(bad), "P5: neither canonical nor perturbed starts");
+  bad = o;
+  bad.goodMm = 2.0; // above the success threshold, 1 mm
+  EXPECT_EQ(
+    errorOf(bad), "P5: the good threshold must be positive and at most the success threshold");
+}
+
+TEST(ErrorBudgetProtocol, PoolsTheFailureFlagOverConditionsAndStarts)
+{
+  // camera error mm, contour error px, flagged
+  const std::vector<std::tuple<double, double, bool>> outcomes = {
+    { 0.2, 1.0, false }, // good
+    { 0.3, 8.0, true },  // good, flagged: a false flag
+    { 0.7, 2.0, true },  // neither good nor a failure
+    { 2.0, 3.0, false }, // a failure missed
+    { 5.0, 20.0, true }, // a failure caught
+  };
+  ErrorBudgetReport report;
+  for (const auto& [mm, px, flagged] : outcomes)
+  {
+    BudgetRegistration r;
+    r.condition = mm < 1.0 ? "ideal" : "anatomy";
+    r.start = px > 5.0 ? "canonical" : "perturbed";
+    r.method = "vimlop";
+    r.cameraPositionMm = mm;
+    r.contourErrorPx = px;
+    r.flagged = flagged;
+    report.registrations.push_back(r);
+  }
+  report.registrations.push_back(report.registrations.front());
+  report.registrations.back().method = "imlp";
+
+  const FailureFlagFigures f = report.failureFlag().at("vimlop");
+  EXPECT_EQ(f.registrations, 5);
+  EXPECT_EQ(f.failures, 2);
+  EXPECT_EQ(f.missed, 1);
+  EXPECT_EQ(f.good, 2);
+  EXPECT_EQ(f.falseFlags, 1);
+  // Failures at 3 and 20 px against successes at 1, 8 and 2 px: 5 of 6 pairs ordered.
+  ASSERT_TRUE(f.contourErrorAuc);
+  EXPECT_NEAR(*f.contourErrorAuc, 5.0 / 6.0, 1e-12);
+  // IMLP's one good registration: no failure, no AUC.
+  const FailureFlagFigures imlp = report.failureFlag().at("imlp");
+  EXPECT_EQ(imlp.registrations, 1);
+  EXPECT_FALSE(imlp.contourErrorAuc);
+
+  const nlohmann::json j = report.toJson();
+  ASSERT_EQ(j["registrations"].size(), 6u);
+  EXPECT_EQ(j["registrations"][3]["camera_position_mm"], 2.0);
+  EXPECT_EQ(j["registrations"][3]["start"], "perturbed");
+  EXPECT_EQ(j["failure_flag"]["good_mm"], 0.5);
+  EXPECT_EQ(j["failure_flag"]["methods"]["vimlop"]["missed"], 1);
+  EXPECT_EQ(j["failure_flag"]["methods"]["vimlop"]["false_flags"], 1);
+  EXPECT_TRUE(j["failure_flag"]["methods"]["imlp"]["contour_error_auc"].is_null());
+  const std::vector<std::string> lines = report.summaryLines();
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[1],
+    "P5 failure flag vimlop      5 registrations pooled: missed 1 of 2 failures (50 %), flagged "
+    "1 of 2 good (50 %), contour error AUC 0.833");
 }
 
 TEST(ErrorBudgetProtocol, ReportsInTheLayoutOfTheIssue)
@@ -105,6 +164,19 @@ TEST(ErrorBudgetProtocolOnTheCranium, RegistersEachConditionFromTheUsersFilesAlo
     });
   EXPECT_EQ(sequences, 2);
   ASSERT_EQ(r.conditions.size(), 2u);
+  // Every registration is on record: 2 conditions, 1 seed, 2 methods.
+  ASSERT_EQ(r.registrations.size(), 4u);
+  for (const BudgetRegistration& g : r.registrations)
+  {
+    EXPECT_EQ(g.start, "perturbed");
+    EXPECT_EQ(g.seed, 1u);
+    EXPECT_GT(g.cameraPositionMm, 0.0);
+    EXPECT_GE(g.matchedFraction, g.method == "vimlop" ? 0.5 : 0.0) << g.method;
+    EXPECT_LE(g.matchedFraction, 1.0);
+  }
+  EXPECT_EQ(r.registrations[0].condition, "ideal");
+  EXPECT_EQ(r.registrations[1].method, "trimmed-icp");
+  EXPECT_EQ(r.registrations[3].condition, "tracker");
   EXPECT_EQ(r.conditions[0].name, "ideal");
   EXPECT_EQ(r.conditions[1].name, "tracker");
   EXPECT_EQ(r.conditions[1].value, 0.03);
