@@ -124,6 +124,34 @@ struct Run
   std::vector<double> treMm;
 };
 
+/// The measures a confidence could use, from the result alone.
+void describeConfidence(const RegistrationResult& result, BudgetRegistration& record)
+{
+  long long matched = 0;
+  long long inliers = 0;
+  std::vector<double> frameErrors;
+  for (const FrameResult& f : result.frames)
+  {
+    matched += f.matched;
+    inliers += f.inliers;
+    if (f.matched > 0)
+    {
+      frameErrors.push_back(f.contourErrorPx);
+    }
+  }
+  record.contourInlierFraction = matched > 0 ? static_cast<double>(inliers) / matched : 0.0;
+  const auto pointInliers = std::count(result.pointInliers.begin(), result.pointInliers.end(), 1);
+  record.pointInlierFraction = result.pointInliers.empty()
+    ? 0.0
+    : static_cast<double>(pointInliers) / static_cast<double>(result.pointInliers.size());
+  record.residualErrorMm = result.residualErrorMm;
+  if (!frameErrors.empty())
+  {
+    record.frameContourErrorMedianPx = summarize(frameErrors).median;
+    record.frameContourErrorMaxPx = *std::max_element(frameErrors.begin(), frameErrors.end());
+  }
+}
+
 /// The figures of a method over its runs.
 BudgetMethodFigures figuresOf(const std::vector<Run>& runs, double successMm)
 {
@@ -350,6 +378,7 @@ ErrorBudgetReport runErrorBudgetProtocol(
             }
             record.contourErrorPx = pipeline.result().contourErrorPx;
             record.matchedFraction = matchedContourFraction(pipeline.result());
+            describeConfidence(pipeline.result(), record);
             record.flagged = pipeline.flaggedAsFailure();
             report.registrations.push_back(record);
             runs[record.method].push_back(run);
@@ -437,7 +466,12 @@ nlohmann::json ErrorBudgetReport::toJson() const
     registrations.push_back({ { "condition", r.condition }, { "seed", r.seed },
       { "start", r.start }, { "method", r.method }, { "camera_position_mm", r.cameraPositionMm },
       { "camera_angle_deg", r.cameraAngleDeg }, { "contour_error_px", r.contourErrorPx },
-      { "matched_fraction", r.matchedFraction }, { "flagged", r.flagged },
+      { "matched_fraction", r.matchedFraction },
+      { "contour_inlier_fraction", r.contourInlierFraction },
+      { "point_inlier_fraction", r.pointInlierFraction },
+      { "residual_error_mm", r.residualErrorMm },
+      { "frame_contour_error_median_px", r.frameContourErrorMedianPx },
+      { "frame_contour_error_max_px", r.frameContourErrorMaxPx }, { "flagged", r.flagged },
       { "runtime_s", r.seconds } });
   }
   nlohmann::json flag = nlohmann::json::object();

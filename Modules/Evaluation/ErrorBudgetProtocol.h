@@ -93,7 +93,16 @@ struct BudgetRegistration
   double cameraAngleDeg = 0.0;   ///< mean over the frames
   double contourErrorPx = 0.0;   ///< the result's mean contour error
   double matchedFraction = 0.0;  ///< of the video contour points, matched at the end
-  bool flagged = false;          ///< by the main job's failure flag
+  /// What else a confidence could use, all known without the truth: the
+  /// contour inliers among the matches, the 3-D inliers among the SfM
+  /// points, the 3-D residual (mm), and the median and largest per-frame
+  /// contour error (px) over the frames with a match.
+  double contourInlierFraction = 0.0;
+  double pointInlierFraction = 0.0;
+  double residualErrorMm = 0.0;
+  double frameContourErrorMedianPx = 0.0;
+  double frameContourErrorMaxPx = 0.0;
+  bool flagged = false; ///< by the main job's failure flag
   double seconds = 0.0;
 };
 

@@ -173,6 +173,17 @@ TEST(ErrorBudgetProtocolOnTheCranium, RegistersEachConditionFromTheUsersFilesAlo
     EXPECT_GT(g.cameraPositionMm, 0.0);
     EXPECT_GE(g.matchedFraction, g.method == "vimlop" ? 0.5 : 0.0) << g.method;
     EXPECT_LE(g.matchedFraction, 1.0);
+    // The measures a confidence could use, from a good registration.
+    EXPECT_GT(g.pointInlierFraction, 0.5);
+    EXPECT_LE(g.pointInlierFraction, 1.0);
+    EXPECT_GT(g.residualErrorMm, 0.0);
+    if (g.method == "vimlop")
+    {
+      EXPECT_GT(g.contourInlierFraction, 0.5);
+      EXPECT_LE(g.contourInlierFraction, 1.0);
+      EXPECT_GT(g.frameContourErrorMedianPx, 0.0);
+      EXPECT_LE(g.frameContourErrorMedianPx, g.frameContourErrorMaxPx);
+    }
   }
   EXPECT_EQ(r.registrations[0].condition, "ideal");
   EXPECT_EQ(r.registrations[1].method, "trimmed-icp");
