@@ -198,6 +198,7 @@ MultiStartResult registerMultiStart(const RegistrationModel& model, const Regist
         c.residualErrorMm = r.residualErrorMm;
         c.iterations += r.iterations;
         c.termination = r.termination;
+        c.finalSfmToCT = r.sfmToCT;
         if (progress)
         {
           std::lock_guard<std::mutex> lock(progressMutex);

@@ -67,7 +67,9 @@ struct MultiStartCandidate
   double contourErrorPx = 0.0;          ///< at its end
   double matchedFraction = 0.0;         ///< of the video contour points, at its end
   double residualErrorMm = 0.0;         ///< at its end
-  int iterations = 0;                   ///< screening and final runs together
+  /// T at its end (the screening's end for a start that was not a finalist).
+  SimilarityTransform finalSfmToCT;
+  int iterations = 0; ///< screening and final runs together
   TerminationReason termination = TerminationReason::MaxIterations;
 };
 

@@ -152,6 +152,34 @@ void describeConfidence(const RegistrationResult& result, BudgetRegistration& re
   }
 }
 
+/// The least final contour error of a finalist whose cameras ended more
+/// than `apartMm` (mean) from the winner's; empty when there is none.
+std::optional<double> rivalContourError(
+  const MultiStartResult& outcome, const RegistrationData& data, double apartMm)
+{
+  std::optional<double> rival;
+  const SimilarityTransform& winner = outcome.best.sfmToCT;
+  for (const MultiStartCandidate& c : outcome.candidates)
+  {
+    if (!c.finalist || data.frames.empty())
+    {
+      continue;
+    }
+    double apart = 0.0;
+    for (const VideoFrame& f : data.frames)
+    {
+      apart +=
+        (c.finalSfmToCT.apply(f.cameraToSfm.centre) - winner.apply(f.cameraToSfm.centre)).norm();
+    }
+    if (apart / static_cast<double>(data.frames.size()) > apartMm &&
+      (!rival || c.contourErrorPx < *rival))
+    {
+      rival = c.contourErrorPx;
+    }
+  }
+  return rival;
+}
+
 /// The figures of a method over its runs.
 BudgetMethodFigures figuresOf(const std::vector<Run>& runs, double successMm)
 {
@@ -379,6 +407,8 @@ ErrorBudgetReport runErrorBudgetProtocol(
             record.contourErrorPx = pipeline.result().contourErrorPx;
             record.matchedFraction = matchedContourFraction(pipeline.result());
             describeConfidence(pipeline.result(), record);
+            record.rivalContourErrorPx =
+              rivalContourError(pipeline.outcome(), pipeline.data(), o.successMm);
             record.flagged = pipeline.flaggedAsFailure();
             report.registrations.push_back(record);
             runs[record.method].push_back(run);
@@ -471,8 +501,10 @@ nlohmann::json ErrorBudgetReport::toJson() const
       { "point_inlier_fraction", r.pointInlierFraction },
       { "residual_error_mm", r.residualErrorMm },
       { "frame_contour_error_median_px", r.frameContourErrorMedianPx },
-      { "frame_contour_error_max_px", r.frameContourErrorMaxPx }, { "flagged", r.flagged },
-      { "runtime_s", r.seconds } });
+      { "frame_contour_error_max_px", r.frameContourErrorMaxPx },
+      { "rival_contour_error_px",
+        r.rivalContourErrorPx ? nlohmann::json(*r.rivalContourErrorPx) : nlohmann::json(nullptr) },
+      { "flagged", r.flagged }, { "runtime_s", r.seconds } });
   }
   nlohmann::json flag = nlohmann::json::object();
   for (const auto& [method, f] : this->failureFlag())

@@ -102,6 +102,11 @@ struct BudgetRegistration
   double residualErrorMm = 0.0;
   double frameContourErrorMedianPx = 0.0;
   double frameContourErrorMaxPx = 0.0;
+  /// From the canonical multi-start: the least final contour error of a
+  /// finalist that ended elsewhere (its cameras more than the success
+  /// threshold from the winner's on average), px; empty when every finalist
+  /// ended with the winner.
+  std::optional<double> rivalContourErrorPx;
   bool flagged = false; ///< by the main job's failure flag
   double seconds = 0.0;
 };

@@ -99,6 +99,9 @@ TEST(MultiStartRegistration, TheLeastContourErrorWinsWhateverTheThreads)
   EXPECT_EQ(a.candidates[0].screeningContourErrorPx, 0.0);
   EXPECT_EQ(a.bestCandidate, b.bestCandidate);
   EXPECT_EQ(a.best.sfmToCT.matrix(), b.best.sfmToCT.matrix());
+  // Each candidate that ran keeps where it ended: the winner where the result is.
+  EXPECT_EQ(a.candidates[a.bestCandidate].finalSfmToCT.matrix(), a.best.sfmToCT.matrix());
+  EXPECT_NE(a.candidates[0].finalSfmToCT.matrix(), a.candidates[0].initialSfmToCT.matrix());
   for (size_t i = 0; i < a.candidates.size(); ++i)
   {
     EXPECT_EQ(a.candidates[i].contourErrorPx, b.candidates[i].contourErrorPx);

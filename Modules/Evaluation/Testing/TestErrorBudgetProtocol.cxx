@@ -169,6 +169,7 @@ TEST(ErrorBudgetProtocolOnTheCranium, RegistersEachConditionFromTheUsersFilesAlo
   for (const BudgetRegistration& g : r.registrations)
   {
     EXPECT_EQ(g.start, "perturbed");
+    EXPECT_FALSE(g.rivalContourErrorPx) << "a single start has no rival";
     EXPECT_EQ(g.seed, 1u);
     EXPECT_GT(g.cameraPositionMm, 0.0);
     EXPECT_GE(g.matchedFraction, g.method == "vimlop" ? 0.5 : 0.0) << g.method;
