@@ -153,15 +153,16 @@ void describeConfidence(const RegistrationResult& result, BudgetRegistration& re
 }
 
 /// The least final contour error of a finalist whose cameras ended more
-/// than `apartMm` (mean) from the winner's; empty when there is none.
-std::optional<double> rivalContourError(
-  const MultiStartResult& outcome, const RegistrationData& data, double apartMm)
+/// than `apartMm` (mean) from the winner's, among those that matched enough
+/// contour points to compete; empty when there is none.
+std::optional<double> rivalContourError(const MultiStartResult& outcome,
+  const RegistrationData& data, double apartMm, double minMatchedFraction)
 {
   std::optional<double> rival;
   const SimilarityTransform& winner = outcome.best.sfmToCT;
   for (const MultiStartCandidate& c : outcome.candidates)
   {
-    if (!c.finalist || data.frames.empty())
+    if (!c.finalist || c.matchedFraction < minMatchedFraction || data.frames.empty())
     {
       continue;
     }
@@ -407,8 +408,8 @@ ErrorBudgetReport runErrorBudgetProtocol(
             record.contourErrorPx = pipeline.result().contourErrorPx;
             record.matchedFraction = matchedContourFraction(pipeline.result());
             describeConfidence(pipeline.result(), record);
-            record.rivalContourErrorPx =
-              rivalContourError(pipeline.outcome(), pipeline.data(), o.successMm);
+            record.rivalContourErrorPx = rivalContourError(pipeline.outcome(), pipeline.data(),
+              o.successMm, o.pipeline.multiStart.minMatchedFraction);
             record.flagged = pipeline.flaggedAsFailure();
             report.registrations.push_back(record);
             runs[record.method].push_back(run);
