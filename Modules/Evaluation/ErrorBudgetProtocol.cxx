@@ -190,9 +190,9 @@ BudgetMethodFigures figuresOf(const std::vector<Run>& runs, double successMm)
   {
     return f;
   }
-  std::vector<double> position, angle, tre, failed, succeeded;
+  std::vector<double> position, angle, tre;
+  std::vector<BudgetRegistration> records;
   double seconds = 0.0;
-  int successes = 0;
   int flagged = 0;
   for (const Run& run : runs)
   {
@@ -200,21 +200,18 @@ BudgetMethodFigures figuresOf(const std::vector<Run>& runs, double successMm)
     position.push_back(r.cameraPositionMm);
     angle.push_back(r.cameraAngleDeg);
     tre.insert(tre.end(), run.treMm.begin(), run.treMm.end());
-    const bool success = r.cameraPositionMm <= successMm;
-    successes += success ? 1 : 0;
     flagged += r.flagged ? 1 : 0;
-    (success ? succeeded : failed).push_back(r.contourErrorPx);
     seconds += r.seconds;
+    records.push_back(r);
   }
+  // Success and the contour error's AUC by the same rule as the pooled flag.
+  const FailureFlagFigures flag = assessFailureFlag(records, successMm, successMm);
   f.cameraPositionMm = summarize(position);
   f.cameraAngleDeg = summarize(angle);
   f.treMm = summarize(tre);
-  f.successRate = static_cast<double>(successes) / runs.size();
+  f.successRate = static_cast<double>(flag.registrations - flag.failures) / runs.size();
   f.flaggedRate = static_cast<double>(flagged) / runs.size();
-  if (!failed.empty() && !succeeded.empty())
-  {
-    f.failureAuc = rocAuc(failed, succeeded);
-  }
+  f.failureAuc = flag.contourErrorAuc;
   f.meanRuntimeS = seconds / runs.size();
   return f;
 }
