@@ -210,6 +210,7 @@ std::vector<CameraPose> makeCanonicalPoses(
       for (Eigen::Vector3d look : views)
       {
         look = refineView(model, p, look, o.lookAheadMm);
+        // Looking straight up or down, "up" is the anterior (-y in LPS).
         const Eigen::Vector3d hint =
           std::abs(look.dot(up)) < 0.95 ? up : Eigen::Vector3d(-Eigen::Vector3d::UnitY());
         const CameraPose upright = CameraPose::lookAt(p, p + look, hint);
