@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 
 #include <algorithm>
@@ -18,11 +19,6 @@ namespace vimlop
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 const std::string framePrefix = "Seq_Frame";
 
@@ -43,7 +39,8 @@ void addField(SequenceMetafileHeader& header, const std::string& key, const std:
   const long frame = std::strtol(number.c_str(), &end, 10);
   if (number.empty() || *end != '\0' || frame < 0)
   {
-    fail(path, "line " + std::to_string(lineNumber) + ": '" + key + "' has no frame number");
+    throwFileError(
+      path, "line " + std::to_string(lineNumber) + ": '" + key + "' has no frame number");
   }
   header.frames[frame][key.substr(underscore + 1)] = value;
 }
@@ -80,7 +77,7 @@ void timestampsFromSequenceIndex(SequenceMetafileHeader& header, const std::stri
     const auto type = header.fields.find(axis + " index type");
     if (type != header.fields.end() && type->second != "numeric")
     {
-      fail(path,
+      throwFileError(path,
         "its sequence index is of type '" + type->second +
           "', not numeric: the frames have no times");
     }
@@ -88,7 +85,7 @@ void timestampsFromSequenceIndex(SequenceMetafileHeader& header, const std::stri
     const std::string unit = units == header.fields.end() ? "" : lastQuoted(units->second);
     if (!unit.empty() && unit != "s")
     {
-      fail(path, "its sequence index is in '" + unit + "', not in seconds (s)");
+      throwFileError(path, "its sequence index is in '" + unit + "', not in seconds (s)");
     }
     std::istringstream list(values);
     std::string value;
@@ -107,23 +104,24 @@ void writeTransformSequenceFile(
 {
   if (items.empty())
   {
-    fail(path, "the transform sequence to write is empty");
+    throwFileError(path, "the transform sequence to write is empty");
   }
   if (name.empty() ||
     !std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isalnum(c); }))
   {
-    fail(path, "the transform name '" + name + "' is not letters and digits");
+    throwFileError(path, "the transform name '" + name + "' is not letters and digits");
   }
   for (size_t i = 0; i < items.size(); ++i)
   {
     if (!std::isfinite(items[i].timeS) || !items[i].matrix.allFinite())
     {
-      fail(path, "item " + std::to_string(i) + " of the sequence has a value that is not finite");
+      throwFileError(
+        path, "item " + std::to_string(i) + " of the sequence has a value that is not finite");
     }
     // Slicer indexes the items by their time rounded to the millisecond.
     if (i > 0 && items[i].timeS - items[i - 1].timeS < 1e-3)
     {
-      fail(path,
+      throwFileError(path,
         "the times of items " + std::to_string(i - 1) + " and " + std::to_string(i) + " (" +
           formatText("%.17g", items[i - 1].timeS) + " s, " + formatText("%.17g", items[i].timeS) +
           " s) do not increase by at least 1 ms");
@@ -167,7 +165,7 @@ std::optional<double> SequenceMetafileHeader::timestampS(long frame, const std::
   double t = 0.0;
   if (!(number >> t) || !std::isfinite(t))
   {
-    fail(path,
+    throwFileError(path,
       "frame " + std::to_string(frame) + "'s timestamp '" + value->second + "' is not a number");
   }
   return t;
@@ -185,7 +183,7 @@ SequenceMetafileHeader readSequenceMetafileHeader(std::istream& in, const std::s
     read += static_cast<std::streamoff>(line.size()) + 1;
     if (read > (std::streamoff(64) << 20))
     {
-      fail(path, "its header goes on for over 64 MiB: not a sequence metafile");
+      throwFileError(path, "its header goes on for over 64 MiB: not a sequence metafile");
     }
     if (lineNumber == 1 && line.compare(0, 7, "NRRD000") == 0)
     {
@@ -209,7 +207,8 @@ SequenceMetafileHeader readSequenceMetafileHeader(std::istream& in, const std::s
       const size_t colon = std::min(keyEnd, fieldEnd);
       if (colon == std::string::npos)
       {
-        fail(path, "line " + std::to_string(lineNumber) + " is not 'field: value' or 'key:=value'");
+        throwFileError(
+          path, "line " + std::to_string(lineNumber) + " is not 'field: value' or 'key:=value'");
       }
       addField(
         header, trimmed(line.substr(0, colon)), trimmed(line.substr(colon + 2)), lineNumber, path);
@@ -218,7 +217,7 @@ SequenceMetafileHeader readSequenceMetafileHeader(std::istream& in, const std::s
     const size_t equals = line.find('=');
     if (equals == std::string::npos)
     {
-      fail(path, "line " + std::to_string(lineNumber) + " is not 'name = value'");
+      throwFileError(path, "line " + std::to_string(lineNumber) + " is not 'name = value'");
     }
     const std::string key = trimmed(line.substr(0, equals));
     addField(header, key, trimmed(line.substr(equals + 1)), lineNumber, path);
@@ -242,12 +241,12 @@ std::vector<TimedTransform> readTransformSequenceFile(
   std::ifstream file(path, std::ios::binary);
   if (!file)
   {
-    fail(path, "no such file, or it cannot be read");
+    throwFileError(path, "no such file, or it cannot be read");
   }
   const SequenceMetafileHeader header = readSequenceMetafileHeader(file, path);
   if (header.format == SequenceFileFormat::MetaImage && header.fields.count("ObjectType") == 0)
   {
-    fail(path, "not a sequence metafile (no ObjectType line)");
+    throwFileError(path, "not a sequence metafile (no ObjectType line)");
   }
   const std::string transformField = name + "Transform";
   std::vector<TimedTransform> items;
@@ -273,12 +272,13 @@ std::vector<TimedTransform> readTransformSequenceFile(
     }
     if (count != 16 || !numbers.eof() || !matrix.allFinite())
     {
-      fail(path, "frame " + std::to_string(frame) + "'s " + transformField + " is not 16 numbers");
+      throwFileError(
+        path, "frame " + std::to_string(frame) + "'s " + transformField + " is not 16 numbers");
     }
     const std::optional<double> timeS = header.timestampS(frame, path);
     if (!timeS)
     {
-      fail(
+      throwFileError(
         path, "frame " + std::to_string(frame) + " has a " + transformField + " but no timestamp");
     }
     items.push_back({ *timeS, matrix });
@@ -291,7 +291,7 @@ std::vector<TimedTransform> readTransformSequenceFile(
         return std::any_of(frame.second.begin(), frame.second.end(),
           [](const auto& field) { return field.first.find("Transform") != std::string::npos; });
       });
-    fail(path,
+    throwFileError(path,
       "holds no frame of the transform '" + name + "' (no field Seq_Frame<n>_" + transformField +
         " with status OK)" +
         (anyTransform || header.format != SequenceFileFormat::Nrrd

@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/CTHeaderChecks.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <algorithm>
 #include <cctype>
@@ -22,11 +23,6 @@ namespace vimlop::detail
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 } // namespace
 
@@ -55,7 +51,8 @@ void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
   const std::uint32_t headerBytes = u32(0, little);
   if (headerBytes != 348 && headerBytes != 540)
   {
-    fail(path, "not a NIfTI-1 or NIfTI-2 header (it does not start with its size, 348 or 540)");
+    throwFileError(
+      path, "not a NIfTI-1 or NIfTI-2 header (it does not start with its size, 348 or 540)");
   }
   double voxOffset = 0.0;
   if (headerBytes == 348)
@@ -74,7 +71,7 @@ void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
   }
   if (!(voxOffset >= 0.0 && voxOffset < 1e15))
   {
-    fail(path, "the header's vox_offset is not a byte offset in the file");
+    throwFileError(path, "the header's vox_offset is not a byte offset in the file");
   }
   const std::uint64_t expected =
     static_cast<std::uint64_t>(std::max(voxOffset, static_cast<double>(headerBytes))) + voxelBytes;
@@ -82,7 +79,7 @@ void checkNiftiLength(const std::string& path, std::uint64_t voxelBytes)
   const std::uint64_t actual = std::filesystem::file_size(path, ec);
   if (!ec && actual < expected)
   {
-    fail(path,
+    throwFileError(path,
       "the file is truncated (" + std::to_string(actual) + " bytes, the header promises " +
         std::to_string(expected) + ")");
   }
@@ -106,7 +103,8 @@ int checkNiftiHeader(const std::string& path)
   const auto is = [&](std::uint32_t v) { return size == v || __builtin_bswap32(size) == v; };
   if (got < 4 || !(is(348) || is(540)))
   {
-    fail(path, "not a NIfTI-1 or NIfTI-2 header (it does not start with its size, 348 or 540)");
+    throwFileError(
+      path, "not a NIfTI-1 or NIfTI-2 header (it does not start with its size, 348 or 540)");
   }
   const bool nifti2 = is(540);
   if (got < (nifti2 ? 540 : 348))
@@ -156,7 +154,7 @@ int checkNiftiHeader(const std::string& path)
   if (!within(pixdim, 8, 1e4) || !within(quatern, 3, 1.001) || !within(offsets, 3, 1e6) ||
     !within(srow, 12, 1e6))
   {
-    fail(path,
+    throwFileError(path,
       "the header's voxel sizes or orientation (pixdim, qform, sform) are not finite or not "
       "those of a scan");
   }
@@ -173,7 +171,7 @@ void checkCompressedBound(
   constexpr std::uint64_t maxRatio = 1032;
   if (compressedBytes < voxelBytes / maxRatio)
   {
-    fail(path,
+    throwFileError(path,
       "the header promises " + std::to_string(voxelBytes) + " bytes of voxels, which " +
         std::to_string(compressedBytes) +
         " bytes of compressed data cannot hold; refusing to allocate them");
@@ -197,7 +195,8 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
     if (!std::all_of(line.begin(), line.end(),
           [](unsigned char c) { return std::isprint(c) || c == '\t' || c == '\r'; }))
     {
-      fail(path, "header line " + std::to_string(lines + 1) + " holds bytes that are not text");
+      throwFileError(
+        path, "header line " + std::to_string(lines + 1) + " holds bytes that are not text");
     }
     const auto equals = line.find('=');
     if (equals == std::string::npos)
@@ -217,7 +216,7 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
       "TransformType", "AcquisitionDate", "DistanceUnits" };
     if (std::none_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; }))
     {
-      fail(path,
+      throwFileError(path,
         "header line " + std::to_string(lines + 1) + " has the key '" + key.substr(0, 40) +
           "', which MetaImage does not define");
     }
@@ -231,7 +230,7 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
       const long count = std::strtol(value.c_str(), &end, 10);
       if (value.empty() || *end != '\0' || count < 1 || count > (key == "NDims" ? 4 : 16))
       {
-        fail(path,
+        throwFileError(path,
           "the header's " + key + " is '" + value.substr(0, 20) + "', not a count of " +
             (key == "NDims" ? "1 to 4 dimensions" : "1 to 16 channels"));
       }
@@ -258,7 +257,7 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
     {
       // MetaIO read on past such an ElementDataFile, into the data, and took
       // an NDims of 4444... from it (17 GB).
-      fail(path,
+      throwFileError(path,
         "the header gives ElementDataFile before its " + *required.begin() +
           " (ElementDataFile is a MetaImage header's last field)");
     }
@@ -267,12 +266,12 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
     {
       // MetaIO read such a value as a file it could not open, then tried to
       // allocate the rest of a stream that had failed: 2^63 bytes.
-      fail(path, "the header's ElementDataFile is not a file name or LOCAL");
+      throwFileError(path, "the header's ElementDataFile is not a file name or LOCAL");
     }
     if (value.rfind("LIST", 0) == 0 || value.find('%') != std::string::npos)
     {
       // MetaIO divided by a step of 0 read from such a pattern; a CT comes in one file.
-      fail(path,
+      throwFileError(path,
         "the header lists one data file per slice (LIST or a pattern); VIMLOP reads MetaImage "
         "volumes whose data are in one file");
     }
@@ -288,14 +287,14 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
       const std::filesystem::path data = std::filesystem::path(path).parent_path() / value;
       if (!std::filesystem::exists(data, ec))
       {
-        fail(path, "the data file '" + value + "' named by the header does not exist");
+        throwFileError(path, "the data file '" + value + "' named by the header does not exist");
       }
       available = std::filesystem::file_size(data, ec);
       available -= std::min<std::uint64_t>(available, std::max(headerBytes, 0LL));
     }
     if (!compressed && !ec && available < voxelBytes)
     {
-      fail(path,
+      throwFileError(path,
         "the image data are cut short (" + std::to_string(available) +
           " bytes, the header promises " + std::to_string(voxelBytes) + ")");
     }
@@ -304,7 +303,7 @@ void checkMetaImageData(const std::string& path, std::uint64_t voxelBytes)
       checkCompressedBound(path, available, voxelBytes);
       if (compressedBytes > available)
       {
-        fail(path,
+        throwFileError(path,
           "the header's CompressedDataSize (" + std::to_string(compressedBytes) +
             " bytes) is more than the " + std::to_string(available) + " bytes of data");
       }
@@ -369,7 +368,7 @@ void checkNrrdData(const std::string& path, std::uint64_t voxelBytes)
   }
   if (encoding == "raw" && available < voxelBytes)
   {
-    fail(path,
+    throwFileError(path,
       "the image data are cut short (" + std::to_string(available) +
         " bytes, the header promises " + std::to_string(voxelBytes) + ")");
   }
@@ -404,7 +403,7 @@ void checkNrrdHeader(const std::string& path)
     }
     if (end - start > maxLine + 1 || line.size() > maxLine)
     {
-      fail(path,
+      throwFileError(path,
         "header line " + std::to_string(number) + " is " + std::to_string(end - start) +
           " characters long; NRRD header lines of at most " + std::to_string(maxLine) +
           " are read");
@@ -425,7 +424,7 @@ void checkNrrdHeader(const std::string& path)
   }
   if (!detached)
   {
-    fail(path, "the header does not end with a blank line before the data");
+    throwFileError(path, "the header does not end with a blank line before the data");
   }
 }
 
@@ -473,7 +472,7 @@ void checkGridGeometry(const std::string& path, const std::array<double, 3>& spa
   }
   if (!problem.str().empty())
   {
-    fail(path, problem.str());
+    throwFileError(path, problem.str());
   }
 }
 

@@ -5,6 +5,7 @@
 #include <vimlop/Imaging/CTVolumeIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/CTHeaderChecks.h>
 #include <vimlop/Imaging/DicomFileCheck.h>
@@ -46,11 +47,6 @@ using ImageType = itk::Image<float, 3>;
 /// The largest volume VIMLOP reads: 2^31 voxels (8 GiB as float), far above
 /// any head CT (a 1024 x 1024 x 2000 scan is 2.1e9).
 constexpr std::uint64_t MaxVoxels = std::uint64_t(1) << 31;
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 bool endsWith(const std::string& s, const std::string& suffix)
 {
@@ -173,7 +169,7 @@ CTVolume readDicomSeries(const std::string& folder, const CTReadOptions& options
   }
   if (groups.empty())
   {
-    fail(folder,
+    throwFileError(folder,
       "the folder holds no DICOM series" +
         (passedOver == 0 ? std::string()
                          : " (" + std::to_string(passedOver) +
@@ -190,7 +186,7 @@ CTVolume readDicomSeries(const std::string& folder, const CTReadOptions& options
   }
   if (!chosen)
   {
-    fail(folder, "no DICOM series with UID '" + seriesUID + "' in the folder");
+    throwFileError(folder, "no DICOM series with UID '" + seriesUID + "' in the folder");
   }
   std::vector<std::string> warnings;
   if (groups.size() > 1 && seriesUID.empty())
@@ -217,7 +213,7 @@ CTVolume readDicomSeries(const std::string& folder, const CTReadOptions& options
   }
   catch (const Error& e)
   {
-    fail(folder, e.what());
+    throwFileError(folder, e.what());
   }
   auto reader = itk::ImageSeriesReader<ImageType>::New();
   reader->SetImageIO(itk::GDCMImageIO::New());
@@ -228,7 +224,7 @@ CTVolume readDicomSeries(const std::string& folder, const CTReadOptions& options
   }
   catch (const std::exception& e) // ITK also throws std::length_error, std::bad_alloc
   {
-    fail(folder, "cannot read the DICOM series (" + detail::itkMessage(e) + ")");
+    throwFileError(folder, "cannot read the DICOM series (" + detail::itkMessage(e) + ")");
   }
   CTVolume volume = toVolume(reader->GetOutput());
   if (!layout.irregularities.empty())
@@ -328,7 +324,7 @@ itk::ImageIOBase::Pointer openCheckedImageFile(
   }
   if (!io->CanReadFile(path.c_str()))
   {
-    fail(path,
+    throwFileError(path,
       niftiVersion == 2
         ? "a NIfTI-2 file, which this build's ITK (" + std::string(ITK_VERSION_STRING) +
           ") does not read; save the volume as NIfTI-1 (.nii, .nii.gz), NRRD or MetaImage"
@@ -341,7 +337,7 @@ itk::ImageIOBase::Pointer openCheckedImageFile(
   }
   catch (const itk::ExceptionObject& e)
   {
-    fail(path, "cannot read the " + format + " header (" + detail::itkMessage(e) + ")");
+    throwFileError(path, "cannot read the " + format + " header (" + detail::itkMessage(e) + ")");
   }
   const unsigned dimensions = io->GetNumberOfDimensions();
   std::string size;
@@ -351,18 +347,19 @@ itk::ImageIOBase::Pointer openCheckedImageFile(
   }
   if (dimensions < 3)
   {
-    fail(path, "the image is 2-D (" + size + " pixels); a 3-D " + expected.what + " is needed");
+    throwFileError(
+      path, "the image is 2-D (" + size + " pixels); a 3-D " + expected.what + " is needed");
   }
   if (io->GetDimensions(0) < 2 || io->GetDimensions(1) < 2 || io->GetDimensions(2) < 2)
   {
     // One voxel thick along an axis is a slice (or a point), not a volume.
-    fail(path,
+    throwFileError(path,
       "the image is " + size + " voxels; a 3-D " + expected.what +
         " needs at least 2 along each axis");
   }
   if (dimensions > 3 && io->GetDimensions(3) > 1)
   {
-    fail(
+    throwFileError(
       path, "the image is 4-D (a time series); a 3-D " + std::string(expected.what) + " is needed");
   }
   // Refuse before allocating: a header can promise far more than any CT.
@@ -377,17 +374,17 @@ itk::ImageIOBase::Pointer openCheckedImageFile(
   }
   if (voxels > MaxVoxels)
   {
-    fail(path,
+    throwFileError(path,
       "the header promises more than " + std::to_string(MaxVoxels) +
         " voxels; refusing to allocate it");
   }
   if (io->GetComponentType() == itk::IOComponentEnum::UNKNOWNCOMPONENTTYPE)
   {
-    fail(path, "the header names no voxel type " + format + " files have");
+    throwFileError(path, "the header names no voxel type " + format + " files have");
   }
   if (io->GetNumberOfComponents() != expected.components)
   {
-    fail(path,
+    throwFileError(path,
       "the image has " + std::to_string(io->GetNumberOfComponents()) + " components per voxel; " +
         expected.componentsRule);
   }
@@ -429,7 +426,7 @@ itk::ImageIOBase::Pointer detail::openImageFile(
   }
   catch (const std::exception& e)
   {
-    fail(path, "cannot read the " + format + " header (" + detail::itkMessage(e) + ")");
+    throwFileError(path, "cannot read the " + format + " header (" + detail::itkMessage(e) + ")");
   }
 }
 
@@ -449,7 +446,7 @@ CTVolume readImageFile(const std::string& path, const std::string& format)
   }
   catch (const std::exception& e) // ITK also throws std::length_error, std::bad_alloc
   {
-    fail(path, "cannot read the image data (" + detail::itkMessage(e) + ")");
+    throwFileError(path, "cannot read the image data (" + detail::itkMessage(e) + ")");
   }
   CTVolume volume = toVolume(reader->GetOutput());
   volume.format = format;
@@ -479,7 +476,7 @@ CTVolume readAnyFormat(const std::string& path, const CTReadOptions& options)
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
   {
-    fail(path, "no such file or folder");
+    throwFileError(path, "no such file or folder");
   }
   detail::registerImageIOs();
   if (std::filesystem::is_directory(path, ec))
@@ -494,7 +491,7 @@ CTVolume readAnyFormat(const std::string& path, const CTReadOptions& options)
   const std::string format = detail::imageFormatName(lower);
   if (format.empty())
   {
-    fail(path,
+    throwFileError(path,
       "unsupported CT file type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd, .dcm, "
       ".inv3 or a DICOM folder)");
   }
@@ -514,11 +511,12 @@ void writeCTVolume(const CTVolume& volume, const std::string& path)
 {
   if (!isWritableCTVolumePath(path))
   {
-    fail(path, "unsupported output type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
+    throwFileError(
+      path, "unsupported output type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
   }
   if (volume.intensities.size() != volume.numberOfVoxels() || volume.numberOfVoxels() == 0)
   {
-    fail(path, "the volume to write is empty or inconsistent");
+    throwFileError(path, "the volume to write is empty or inconsistent");
   }
   detail::registerImageIOs();
   auto image = ImageType::New();
@@ -552,7 +550,7 @@ void writeCTVolume(const CTVolume& volume, const std::string& path)
   }
   catch (const itk::ExceptionObject& e)
   {
-    fail(path, "cannot write the image (" + detail::itkMessage(e) + ")");
+    throwFileError(path, "cannot write the image (" + detail::itkMessage(e) + ")");
   }
 }
 

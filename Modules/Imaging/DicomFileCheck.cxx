@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/DicomFileCheck.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Imaging/DicomAttributeRules.h>
 
 #include <algorithm>
@@ -15,11 +16,6 @@ namespace vimlop::detail
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 /// The data elements of a DICOM file, walked as GDCM will read them, with
 /// every declared length checked against the bytes its container has left:
@@ -77,7 +73,7 @@ public:
         if (groupEnd > this->Data.size())
         {
           // GDCM read the missing group and asserted on what it found.
-          fail(this->Path,
+          throwFileError(this->Path,
             "the file is truncated: its file meta group declares " +
               std::to_string(this->u32(value)) + " bytes and " +
               std::to_string(this->Data.size() - value - 4) + " are left");
@@ -96,7 +92,7 @@ public:
         // set would be judged on bytes that GDCM reads otherwise.
         if (uid == "1.2.840.10008.1.2.2" || uid == "1.2.840.10008.1.2.1.99")
         {
-          fail(this->Path,
+          throwFileError(this->Path,
             "the DICOM file's transfer syntax " + uid + " (" +
               (uid == "1.2.840.10008.1.2.2" ? "explicit VR big endian, retired"
                                             : "deflated explicit VR little endian") +
@@ -108,7 +104,8 @@ public:
     if (at == 132)
     {
       // GDCM's reading of a file without one asserted on what it found instead.
-      fail(this->Path, "the DICOM file has no file meta information group (0002) after 'DICM'");
+      throwFileError(
+        this->Path, "the DICOM file has no file meta information group (0002) after 'DICM'");
     }
     if (groupEnd != 0 && at != groupEnd)
     {
@@ -142,7 +139,7 @@ public:
       const std::string problem = rescaleProblem(format);
       if (!problem.empty())
       {
-        fail(this->Path, "the DICOM file is corrupt: " + problem);
+        throwFileError(this->Path, "the DICOM file is corrupt: " + problem);
       }
       return stop;
     };
@@ -258,7 +255,7 @@ private:
     {
       std::snprintf(tag, sizeof(tag), " (%04X,%04X)", this->u16(at), this->u16(at + 2));
     }
-    fail(this->Path,
+    throwFileError(this->Path,
       "the DICOM file is corrupt: element" + std::string(tag) + " at byte " + std::to_string(at) +
         " " + problem);
   }
@@ -274,7 +271,7 @@ private:
     {
       char tag[16];
       std::snprintf(tag, sizeof(tag), "(%04X,%04X)", this->u16(at), this->u16(at + 2));
-      fail(this->Path,
+      throwFileError(this->Path,
         "the file is truncated: element " + std::string(tag) + " at byte " + std::to_string(at) +
           " declares " + std::to_string(this->Length) + " bytes and " + left + " are left");
     }
@@ -391,10 +388,10 @@ private:
     }
     if (end == this->Data.size())
     {
-      fail(this->Path,
+      throwFileError(this->Path,
         "the file is truncated: it ends inside an element at byte " + std::to_string(at));
     }
-    fail(this->Path,
+    throwFileError(this->Path,
       "the DICOM file is corrupt: a sequence ends inside an element at byte " + std::to_string(at));
   }
 
@@ -420,7 +417,7 @@ void checkDicomPart10(const std::string& path)
 {
   if (!hasDicomPreamble(path))
   {
-    fail(path, "not a DICOM file (no 'DICM' at byte 128)");
+    throwFileError(path, "not a DICOM file (no 'DICM' at byte 128)");
   }
   std::ifstream in(path, std::ios::binary);
   const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -430,7 +427,8 @@ void checkDicomPart10(const std::string& path)
   if (dataSet + 8 > data.size())
   {
     // GDCM asserted reading the data set's first tag.
-    fail(path, "the file is truncated: it ends after its file meta group, without a data set");
+    throwFileError(
+      path, "the file is truncated: it ends after its file meta group, without a data set");
   }
   walk.dataSet(dataSet, implicit);
 }

@@ -2,6 +2,7 @@
 #include <vimlop/Imaging/DisplacementFieldIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Imaging/CTHeaderChecks.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/ITKImageFiles.h>
@@ -22,23 +23,18 @@ namespace
 
 using FieldImage = itk::Image<itk::Vector<float, 3>, 3>;
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
-
 } // namespace
 
 void writeDisplacementField(const DisplacementField& field, const std::string& path)
 {
   if (!isWritableCTVolumePath(path))
   {
-    fail(
+    throwFileError(
       path, "unsupported field output type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
   }
   if (!field.isValid())
   {
-    fail(path, "the displacement field to write is empty or inconsistent");
+    throwFileError(path, "the displacement field to write is empty or inconsistent");
   }
   detail::registerImageIOs();
   auto image = FieldImage::New();
@@ -79,7 +75,7 @@ void writeDisplacementField(const DisplacementField& field, const std::string& p
   }
   catch (const itk::ExceptionObject& e)
   {
-    fail(path, "cannot write the displacement field (" + detail::itkMessage(e) + ")");
+    throwFileError(path, "cannot write the displacement field (" + detail::itkMessage(e) + ")");
   }
 }
 
@@ -88,12 +84,13 @@ DisplacementField readDisplacementField(const std::string& path)
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
   {
-    fail(path, "no such file");
+    throwFileError(path, "no such file");
   }
   const std::string format = detail::imageFormatName(path);
   if (format.empty() || format == "DICOM")
   {
-    fail(path, "unsupported field type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
+    throwFileError(
+      path, "unsupported field type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
   }
   detail::registerImageIOs();
   // The CT reader's checks: a field file is as hostile as a CT file.
@@ -108,7 +105,7 @@ DisplacementField readDisplacementField(const std::string& path)
   }
   catch (const std::exception& e) // ITK also throws std::length_error, std::bad_alloc
   {
-    fail(path, "cannot read the displacement field (" + detail::itkMessage(e) + ")");
+    throwFileError(path, "cannot read the displacement field (" + detail::itkMessage(e) + ")");
   }
   const FieldImage* image = reader->GetOutput();
   DisplacementField field;
@@ -132,7 +129,8 @@ DisplacementField readDisplacementField(const std::string& path)
       if (!std::isfinite(buffer[i][a]))
       {
         // A NaN would move every mesh vertex near it to NaN, far from any anatomy.
-        fail(path, "grid point " + std::to_string(i) + " holds a displacement that is not finite");
+        throwFileError(
+          path, "grid point " + std::to_string(i) + " holds a displacement that is not finite");
       }
       field.displacements[3 * i + a] = buffer[i][a];
     }

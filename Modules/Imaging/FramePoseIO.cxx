@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <nlohmann/json.hpp>
 
@@ -19,11 +20,6 @@ namespace vimlop
 namespace
 {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
-
 } // namespace
 
 std::vector<FramePose> readFramePoses(const std::string& path)
@@ -31,7 +27,7 @@ std::vector<FramePose> readFramePoses(const std::string& path)
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
   {
-    fail(path, "no such file");
+    throwFileError(path, "no such file");
   }
   std::ifstream in(path);
   nlohmann::json document;
@@ -41,11 +37,11 @@ std::vector<FramePose> readFramePoses(const std::string& path)
   }
   catch (const nlohmann::json::exception&)
   {
-    fail(path, "not a JSON file");
+    throwFileError(path, "not a JSON file");
   }
   if (!document.is_object() || !document.contains("poses") || !document["poses"].is_array())
   {
-    fail(path,
+    throwFileError(path,
       "no \"poses\" array (expected {\"poses\": [{\"frame_id\": 0, \"camera_to_ct\": [16 "
       "numbers]}, ...]})");
   }
@@ -56,7 +52,7 @@ std::vector<FramePose> readFramePoses(const std::string& path)
     const std::string where = "pose " + std::to_string(index);
     if (!entry.is_object() || !entry.contains("frame_id") || !entry["frame_id"].is_number_integer())
     {
-      fail(path, where + " has no integer \"frame_id\"");
+      throwFileError(path, where + " has no integer \"frame_id\"");
     }
     const nlohmann::json& matrix =
       entry.contains("camera_to_ct") ? entry["camera_to_ct"] : nlohmann::json();
@@ -64,7 +60,8 @@ std::vector<FramePose> readFramePoses(const std::string& path)
       !std::all_of(
         matrix.begin(), matrix.end(), [](const nlohmann::json& v) { return v.is_number(); }))
     {
-      fail(path, where + ": \"camera_to_ct\" must be 16 numbers (a 4x4 matrix, row-major)");
+      throwFileError(
+        path, where + ": \"camera_to_ct\" must be 16 numbers (a 4x4 matrix, row-major)");
     }
     Eigen::Matrix4d m;
     for (int i = 0; i < 16; ++i)
@@ -75,7 +72,7 @@ std::vector<FramePose> readFramePoses(const std::string& path)
     const std::int64_t id = entry["frame_id"].get<std::int64_t>();
     if (id < 0 || id > std::numeric_limits<int>::max())
     {
-      fail(path,
+      throwFileError(path,
         where + ": frame_id " + std::to_string(id) + " is out of range (0 to " +
           std::to_string(std::numeric_limits<int>::max()) + ")");
     }
@@ -87,7 +84,7 @@ std::vector<FramePose> readFramePoses(const std::string& path)
     }
     catch (const Error& e)
     {
-      fail(path, where + ": " + e.what());
+      throwFileError(path, where + ": " + e.what());
     }
     poses.push_back(pose);
     ++index;
@@ -98,7 +95,7 @@ std::vector<FramePose> readFramePoses(const std::string& path)
   }
   catch (const Error& e)
   {
-    fail(path, e.what());
+    throwFileError(path, e.what());
   }
   return poses;
 }

@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/InVesaliusProjectReader.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
@@ -25,11 +26,6 @@ namespace
 
 /// No single archive member we keep may exceed this (a guard against bombs).
 constexpr std::uint64_t MaxMemberBytes = std::uint64_t(4) << 30;
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 std::string baseName(const std::string& name)
 {
@@ -84,7 +80,7 @@ std::map<std::string, std::string> readMembers(const std::string& path)
     gzopen(path.c_str(), "rb"), gzclose);
   if (!file)
   {
-    fail(path, "cannot open the file");
+    throwFileError(path, "cannot open the file");
   }
   std::map<std::string, std::string> members;
   char header[512];
@@ -100,7 +96,7 @@ std::map<std::string, std::string> readMembers(const std::string& path)
     const std::uint64_t size = parseOctal(header + 124, 12, ok);
     if (!ok)
     {
-      fail(path, "not an InVesalius project (invalid tar header)");
+      throwFileError(path, "not an InVesalius project (invalid tar header)");
     }
     std::string name(header, strnlen(header, 100));
     const std::string prefix(header + 345, strnlen(header + 345, 155));
@@ -117,7 +113,7 @@ std::map<std::string, std::string> readMembers(const std::string& path)
     {
       if (size > MaxMemberBytes)
       {
-        fail(path, "archive member '" + name + "' is too large");
+        throwFileError(path, "archive member '" + name + "' is too large");
       }
       // Grow with the data actually read, never with what the header claims.
       std::string content;
@@ -128,7 +124,7 @@ std::map<std::string, std::string> readMembers(const std::string& path)
           static_cast<std::size_t>(std::min<std::uint64_t>(left, sizeof(chunk)));
         if (!readExactly(file.get(), chunk, n))
         {
-          fail(path, "archive is truncated inside '" + name + "'");
+          throwFileError(path, "archive is truncated inside '" + name + "'");
         }
         content.append(chunk, n);
         left -= n;
@@ -137,7 +133,7 @@ std::map<std::string, std::string> readMembers(const std::string& path)
       char skip[512];
       if (padded > size && !readExactly(file.get(), skip, static_cast<std::size_t>(padded - size)))
       {
-        fail(path, "archive is truncated inside '" + name + "'");
+        throwFileError(path, "archive is truncated inside '" + name + "'");
       }
     }
     else
@@ -145,7 +141,7 @@ std::map<std::string, std::string> readMembers(const std::string& path)
       // Skip members we do not need without buffering them.
       if (gzseek(file.get(), static_cast<z_off_t>(padded), SEEK_CUR) < 0)
       {
-        fail(path, "archive is truncated inside '" + name + "'");
+        throwFileError(path, "archive is truncated inside '" + name + "'");
       }
     }
   }
@@ -153,11 +149,11 @@ std::map<std::string, std::string> readMembers(const std::string& path)
   const char* zmessage = gzerror(file.get(), &zerr);
   if (zerr != Z_OK && zerr != Z_STREAM_END)
   {
-    fail(path, std::string("not a readable gzip archive (") + zmessage + ")");
+    throwFileError(path, std::string("not a readable gzip archive (") + zmessage + ")");
   }
   if (!sawEnd && members.empty())
   {
-    fail(path, "not an InVesalius project (no tar archive inside)");
+    throwFileError(path, "not an InVesalius project (no tar archive inside)");
   }
   return members;
 }
@@ -216,7 +212,7 @@ CTVolume readInVesaliusProject(const std::string& path)
   const auto plistIt = members.find("main.plist");
   if (plistIt == members.end())
   {
-    fail(path, "not an InVesalius project (no main.plist in the archive)");
+    throwFileError(path, "not an InVesalius project (no main.plist in the archive)");
   }
   vtkSmartPointer<vtkXMLDataElement> root;
   root.TakeReference(vtkXMLUtilities::ReadElementFromString(plistIt->second.c_str()));
@@ -224,7 +220,7 @@ CTVolume readInVesaliusProject(const std::string& path)
     root && root->GetNumberOfNestedElements() > 0 ? root->GetNestedElement(0) : nullptr;
   if (!dict || std::strcmp(dict->GetName(), "dict") != 0)
   {
-    fail(path, "main.plist is not a property list dictionary");
+    throwFileError(path, "main.plist is not a property list dictionary");
   }
   vtkXMLDataElement* matrix = dictValue(dict, "matrix");
   const std::string dtype = text(dictValue(matrix, "dtype"));
@@ -233,17 +229,17 @@ CTVolume readInVesaliusProject(const std::string& path)
   const std::vector<double> spacing = numberArray(dictValue(dict, "spacing"));
   if (!matrix || matrixFile.empty() || shape.size() != 3)
   {
-    fail(path, "main.plist does not describe the volume matrix (filename and 3-D shape)");
+    throwFileError(path, "main.plist does not describe the volume matrix (filename and 3-D shape)");
   }
   if (dtype != "int16")
   {
-    fail(path, "unsupported matrix type '" + dtype + "' (InVesalius volumes are int16)");
+    throwFileError(path, "unsupported matrix type '" + dtype + "' (InVesalius volumes are int16)");
   }
   if (spacing.size() != 3 ||
     !std::all_of(
       spacing.begin(), spacing.end(), [](double s) { return std::isfinite(s) && s > 0.0; }))
   {
-    fail(path, "main.plist has no valid spacing (three positive numbers)");
+    throwFileError(path, "main.plist has no valid spacing (three positive numbers)");
   }
   CTVolume volume;
   volume.format = "InVesalius project";
@@ -253,7 +249,7 @@ CTVolume readInVesaliusProject(const std::string& path)
     const double n = shape[2 - axis];
     if (!(n >= 1.0 && n <= 65536.0) || n != std::floor(n))
     {
-      fail(path, "main.plist has an invalid matrix shape");
+      throwFileError(path, "main.plist has an invalid matrix shape");
     }
     volume.dims[axis] = static_cast<int>(n);
     volume.spacingMm[axis] = spacing[axis];
@@ -261,7 +257,7 @@ CTVolume readInVesaliusProject(const std::string& path)
   const auto dataIt = members.find(baseName(matrixFile));
   if (dataIt == members.end())
   {
-    fail(path, "the archive has no '" + matrixFile + "' named by main.plist");
+    throwFileError(path, "the archive has no '" + matrixFile + "' named by main.plist");
   }
   const std::string& raw = dataIt->second;
   if (raw.size() != volume.numberOfVoxels() * sizeof(std::int16_t))
@@ -270,7 +266,7 @@ CTVolume readInVesaliusProject(const std::string& path)
     msg << "'" << matrixFile << "' holds " << raw.size() << " bytes but the shape "
         << volume.dims[2] << "x" << volume.dims[1] << "x" << volume.dims[0] << " needs "
         << volume.numberOfVoxels() * sizeof(std::int16_t);
-    fail(path, msg.str());
+    throwFileError(path, msg.str());
   }
   volume.intensities.resize(volume.numberOfVoxels());
   const auto* bytes = reinterpret_cast<const unsigned char*>(raw.data());

@@ -3,6 +3,7 @@
 #include <vimlop/Imaging/MeshFileChecks.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 
 #include <algorithm>
@@ -21,11 +22,6 @@ namespace vimlop::detail
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 /// Legacy VTK's data after the header, walked as its reader will read it:
 /// words in ASCII files, big-endian values right after a keyword's line in
@@ -63,7 +59,7 @@ public:
     const std::string w = this->word();
     if (w.empty() || w.size() > 19 || w.find_first_not_of("0123456789") != std::string::npos)
     {
-      fail(this->Path, "the " + where + " line has no count");
+      throwFileError(this->Path, "the " + where + " line has no count");
     }
     return std::stoull(w);
   }
@@ -88,7 +84,7 @@ public:
       const long long v = w.empty() ? 0 : std::strtoll(w.c_str(), &end, 10);
       if (w.empty() || *end != '\0')
       {
-        fail(this->Path, "the file ends or holds no integer inside the " + where);
+        throwFileError(this->Path, "the file ends or holds no integer inside the " + where);
       }
       return v;
     }
@@ -111,7 +107,7 @@ public:
     {
       if (values > (this->Data.size() - this->At) / static_cast<std::uint64_t>(bytes))
       {
-        fail(this->Path, "the file ends inside the " + where + " (truncated)");
+        throwFileError(this->Path, "the file ends inside the " + where + " (truncated)");
       }
       this->At += static_cast<std::size_t>(values * static_cast<std::uint64_t>(bytes));
       return;
@@ -121,14 +117,15 @@ public:
       const std::string w = this->word();
       if (w.empty())
       {
-        fail(this->Path, "the file ends inside the " + where + " (truncated)");
+        throwFileError(this->Path, "the file ends inside the " + where + " (truncated)");
       }
       char* end = nullptr;
       std::strtod(w.c_str(), &end);
       if (*end != '\0')
       {
         // Counting it as a value would let the walk skip the next keyword.
-        fail(this->Path, "the " + where + " hold '" + w.substr(0, 20) + "', which is no number");
+        throwFileError(
+          this->Path, "the " + where + " hold '" + w.substr(0, 20) + "', which is no number");
       }
     }
   }
@@ -138,7 +135,7 @@ private:
   {
     if (bytes > this->Data.size() - this->At)
     {
-      fail(this->Path, "the file ends inside the " + where + " (truncated)");
+      throwFileError(this->Path, "the file ends inside the " + where + " (truncated)");
     }
   }
 
@@ -230,7 +227,7 @@ void walkLegacyVtkCells(const std::string& path)
   type.erase(type.find_last_not_of(" \t\r") + 1);
   if (type != "ASCII" && type != "BINARY")
   {
-    fail(path, "line 3 is '" + type.substr(0, 40) + "', not ASCII or BINARY");
+    throwFileError(path, "line 3 is '" + type.substr(0, 40) + "', not ASCII or BINARY");
   }
   LegacyVtkWalk walk(path, data, at, type == "BINARY");
   std::uint64_t points = 0;
@@ -248,7 +245,7 @@ void walkLegacyVtkCells(const std::string& path)
       const int bytes = legacyTypeBytes(type);
       if (bytes == 0)
       {
-        fail(path, "unknown type '" + type.substr(0, 40) + "' of the POINTS");
+        throwFileError(path, "unknown type '" + type.substr(0, 40) + "' of the POINTS");
       }
       walk.startValues();
       walk.skip(3 * points, bytes, "POINTS");
@@ -262,7 +259,7 @@ void walkLegacyVtkCells(const std::string& path)
       {
         if (id < 0 || static_cast<std::uint64_t>(id) >= points)
         {
-          fail(path,
+          throwFileError(path,
             "cell " + std::to_string(cell) + " of the " + keyword + " names point " +
               std::to_string(id) + "; the file has " + std::to_string(points));
         }
@@ -277,7 +274,7 @@ void walkLegacyVtkCells(const std::string& path)
           const std::int64_t size = left > 0 ? walk.integer(4, keyword) : -1;
           if (size < 0 || static_cast<std::uint64_t>(size) >= left)
           {
-            fail(path,
+            throwFileError(path,
               "cell " + std::to_string(cell) + " of the " + keyword +
                 " does not fit in the list's " + std::to_string(second) + " numbers");
           }
@@ -295,12 +292,12 @@ void walkLegacyVtkCells(const std::string& path)
       {
         if (walk.word() != part)
         {
-          fail(path, "the " + keyword + " lack their " + part);
+          throwFileError(path, "the " + keyword + " lack their " + part);
         }
         const int bytes = legacyTypeBytes(walk.word());
         if (bytes != 4 && bytes != 8)
         {
-          fail(path, "the " + keyword + " " + part + " are not 32- or 64-bit integers");
+          throwFileError(path, "the " + keyword + " " + part + " are not 32- or 64-bit integers");
         }
         walk.startValues();
         const std::uint64_t n = part[0] == 'O' ? first : second;
@@ -312,7 +309,7 @@ void walkLegacyVtkCells(const std::string& path)
             if (v < (offsetValues.empty() ? 0 : offsetValues.back()) ||
               static_cast<std::uint64_t>(v) > second || (i == 0 && v != 0))
             {
-              fail(path,
+              throwFileError(path,
                 "the " + keyword + " OFFSETS do not rise from 0 to the " + std::to_string(second) +
                   " ids of the CONNECTIVITY");
             }
@@ -329,7 +326,7 @@ void walkLegacyVtkCells(const std::string& path)
         if (part[0] == 'O' && first > 0 &&
           static_cast<std::uint64_t>(offsetValues.back()) != second)
         {
-          fail(path,
+          throwFileError(path,
             "the " + keyword + " OFFSETS do not rise from 0 to the " + std::to_string(second) +
               " ids of the CONNECTIVITY");
         }
@@ -359,13 +356,13 @@ void walkLegacyVtkCells(const std::string& path)
         const int bytes = legacyTypeBytes(type);
         if (bytes == 0)
         {
-          fail(path,
+          throwFileError(path,
             "the FIELD array '" + name.substr(0, 40) + "' has the type '" + type.substr(0, 40) +
               "'; VIMLOP reads numeric field data only");
         }
         if (components == 0 || (tuples > 0 && components > maxMeshElements / tuples))
         {
-          fail(path,
+          throwFileError(path,
             "the FIELD array '" + name.substr(0, 40) + "' promises " + std::to_string(components) +
               " components of " + std::to_string(tuples) + " tuples; at most " +
               std::to_string(maxMeshElements) + " values are read");
@@ -380,7 +377,7 @@ void walkLegacyVtkCells(const std::string& path)
     }
     else
     {
-      fail(
+      throwFileError(
         path, "the file holds '" + word.substr(0, 40) + "' where a legacy VTK keyword should be");
     }
   }

@@ -2,6 +2,7 @@
 #include <vimlop/Imaging/LinearTransformIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/ITKImageFiles.h>
 
@@ -25,11 +26,6 @@ namespace vimlop
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 /// ITK's transform IO factories and transform classes, registered once: we do
 /// not rely on ITK's generated factory lists (as for images, ITKImageFiles.h).
@@ -56,7 +52,7 @@ AffineMatrix4 finiteOrFail(const AffineMatrix4& pointMap, const std::string& pat
 {
   if (!allFinite(pointMap))
   {
-    fail(path, "holds a transform with a value that is not finite");
+    throwFileError(path, "holds a transform with a value that is not finite");
   }
   return pointMap;
 }
@@ -75,15 +71,16 @@ void writeLinearTransformFile(const AffineMatrix4& pointMap, const std::string& 
 {
   if (!isLinearTransformPath(path))
   {
-    fail(path, std::string("not an ITK transform file name (expected ") + extensionsText + ")");
+    throwFileError(
+      path, std::string("not an ITK transform file name (expected ") + extensionsText + ")");
   }
   if (!allFinite(pointMap))
   {
-    fail(path, "the transform to write has a value that is not finite");
+    throwFileError(path, "the transform to write has a value that is not finite");
   }
   if (pointMap[12] != 0.0 || pointMap[13] != 0.0 || pointMap[14] != 0.0 || pointMap[15] != 1.0)
   {
-    fail(path, "the transform to write is not affine (its last row is not 0 0 0 1)");
+    throwFileError(path, "the transform to write is not affine (its last row is not 0 0 0 1)");
   }
   registerTransformIOs();
   using Affine = itk::AffineTransform<double, 3>;
@@ -110,7 +107,7 @@ void writeLinearTransformFile(const AffineMatrix4& pointMap, const std::string& 
   }
   catch (const std::exception& e)
   {
-    fail(path, "cannot be written: " + detail::itkMessage(e));
+    throwFileError(path, "cannot be written: " + detail::itkMessage(e));
   }
 }
 
@@ -119,11 +116,12 @@ AffineMatrix4 readLinearTransformFile(const std::string& path)
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error))
   {
-    fail(path, std::filesystem::exists(path, error) ? "not a file" : "no such file");
+    throwFileError(path, std::filesystem::exists(path, error) ? "not a file" : "no such file");
   }
   if (!isLinearTransformPath(path))
   {
-    fail(path, std::string("not an ITK transform file name (expected ") + extensionsText + ")");
+    throwFileError(
+      path, std::string("not an ITK transform file name (expected ") + extensionsText + ")");
   }
   registerTransformIOs();
   auto reader = itk::TransformFileReaderTemplate<double>::New();
@@ -134,12 +132,12 @@ AffineMatrix4 readLinearTransformFile(const std::string& path)
   }
   catch (const std::exception& e)
   {
-    fail(path, "not a readable ITK transform file: " + detail::itkMessage(e));
+    throwFileError(path, "not a readable ITK transform file: " + detail::itkMessage(e));
   }
   const auto* transforms = reader->GetTransformList();
   if (transforms->empty())
   {
-    fail(path, "holds no transform");
+    throwFileError(path, "holds no transform");
   }
   // A composite is listed first, followed by its parts: it stands for all of them.
   const auto* first = transforms->front().GetPointer();
@@ -147,7 +145,7 @@ AffineMatrix4 readLinearTransformFile(const std::string& path)
   const bool composite = className.find("CompositeTransform") != std::string::npos;
   if (transforms->size() > 1 && !composite)
   {
-    fail(path,
+    throwFileError(path,
       "holds " + std::to_string(transforms->size()) +
         " transforms; one linear transform is expected");
   }
@@ -155,11 +153,12 @@ AffineMatrix4 readLinearTransformFile(const std::string& path)
   const auto* transform = dynamic_cast<const Transform*>(first);
   if (!transform)
   {
-    fail(path, "holds a " + className + " that is not a 3-D transform");
+    throwFileError(path, "holds a " + className + " that is not a 3-D transform");
   }
   if (transform->GetTransformCategory() != Transform::TransformCategoryEnum::Linear)
   {
-    fail(path, "holds a " + className + ", which is not linear; one linear transform is expected");
+    throwFileError(
+      path, "holds a " + className + ", which is not linear; one linear transform is expected");
   }
   AffineMatrix4 pointMap{};
   pointMap[15] = 1.0;

@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/MeshFileChecks.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <algorithm>
 #include <cctype>
@@ -19,18 +20,13 @@ namespace vimlop::detail
 namespace
 {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
-
 } // namespace
 
 void checkPromise(const std::string& path, std::uint64_t count, const std::string& what)
 {
   if (count > maxMeshElements)
   {
-    fail(path,
+    throwFileError(path,
       "the file promises " + std::to_string(count) + " " + what + "; meshes with more than " +
         std::to_string(maxMeshElements) + " are refused");
   }
@@ -52,7 +48,7 @@ void checkStl(const std::string& path)
     {
       return; // a short ASCII file: VTK's reader judges it
     }
-    fail(path, "not an STL file (too short)");
+    throwFileError(path, "not an STL file (too short)");
   }
   std::uint32_t count = 0;
   for (int i = 3; i >= 0; --i)
@@ -76,7 +72,7 @@ void checkStl(const std::string& path)
   {
     return; // a consistent binary file, or ASCII
   }
-  fail(path,
+  throwFileError(path,
     "truncated or corrupt binary STL (" + std::to_string(count) + " triangles need " +
       std::to_string(binarySize) + " bytes, the file has " + std::to_string(size) + ")");
 }
@@ -104,7 +100,7 @@ void checkObj(const std::string& path)
       const bool enough = keyword == "vt" ? numbers >= 1 : numbers >= 3;
       if (!enough || !words.eof())
       {
-        fail(path,
+        throwFileError(path,
           "line " + std::to_string(number) + " is a '" + keyword + "' line without its numbers");
       }
       ++defined[keyword == "v" ? 0 : keyword == "vt" ? 1 : 2];
@@ -125,7 +121,7 @@ void checkObj(const std::string& path)
       const bool hasNormal = slashes == 2;
       if (keyword == "f" && ((defined[1] > 0 && !hasTexture) || (defined[2] > 0 && !hasNormal)))
       {
-        fail(path,
+        throwFileError(path,
           "line " + std::to_string(number) + " has a corner '" + corner.substr(0, 20) +
             "' without the texture coordinate or normal the file defines for every corner");
       }
@@ -144,7 +140,7 @@ void checkObj(const std::string& path)
         }
         if (index.empty() && part > 0)
         {
-          fail(path,
+          throwFileError(path,
             "line " + std::to_string(number) + " has a corner '" + corner.substr(0, 20) +
               "' that ends with '/'");
         }
@@ -154,7 +150,7 @@ void checkObj(const std::string& path)
         if (index.empty() || *end != '\0' || value == 0 || value > count || value < -count)
         {
           static const char* const kinds[] = { "vertex", "texture coordinate", "normal" };
-          fail(path,
+          throwFileError(path,
             "line " + std::to_string(number) + " names " + kinds[part] + " '" +
               index.substr(0, 20) + "'; " + std::to_string(count) + " are defined before it");
         }

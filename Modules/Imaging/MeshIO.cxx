@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/MeshIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/LegacyVtkFileCheck.h>
 #include <vimlop/Imaging/MeshFileChecks.h>
@@ -34,11 +35,6 @@ namespace vimlop
 namespace
 {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
-
 /// Runs a VTK reader and turns its silent failures into an exception.
 template <typename Reader>
 vtkSmartPointer<vtkPolyData> runReader(Reader* reader, const std::string& path)
@@ -48,7 +44,7 @@ vtkSmartPointer<vtkPolyData> runReader(Reader* reader, const std::string& path)
   vtkPolyData* output = reader->GetOutput();
   if (reader->GetErrorCode() != 0 || !output || output->GetNumberOfPoints() == 0)
   {
-    fail(path, "not a readable mesh (no points could be read)");
+    throwFileError(path, "not a readable mesh (no points could be read)");
   }
   vtkSmartPointer<vtkPolyData> mesh = output;
   return mesh;
@@ -59,7 +55,7 @@ vtkSmartPointer<vtkPolyData> toPolyData(const std::string& path, const detail::P
 {
   if (ply.points.empty())
   {
-    fail(path, "not a readable mesh (no points could be read)");
+    throwFileError(path, "not a readable mesh (no points could be read)");
   }
   vtkNew<vtkPoints> points;
   points->SetNumberOfPoints(static_cast<vtkIdType>(ply.points.size()));
@@ -101,7 +97,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
   {
-    fail(path, "no such file");
+    throwFileError(path, "no such file");
   }
   const std::string ext = lowerCaseExtension(path);
   if (ext == ".vtp")
@@ -111,7 +107,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
     reader->SetFileName(path.c_str());
     if (!reader->CanReadFile(path.c_str()))
     {
-      fail(path, "not a VTK XML polydata file");
+      throwFileError(path, "not a VTK XML polydata file");
     }
     detail::checkXmlPolyData(path);
     detail::checkXmlArrays(path);
@@ -123,7 +119,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
     reader->SetFileName(path.c_str());
     if (!reader->IsFilePolyData())
     {
-      fail(path, "not a legacy VTK polydata file");
+      throwFileError(path, "not a legacy VTK polydata file");
     }
     detail::checkLegacyVtk(path);
     return runReader(reader.Get(), path);
@@ -144,7 +140,7 @@ vtkSmartPointer<vtkPolyData> readPolyData(const std::string& path)
     vtkNew<vtkOBJReader> reader;
     return runReader(reader.Get(), path);
   }
-  fail(path, "unsupported mesh file type (expected .vtp, .vtk, .stl, .ply or .obj)");
+  throwFileError(path, "unsupported mesh file type (expected .vtp, .vtk, .stl, .ply or .obj)");
 }
 
 void writePolyData(vtkPolyData* mesh, const std::string& path)
@@ -189,11 +185,11 @@ void writePolyData(vtkPolyData* mesh, const std::string& path)
   }
   else
   {
-    fail(path, "unsupported mesh output type (expected .vtp, .vtk, .stl or .ply)");
+    throwFileError(path, "unsupported mesh output type (expected .vtp, .vtk, .stl or .ply)");
   }
   if (!ok)
   {
-    fail(path, "could not write the mesh");
+    throwFileError(path, "could not write the mesh");
   }
 }
 

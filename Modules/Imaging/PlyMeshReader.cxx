@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/PlyMeshReader.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,11 +15,6 @@ namespace vimlop::detail
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 enum class PlyFormat
 {
@@ -108,7 +104,7 @@ public:
     }
     if (this->At >= this->Data.size())
     {
-      fail(this->Path, "the file ends before " + this->Where + " (truncated)");
+      throwFileError(this->Path, "the file ends before " + this->Where + " (truncated)");
     }
     const std::size_t newline = std::min(this->Data.find('\n', this->At), this->Data.size());
     this->Line.clear();
@@ -123,14 +119,14 @@ public:
       double value = 0.0;
       if (!(this->Line >> value))
       {
-        fail(this->Path, this->Where + " has too few values");
+        throwFileError(this->Path, this->Where + " has too few values");
       }
       return value;
     }
     const auto bytes = static_cast<std::size_t>(type.bytes);
     if (bytes > this->Data.size() - this->At)
     {
-      fail(this->Path, "the file ends inside " + this->Where + " (truncated)");
+      throwFileError(this->Path, "the file ends inside " + this->Where + " (truncated)");
     }
     std::uint64_t bits = 0;
     for (std::size_t i = 0; i < bytes; ++i)
@@ -188,7 +184,7 @@ std::vector<PlyElement> readHeader(
     {
       if (keyword != "ply")
       {
-        fail(path, "not a PLY file");
+        throwFileError(path, "not a PLY file");
       }
       continue;
     }
@@ -196,7 +192,7 @@ std::vector<PlyElement> readHeader(
     {
       if (!hasFormat)
       {
-        fail(path, "not a PLY file (no format line)");
+        throwFileError(path, "not a PLY file (no format line)");
       }
       return elements;
     }
@@ -219,7 +215,7 @@ std::vector<PlyElement> readHeader(
       }
       else
       {
-        fail(path, "unknown PLY format '" + name.substr(0, 40) + "'");
+        throwFileError(path, "unknown PLY format '" + name.substr(0, 40) + "'");
       }
     }
     else if (keyword == "element")
@@ -227,12 +223,12 @@ std::vector<PlyElement> readHeader(
       PlyElement element;
       if (!(words >> element.name >> element.count))
       {
-        fail(path, "a PLY element line without a name and a count");
+        throwFileError(path, "a PLY element line without a name and a count");
       }
       // Each element takes at least one byte: a larger count is a lie.
       if (element.count > data.size())
       {
-        fail(path,
+        throwFileError(path,
           "the PLY header promises " + std::to_string(element.count) + " " + element.name +
             " elements in a " + std::to_string(data.size()) + "-byte file");
       }
@@ -242,7 +238,7 @@ std::vector<PlyElement> readHeader(
     {
       if (elements.empty())
       {
-        fail(path, "a PLY property before any element");
+        throwFileError(path, "a PLY property before any element");
       }
       PlyProperty property;
       std::string type;
@@ -254,7 +250,7 @@ std::vector<PlyElement> readHeader(
         property.count = typeNamed(countType);
         if (property.count.bytes == 0 || property.count.isFloat)
         {
-          fail(
+          throwFileError(
             path, "unknown or non-integer PLY list count type '" + countType.substr(0, 40) + "'");
         }
       }
@@ -262,16 +258,17 @@ std::vector<PlyElement> readHeader(
       words >> property.name;
       if (property.type.bytes == 0)
       {
-        fail(path, "unknown PLY property type '" + type.substr(0, 40) + "'");
+        throwFileError(path, "unknown PLY property type '" + type.substr(0, 40) + "'");
       }
       elements.back().properties.push_back(property);
     }
     else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty())
     {
-      fail(path, "a PLY header line starts with '" + keyword.substr(0, 40) + "', no PLY keyword");
+      throwFileError(
+        path, "a PLY header line starts with '" + keyword.substr(0, 40) + "', no PLY keyword");
     }
   }
-  fail(path, "not a PLY file (no end_header)");
+  throwFileError(path, "not a PLY file (no end_header)");
 }
 
 } // namespace
@@ -281,7 +278,7 @@ PlyMesh readPlyMesh(const std::string& path)
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
-    fail(path, "cannot open the file");
+    throwFileError(path, "cannot open the file");
   }
   const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::size_t at = 0;
@@ -291,7 +288,7 @@ PlyMesh readPlyMesh(const std::string& path)
     elements.begin(), elements.end(), [](const PlyElement& e) { return e.name == "vertex"; });
   if (vertexElement == elements.end())
   {
-    fail(path, "the PLY file has no vertex element");
+    throwFileError(path, "the PLY file has no vertex element");
   }
   const std::uint64_t vertices = vertexElement->count;
   PlyMesh mesh;
@@ -320,11 +317,11 @@ PlyMesh readPlyMesh(const std::string& path)
     }
     if (isVertex && std::count(xyz.begin(), xyz.end(), -1) > 0)
     {
-      fail(path, "the PLY vertex element lacks one of the properties x, y and z");
+      throwFileError(path, "the PLY vertex element lacks one of the properties x, y and z");
     }
     if (isFace && indices < 0)
     {
-      fail(path, "the PLY face element has no integer list 'vertex_indices'");
+      throwFileError(path, "the PLY face element has no integer list 'vertex_indices'");
     }
     for (std::uint64_t i = 0; i < element.count; ++i)
     {
@@ -349,7 +346,7 @@ PlyMesh readPlyMesh(const std::string& path)
         if (!(items >= 0.0 && items <= 1e6) ||
           items != static_cast<double>(static_cast<long>(items)))
         {
-          fail(path, values.where() + " has a list of " + numberText(items) + " items");
+          throwFileError(path, values.where() + " has a list of " + numberText(items) + " items");
         }
         std::vector<std::int64_t> face;
         for (long n = 0; n < static_cast<long>(items); ++n)
@@ -362,7 +359,7 @@ PlyMesh readPlyMesh(const std::string& path)
           if (!(v >= 0.0 && v < static_cast<double>(vertices)) ||
             v != static_cast<double>(static_cast<std::int64_t>(v)))
           {
-            fail(path,
+            throwFileError(path,
               values.where() + " names vertex " + numberText(v) + "; the file has " +
                 std::to_string(vertices));
           }

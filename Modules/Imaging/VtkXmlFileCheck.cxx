@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/VtkXmlFileCheck.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Imaging/MeshFileChecks.h>
 
 #include <algorithm>
@@ -16,11 +17,6 @@ namespace vimlop::detail
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 /// VTK writes blocks of 32 KiB; a block larger than this is not a mesh's.
 constexpr std::uint64_t maxBlockBytes = std::uint64_t(64) << 20;
@@ -214,7 +210,8 @@ void checkXmlArrays(const std::string& path)
   const std::string headerType = file.count("header_type") ? file["header_type"] : "UInt32";
   if (headerType != "UInt32" && headerType != "UInt64")
   {
-    fail(path, "the VTK XML header type '" + headerType + "' is neither UInt32 nor UInt64");
+    throwFileError(
+      path, "the VTK XML header type '" + headerType + "' is neither UInt32 nor UInt64");
   }
   const std::size_t headerBytes = headerType == "UInt64" ? 8 : 4;
   const bool bigEndian = file["byte_order"] == "BigEndian";
@@ -257,7 +254,8 @@ void checkXmlArrays(const std::string& path)
         offset.find_first_not_of("0123456789") == std::string::npos;
       if (appended == std::string::npos || !digits || std::stoull(offset) > text.size() - appended)
       {
-        fail(path, "the VTK XML " + name + " has no appended data at its offset '" + offset + "'");
+        throwFileError(
+          path, "the VTK XML " + name + " has no appended data at its offset '" + offset + "'");
       }
       start = appended + static_cast<std::size_t>(std::stoull(offset));
       base64 = appendedBase64;
@@ -269,12 +267,12 @@ void checkXmlArrays(const std::string& path)
     {
       if (!bytes.read(headerBytes, header))
       {
-        fail(path, cut);
+        throwFileError(path, cut);
       }
       const std::uint64_t size = number(header, 0, headerBytes, bigEndian);
       if (size > bytes.left())
       {
-        fail(path,
+        throwFileError(path,
           "the VTK XML " + name + " declares " + std::to_string(size) + " bytes and " +
             std::to_string(bytes.left()) + " are left");
       }
@@ -284,20 +282,20 @@ void checkXmlArrays(const std::string& path)
     // compressed size of every block.
     if (!bytes.read(3 * headerBytes, header))
     {
-      fail(path, cut);
+      throwFileError(path, cut);
     }
     const std::uint64_t blocks = number(header, 0, headerBytes, bigEndian);
     const std::uint64_t blockSize = number(header, headerBytes, headerBytes, bigEndian);
     const std::uint64_t lastSize = number(header, 2 * headerBytes, headerBytes, bigEndian);
     if (blocks > bytes.left() / headerBytes)
     {
-      fail(path,
+      throwFileError(path,
         "the VTK XML " + name + " declares " + std::to_string(blocks) +
           " compressed blocks, more than its " + std::to_string(bytes.left()) + " bytes can list");
     }
     if (blockSize > maxBlockBytes || lastSize > blockSize)
     {
-      fail(path,
+      throwFileError(path,
         "the VTK XML " + name + " declares blocks of " + std::to_string(blockSize) +
           " bytes (the last of " + std::to_string(lastSize) + "); blocks of at most " +
           std::to_string(maxBlockBytes) + " bytes are read");
@@ -305,7 +303,7 @@ void checkXmlArrays(const std::string& path)
     std::string sizes;
     if (!bytes.read(static_cast<std::size_t>(blocks * headerBytes), sizes))
     {
-      fail(path, cut);
+      throwFileError(path, cut);
     }
     std::uint64_t total = 0;
     for (std::uint64_t b = 0; b < blocks; ++b)
@@ -313,7 +311,7 @@ void checkXmlArrays(const std::string& path)
       total += number(sizes, static_cast<std::size_t>(b * headerBytes), headerBytes, bigEndian);
       if (total > bytes.left())
       {
-        fail(path,
+        throwFileError(path,
           "the VTK XML " + name + " declares " + std::to_string(total) +
             " compressed bytes or more and " + std::to_string(bytes.left()) + " are left");
       }

@@ -6,6 +6,7 @@
 
 #include "VideoRegistrationPipelineInternals.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Video/ColmapImport.h>
 #include <vimlop/Video/ColmapRunner.h>
@@ -32,19 +33,19 @@ void VideoRegistrationPipeline::useContours(const std::vector<FrameContours>& co
   Internals& d = *this->Impl;
   d.need(d.FramesLoaded, "load the frames");
   const StageTimings::Stopwatch watch;
-  const auto fail = [&](const std::string& problem)
-  { throw Error("'" + source + "': " + problem); };
   if (pictures.widthPx > 0 &&
     (pictures.widthPx != d.Intrinsics.widthPx || pictures.heightPx != d.Intrinsics.heightPx))
   {
-    fail(formatText("its contours are of %dx%d pictures, the frames are %dx%d", pictures.widthPx,
-      pictures.heightPx, d.Intrinsics.widthPx, d.Intrinsics.heightPx));
+    throwFileError(source,
+      formatText("its contours are of %dx%d pictures, the frames are %dx%d", pictures.widthPx,
+        pictures.heightPx, d.Intrinsics.widthPx, d.Intrinsics.heightPx));
   }
   if (d.Intrinsics.hasDistortion() && !pictures.undistorted)
   {
-    fail("its contours were detected in the frames as recorded, but the intrinsics have a lens "
-         "distortion and the registration sees the frames undistorted: detect them with vimlop "
-         "contours --intrinsics");
+    throwFileError(source,
+      "its contours were detected in the frames as recorded, but the intrinsics have a lens "
+      "distortion and the registration sees the frames undistorted: detect them with vimlop "
+      "contours --intrinsics");
   }
   std::map<std::string, const FrameContours*> byName;
   for (const FrameContours& frame : contours)
@@ -60,7 +61,7 @@ void VideoRegistrationPipeline::useContours(const std::vector<FrameContours>& co
     const auto at = byName.find(name);
     if (at == byName.end())
     {
-      fail("has no contours of the frame '" + name + "'");
+      throwFileError(source, "has no contours of the frame '" + name + "'");
     }
     kept.emplace_back();
     for (const ContourPoint& p : at->second->points)

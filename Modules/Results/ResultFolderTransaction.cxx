@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -20,11 +21,6 @@ namespace fs = std::filesystem;
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& folder, const std::string& problem)
-{
-  throw Error("'" + folder + "': " + problem);
-}
 
 /// The folder as named, without trailing separators ("out/" is "out").
 std::string withoutTrailingSeparators(std::string folder)
@@ -68,7 +64,8 @@ int lockOrFail(const std::string& folder, const std::string& lockPath)
     const int fd = ::open(lockPath.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0)
     {
-      fail(folder, "cannot create the lock file '" + lockPath + "' (" + std::strerror(errno) + ")");
+      throwFileError(
+        folder, "cannot create the lock file '" + lockPath + "' (" + std::strerror(errno) + ")");
     }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0)
     {
@@ -77,11 +74,11 @@ int lockOrFail(const std::string& folder, const std::string& lockPath)
       ::close(fd);
       if (error == EWOULDBLOCK)
       {
-        fail(folder,
+        throwFileError(folder,
           "another run" + (holder.empty() ? std::string() : " (process " + holder + ")") +
             " is writing this result folder; wait for it to end or choose another --out");
       }
-      fail(folder, "cannot lock '" + lockPath + "' (" + std::strerror(error) + ")");
+      throwFileError(folder, "cannot lock '" + lockPath + "' (" + std::strerror(error) + ")");
     }
     struct stat opened = {};
     struct stat named = {};
@@ -97,7 +94,7 @@ int lockOrFail(const std::string& folder, const std::string& lockPath)
     }
     ::close(fd);
   }
-  fail(folder, "cannot take the lock '" + lockPath + "': it keeps being replaced");
+  throwFileError(folder, "cannot take the lock '" + lockPath + "': it keeps being replaced");
 }
 
 /// fsync of every file and folder under `root`, and of `root`.
@@ -113,7 +110,7 @@ void syncTree(const fs::path& root)
   }
   if (ec)
   {
-    fail(root.string(), "cannot list the folder to flush it (" + ec.message() + ")");
+    throwFileError(root.string(), "cannot list the folder to flush it (" + ec.message() + ")");
   }
   syncToDisk(root.string());
 }
@@ -130,7 +127,8 @@ ResultFolderTransaction::ResultFolderTransaction(
   const std::string name = path.filename().string();
   if (this->Folder.empty() || name.empty() || name == "." || name == ".." || this->Folder == "/")
   {
-    fail(folder, "name a folder of its own for the result (it is written beside, then renamed)");
+    throwFileError(
+      folder, "name a folder of its own for the result (it is written beside, then renamed)");
   }
   std::error_code ec;
   const auto checkExisting = [&]
@@ -141,15 +139,15 @@ ResultFolderTransaction::ResultFolderTransaction(
     }
     if (!fs::is_directory(path, ec))
     {
-      fail(this->Folder, "exists and is not a folder; choose another --out");
+      throwFileError(this->Folder, "exists and is not a folder; choose another --out");
     }
     if (existing == Existing::Refuse)
     {
-      fail(this->Folder, "exists; choose another --out or add --force to replace it");
+      throwFileError(this->Folder, "exists; choose another --out or add --force to replace it");
     }
     if (!looksLikeAResultFolder(path))
     {
-      fail(this->Folder,
+      throwFileError(this->Folder,
         "exists and is not a VIMLOP result folder (no result.json, registered-poses.json or "
         "vimlop-export.json); "
         "refusing to replace it");
@@ -161,7 +159,7 @@ ResultFolderTransaction::ResultFolderTransaction(
     fs::create_directories(path.parent_path(), ec);
     if (ec)
     {
-      fail(this->Folder, "cannot create the folder it goes in (" + ec.message() + ")");
+      throwFileError(this->Folder, "cannot create the folder it goes in (" + ec.message() + ")");
     }
   }
   this->LockFd = lockOrFail(this->Folder, this->LockPath);
@@ -173,7 +171,7 @@ ResultFolderTransaction::ResultFolderTransaction(
       fs::remove_all(this->Staging, ec);
       if (ec)
       {
-        fail(this->Staging,
+        throwFileError(this->Staging,
           "cannot remove this unfinished result of an earlier run (" + ec.message() + ")");
       }
       if (note)
@@ -184,7 +182,7 @@ ResultFolderTransaction::ResultFolderTransaction(
     }
     if (!fs::create_directory(this->Staging, ec) || ec)
     {
-      fail(this->Staging,
+      throwFileError(this->Staging,
         "cannot create the folder the result is written to (" +
           (ec ? ec.message() : std::string("it exists")) + ")");
     }
@@ -215,7 +213,7 @@ void ResultFolderTransaction::commit()
   const auto failKeeping = [this](const std::string& problem)
   {
     this->Keep = true;
-    fail(this->Folder, problem + "; the result is in '" + this->Staging + "'");
+    throwFileError(this->Folder, problem + "; the result is in '" + this->Staging + "'");
   };
   try
   {

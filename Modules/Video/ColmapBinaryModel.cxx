@@ -1,5 +1,7 @@
 #include <vimlop/Video/ColmapBinaryModel.h>
 
+#include <vimlop/Core/FileError.h>
+
 #include <vimlop/Video/ColmapCameraModel.h>
 
 #include <algorithm>
@@ -22,7 +24,7 @@ public:
   {
     if (!this->In)
     {
-      fail(path, "no such file or not readable");
+      throwFileError(path, "no such file or not readable");
     }
   }
 
@@ -33,7 +35,7 @@ public:
     T value;
     if (!this->In.read(reinterpret_cast<char*>(&value), sizeof(T)))
     {
-      fail(this->Path, "the file is truncated");
+      throwFileError(this->Path, "the file is truncated");
     }
     return value;
   }
@@ -46,7 +48,7 @@ public:
     {
       if (!this->In.get(c))
       {
-        fail(this->Path, "the file is truncated");
+        throwFileError(this->Path, "the file is truncated");
       }
       if (c == '\0')
       {
@@ -66,7 +68,7 @@ public:
     this->In.seekg(here);
     if (bytesPerItem > 0 && count > static_cast<std::uint64_t>(remaining) / bytesPerItem)
     {
-      fail(this->Path,
+      throwFileError(this->Path,
         "the file is truncated or not a COLMAP model (count " + std::to_string(count) + ")");
     }
     return count;

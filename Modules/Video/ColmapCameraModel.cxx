@@ -1,5 +1,7 @@
 #include <vimlop/Video/ColmapCameraModel.h>
 
+#include <vimlop/Core/FileError.h>
+
 #include <vimlop/Video/ColmapModel.h>
 
 #include <algorithm>
@@ -43,7 +45,7 @@ const ColmapCameraModel& modelByName(const std::string& path, const std::string&
   }
   const bool known = std::find(std::begin(colmapModelNames), std::end(colmapModelNames), name) !=
     std::end(colmapModelNames);
-  fail(path,
+  throwFileError(path,
     (known ? "unsupported camera model '" : "unknown camera model '") + name +
       "' (supported: " + supportedList() + ")");
 }
@@ -59,11 +61,11 @@ const ColmapCameraModel& modelById(const std::string& path, int id)
   }
   if (id >= 0 && id < static_cast<int>(std::size(colmapModelNames)))
   {
-    fail(path,
+    throwFileError(path,
       "unsupported camera model '" + std::string(colmapModelNames[id]) +
         "' (supported: " + supportedList() + ")");
   }
-  fail(path,
+  throwFileError(path,
     "unknown camera model id " + std::to_string(id) + " (supported: " + supportedList() + ")");
 }
 
@@ -74,7 +76,7 @@ PinholeCamera intrinsicsOf(const std::string& path, std::uint64_t cameraId,
   const std::string camera = "camera " + std::to_string(cameraId);
   if (width < 1 || height < 1 || width > maxImageSidePx || height > maxImageSidePx)
   {
-    fail(path,
+    throwFileError(path,
       camera + " has an image size of " + std::to_string(width) + " x " + std::to_string(height) +
         " px (expected 1 to " + std::to_string(maxImageSidePx) + " per side)");
   }
@@ -82,13 +84,13 @@ PinholeCamera intrinsicsOf(const std::string& path, std::uint64_t cameraId,
   {
     if (!std::isfinite(v))
     {
-      fail(path, camera + " has a non-finite parameter");
+      throwFileError(path, camera + " has a non-finite parameter");
     }
   }
   if (!(p[0] > 0.0) ||
     ((model.id == 1 || model.id == 4 || model.id == 5 || model.id == 6) && !(p[1] > 0.0)))
   {
-    fail(path, camera + " has a focal length that is not positive");
+    throwFileError(path, camera + " has a focal length that is not positive");
   }
   PinholeCamera k;
   k.widthPx = static_cast<int>(width);

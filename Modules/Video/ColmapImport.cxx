@@ -1,5 +1,7 @@
 #include <vimlop/Video/ColmapImport.h>
 
+#include <vimlop/Core/FileError.h>
+
 #include <vimlop/Video/ColmapBinaryModel.h>
 #include <vimlop/Video/ColmapModel.h>
 #include <vimlop/Video/ColmapTextModel.h>
@@ -85,7 +87,8 @@ SfmReconstruction readColmapModel(const std::string& folder, ColmapFormat format
   std::error_code ec;
   if (!fs::is_directory(folder, ec))
   {
-    detail::fail(folder, "no such folder (expected a COLMAP sparse model folder such as sparse/0)");
+    throwFileError(
+      folder, "no such folder (expected a COLMAP sparse model folder such as sparse/0)");
   }
   if (format == ColmapFormat::Automatic)
   {
@@ -93,7 +96,7 @@ SfmReconstruction readColmapModel(const std::string& folder, ColmapFormat format
     const bool text = fs::exists(fs::path(folder) / "cameras.txt", ec);
     if (!binary && !text)
     {
-      detail::fail(folder, "not a COLMAP sparse model (no cameras.bin or cameras.txt)");
+      throwFileError(folder, "not a COLMAP sparse model (no cameras.bin or cameras.txt)");
     }
     format = binary ? ColmapFormat::Binary : ColmapFormat::Text;
   }
@@ -117,7 +120,7 @@ SfmReconstruction readColmapModel(const std::string& folder, ColmapFormat format
   }
   if (model.images.empty())
   {
-    detail::fail(imagesPath, "the model has no registered images");
+    throwFileError(imagesPath, "the model has no registered images");
   }
 
   // Frames: in the given order, or the images sorted by name.
@@ -147,7 +150,7 @@ SfmReconstruction readColmapModel(const std::string& folder, ColmapFormat format
     const auto camera = model.cameras.find(image.cameraId);
     if (camera == model.cameras.end())
     {
-      detail::fail(imagesPath,
+      throwFileError(imagesPath,
         "image '" + image.name + "' uses camera " + std::to_string(image.cameraId) + ", which " +
           fs::path(camerasPath).filename().string() + " does not define");
     }
@@ -190,13 +193,13 @@ SfmReconstruction readColmapModel(const std::string& folder, ColmapFormat format
       const auto image = model.images.find(imageId);
       if (image == model.images.end())
       {
-        detail::fail(pointsPath,
+        throwFileError(pointsPath,
           "point " + std::to_string(id) + " is observed by image " + std::to_string(imageId) +
             ", which " + fs::path(imagesPath).filename().string() + " does not hold (dangling id)");
       }
       if (index >= image->second.points2D.size())
       {
-        detail::fail(pointsPath,
+        throwFileError(pointsPath,
           "point " + std::to_string(id) + " refers to 2-D point " + std::to_string(index) +
             " of image '" + image->second.name + "', which has only " +
             std::to_string(image->second.points2D.size()) + " (dangling id)");

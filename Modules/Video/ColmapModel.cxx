@@ -1,21 +1,17 @@
 #include <vimlop/Video/ColmapModel.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 namespace vimlop::detail
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 void checkPose(const std::string& path, std::uint64_t imageId, const ColmapModel::Image& image)
 {
   if (!image.rotation.coeffs().allFinite() || !image.translation.allFinite() ||
     !(image.rotation.norm() > 1e-12))
   {
-    fail(path,
+    throwFileError(path,
       "image " + std::to_string(imageId) +
         " has a non-finite pose or a zero quaternion (expected QW QX QY QZ of a rotation)");
   }
@@ -23,7 +19,7 @@ void checkPose(const std::string& path, std::uint64_t imageId, const ColmapModel
   {
     if (!x.allFinite())
     {
-      fail(path, "image " + std::to_string(imageId) + " has a non-finite 2-D point");
+      throwFileError(path, "image " + std::to_string(imageId) + " has a non-finite 2-D point");
     }
   }
 }
@@ -32,7 +28,7 @@ void checkPoint(const std::string& path, std::uint64_t pointId, const ColmapMode
 {
   if (!point.position.allFinite())
   {
-    fail(path, "point " + std::to_string(pointId) + " has a non-finite position");
+    throwFileError(path, "point " + std::to_string(pointId) + " has a non-finite position");
   }
 }
 

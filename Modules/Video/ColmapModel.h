@@ -48,9 +48,6 @@ struct ColmapModel
   std::map<std::uint64_t, Point> points;
 };
 
-/// Throws the Error of a COLMAP file: "'<path>': <problem>".
-[[noreturn]] void fail(const std::string& path, const std::string& problem);
-
 /// A world-to-camera pose must be finite with a non-zero quaternion (it is
 /// normalised on use); a point position must be finite.
 void checkPose(const std::string& path, std::uint64_t imageId, const ColmapModel::Image& image);

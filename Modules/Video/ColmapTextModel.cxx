@@ -1,5 +1,7 @@
 #include <vimlop/Video/ColmapTextModel.h>
 
+#include <vimlop/Core/FileError.h>
+
 #include <vimlop/Video/ColmapCameraModel.h>
 
 #include <cstdint>
@@ -22,7 +24,7 @@ std::vector<std::pair<int, std::string>> dataLines(const std::string& path, bool
   std::ifstream in(path);
   if (!in)
   {
-    fail(path, "no such file or not readable");
+    throwFileError(path, "no such file or not readable");
   }
   std::vector<std::pair<int, std::string>> lines;
   std::string line;
@@ -54,7 +56,7 @@ T parseField(std::istringstream& in, const std::string& path, int line, const ch
   T value;
   if (!(in >> value))
   {
-    fail(path, "line " + std::to_string(line) + ": expected " + what);
+    throwFileError(path, "line " + std::to_string(line) + ": expected " + what);
   }
   return value;
 }
@@ -108,7 +110,7 @@ void readImagesText(const std::string& path, ColmapModel& model)
     std::getline(in >> std::ws, image.name);
     if (image.name.empty())
     {
-      fail(path, "line " + std::to_string(line) + ": expected an image name");
+      throwFileError(path, "line " + std::to_string(line) + ": expected an image name");
     }
     ++i;
     if (i < lines.size())

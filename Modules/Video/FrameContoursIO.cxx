@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
@@ -37,11 +38,10 @@ void writeFrameContours(const std::vector<FrameContours>& frames,
 std::vector<FrameContours> readFrameContours(
   const std::string& path, FrameContoursPictures* pictures)
 {
-  const auto fail = [&](const std::string& problem) { throw Error("'" + path + "': " + problem); };
   std::ifstream in(path);
   if (!in)
   {
-    fail("cannot open the contours file");
+    throwFileError(path, "cannot open the contours file");
   }
   nlohmann::json document;
   try
@@ -50,11 +50,12 @@ std::vector<FrameContours> readFrameContours(
   }
   catch (const nlohmann::json::exception&)
   {
-    fail("not a JSON file");
+    throwFileError(path, "not a JSON file");
   }
   if (!document.is_object() || document.value("format", "") != "vimlop-contours")
   {
-    fail("not a contours file of vimlop contours (its \"format\" is not \"vimlop-contours\")");
+    throwFileError(
+      path, "not a contours file of vimlop contours (its \"format\" is not \"vimlop-contours\")");
   }
   std::vector<FrameContours> frames;
   try
@@ -73,16 +74,17 @@ std::vector<FrameContours> readFrameContours(
       {
         if (!point.is_array() || point.size() != 4)
         {
-          fail("frame '" + f.name + "': a point is not [u, v, nu, nv]");
+          throwFileError(path, "frame '" + f.name + "': a point is not [u, v, nu, nv]");
         }
         ContourPoint p;
         p.pixel = { point[0].get<double>(), point[1].get<double>() };
         p.normal = { point[2].get<double>(), point[3].get<double>() };
         if (!p.pixel.allFinite() || !(std::abs(p.normal.norm() - 1.0) < 1e-3))
         {
-          fail("frame '" + f.name +
-            "': a point's pixel is not finite or its normal is not a unit "
-            "vector");
+          throwFileError(path,
+            "frame '" + f.name +
+              "': a point's pixel is not finite or its normal is not a unit "
+              "vector");
         }
         f.points.push_back(p);
       }
@@ -91,7 +93,7 @@ std::vector<FrameContours> readFrameContours(
   }
   catch (const nlohmann::json::exception& e)
   {
-    fail(std::string("malformed: ") + e.what());
+    throwFileError(path, std::string("malformed: ") + e.what());
   }
   return frames;
 }

@@ -1,6 +1,7 @@
 #include <vimlop/Video/FrameSequence.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 
 #include "ImageFileHeader.h"
@@ -19,11 +20,6 @@ namespace vimlop
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 /// "frame2" < "frame10": digit runs compare by value, the rest by character.
 bool naturalLess(const std::string& a, const std::string& b)
@@ -86,11 +82,11 @@ cv::Mat decodeImage(const std::string& file)
   }
   catch (const cv::Exception& e)
   {
-    fail(file, "not a readable image (OpenCV: " + e.err + ")");
+    throwFileError(file, "not a readable image (OpenCV: " + e.err + ")");
   }
   if (image.empty())
   {
-    fail(file, "not a readable image");
+    throwFileError(file, "not a readable image");
   }
   return image;
 }
@@ -122,7 +118,7 @@ void checkFrameSize(const std::string& path, const std::string& name, std::uint6
 {
   if (width * height > FrameSequence::MaxFramePixels || width > 65535 || height > 65535)
   {
-    fail(path,
+    throwFileError(path,
       "frame '" + name + "' is " + std::to_string(width) + " x " + std::to_string(height) +
         " pixels; frames of at most " + std::to_string(FrameSequence::MaxFramePixels) +
         " pixels (8192 x 8192) are read");
@@ -130,7 +126,7 @@ void checkFrameSize(const std::string& path, const std::string& name, std::uint6
   decodedBytes += width * height * 3;
   if (decodedBytes > FrameSequence::MaxDecodedBytes)
   {
-    fail(path,
+    throwFileError(path,
       "the first " + std::to_string(framesSoFar + 1) + " frames of " + std::to_string(width) +
         " x " + std::to_string(height) + " pixels would take more than " +
         std::to_string(FrameSequence::MaxDecodedBytes >> 30) +
@@ -224,11 +220,11 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
   std::error_code ec;
   if (!fs::exists(path, ec))
   {
-    fail(path, "no such file or folder");
+    throwFileError(path, "no such file or folder");
   }
   if (maxFrames < 1)
   {
-    fail(path, "the number of frames to load must be at least 1");
+    throwFileError(path, "the number of frames to load must be at least 1");
   }
   FrameSequence sequence;
   if (fs::is_directory(path, ec))
@@ -243,7 +239,8 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
     }
     if (names.empty())
     {
-      fail(path, "the folder holds no image files (.png, .jpg, .jpeg, .bmp, .tif, .tiff)");
+      throwFileError(
+        path, "the folder holds no image files (.png, .jpg, .jpeg, .bmp, .tif, .tiff)");
     }
     std::sort(names.begin(), names.end(), naturalLess);
     names.resize(std::min(names.size(), static_cast<size_t>(maxFrames)));
@@ -312,7 +309,7 @@ FrameSequence FrameSequence::load(const std::string& path, int maxFrames)
   {
     if (sequence.Frames[i].size() != sequence.Frames[0].size())
     {
-      fail(path,
+      throwFileError(path,
         "frame '" + sequence.Names[i] + "' is " + std::to_string(sequence.Frames[i].cols) + "x" +
           std::to_string(sequence.Frames[i].rows) + " but '" + sequence.Names[0] + "' is " +
           std::to_string(sequence.widthPx()) + "x" + std::to_string(sequence.heightPx()));

@@ -1,6 +1,7 @@
 #include <vimlop/Video/IntrinsicsIO.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 
 #include <opencv2/core.hpp>
@@ -19,17 +20,12 @@ namespace vimlop
 namespace
 {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
-
 double readNumber(const cv::FileNode& root, const char* key, const std::string& path)
 {
   const cv::FileNode node = root[key];
   if (node.empty() || (!node.isReal() && !node.isInt()))
   {
-    fail(path, std::string("missing or non-numeric entry '") + key + "'");
+    throwFileError(path, std::string("missing or non-numeric entry '") + key + "'");
   }
   return static_cast<double>(node);
 }
@@ -42,13 +38,14 @@ void checkMatrixNode(
   if (!node.isMap() || node["rows"].empty() || node["cols"].empty() || !node["rows"].isInt() ||
     !node["cols"].isInt())
   {
-    fail(path, std::string("'") + key + "' is not an OpenCV matrix (rows, cols, dt, data)");
+    throwFileError(
+      path, std::string("'") + key + "' is not an OpenCV matrix (rows, cols, dt, data)");
   }
   const int rows = static_cast<int>(node["rows"]);
   const int cols = static_cast<int>(node["cols"]);
   if (rows < 1 || cols < 1 || rows > maxRows || cols > maxCols)
   {
-    fail(path,
+    throwFileError(path,
       std::string("'") + key + "' has an invalid size " + std::to_string(rows) + "x" +
         std::to_string(cols));
   }
@@ -73,7 +70,7 @@ LensModel readLensModel(const cv::FileNode& root, const std::string& path)
   {
     return LensModel::Fisheye;
   }
-  fail(path,
+  throwFileError(path,
     "unknown distortion_model '" + name +
       "' (expected plumb_bob or radial_tangential, OpenCV's default, or fisheye or equidistant)");
 }
@@ -204,18 +201,18 @@ PinholeCamera readIntrinsics(const std::string& path)
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
   {
-    fail(path, "no such file");
+    throwFileError(path, "no such file");
   }
   if (!isIntrinsicsPath(path))
   {
-    fail(path, "unsupported intrinsics file type (expected .yaml, .yml, .json or .xml)");
+    throwFileError(path, "unsupported intrinsics file type (expected .yaml, .yml, .json or .xml)");
   }
   {
     // OpenCV's parsers loop forever on some text holding a NUL byte (found by
     // fuzzing); intrinsics files are short text, so check before parsing.
     if (std::filesystem::file_size(path, ec) > maxIntrinsicsFileBytes)
     {
-      fail(path,
+      throwFileError(path,
         "not a valid intrinsics file (larger than " + std::to_string(maxIntrinsicsFileBytes) +
           " bytes)");
     }
@@ -223,7 +220,8 @@ PinholeCamera readIntrinsics(const std::string& path)
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (text.find('\0') != std::string::npos)
     {
-      fail(path, "not a valid intrinsics file (it holds a NUL byte; intrinsics files are text)");
+      throwFileError(
+        path, "not a valid intrinsics file (it holds a NUL byte; intrinsics files are text)");
     }
     // OpenCV's YAML parser also loops forever on some malformed YAML (found
     // by fuzzing: an indented "---", lines starting "-r:"), so YAML must be
@@ -234,7 +232,7 @@ PinholeCamera readIntrinsics(const std::string& path)
     {
       if (const int line = firstUnsupportedYamlLine(text))
       {
-        fail(path,
+        throwFileError(path,
           "not a valid intrinsics file (line " + std::to_string(line) +
             ": expected 'key: value', '- item', a comment or a continued [ ... ] list)");
       }
@@ -246,7 +244,7 @@ PinholeCamera readIntrinsics(const std::string& path)
     cv::FileStorage storage(path, cv::FileStorage::READ);
     if (!storage.isOpened())
     {
-      fail(path, "cannot open the intrinsics file");
+      throwFileError(path, "cannot open the intrinsics file");
     }
     const cv::FileNode root = storage.root();
     if (!root["camera_matrix"].empty())
@@ -256,7 +254,7 @@ PinholeCamera readIntrinsics(const std::string& path)
       root["camera_matrix"] >> k;
       if (k.rows != 3 || k.cols != 3)
       {
-        fail(path, "'camera_matrix' must be a 3x3 matrix");
+        throwFileError(path, "'camera_matrix' must be a 3x3 matrix");
       }
       k.convertTo(k, CV_64F);
       camera.fx = k.at<double>(0, 0);
@@ -266,7 +264,7 @@ PinholeCamera readIntrinsics(const std::string& path)
       if (k.at<double>(0, 1) != 0.0 || k.at<double>(1, 0) != 0.0 || k.at<double>(2, 0) != 0.0 ||
         k.at<double>(2, 1) != 0.0 || k.at<double>(2, 2) != 1.0)
       {
-        fail(path, "'camera_matrix' must have the form [fx 0 cx; 0 fy cy; 0 0 1]");
+        throwFileError(path, "'camera_matrix' must have the form [fx 0 cx; 0 fy cy; 0 0 1]");
       }
       camera.widthPx = static_cast<int>(readNumber(root, "image_width", path));
       camera.heightPx = static_cast<int>(readNumber(root, "image_height", path));
@@ -298,7 +296,7 @@ PinholeCamera readIntrinsics(const std::string& path)
       {
         if (!d.isSeq())
         {
-          fail(path, "'distortion' must be a list of numbers");
+          throwFileError(path, "'distortion' must be a list of numbers");
         }
         camera.distortion.resize(static_cast<Eigen::Index>(d.size()));
         for (int i = 0; i < static_cast<int>(d.size()); ++i)
@@ -315,12 +313,12 @@ PinholeCamera readIntrinsics(const std::string& path)
   }
   catch (const cv::Exception& e)
   {
-    fail(path, "not a valid intrinsics file (" + e.err + ")");
+    throwFileError(path, "not a valid intrinsics file (" + e.err + ")");
   }
   catch (const std::exception& e)
   {
     // OpenCV's parsers also throw standard exceptions (found by fuzzing).
-    fail(path, std::string("not a valid intrinsics file (") + e.what() + ")");
+    throwFileError(path, std::string("not a valid intrinsics file (") + e.what() + ")");
   }
   try
   {
@@ -328,7 +326,7 @@ PinholeCamera readIntrinsics(const std::string& path)
   }
   catch (const Error& e)
   {
-    fail(path, e.what());
+    throwFileError(path, e.what());
   }
   return camera;
 }
@@ -337,7 +335,7 @@ void writeIntrinsics(const PinholeCamera& camera, const std::string& path)
 {
   if (!isIntrinsicsPath(path))
   {
-    fail(path, "unsupported intrinsics file type (expected .yaml, .yml, .json or .xml)");
+    throwFileError(path, "unsupported intrinsics file type (expected .yaml, .yml, .json or .xml)");
   }
   try
   {
@@ -345,14 +343,14 @@ void writeIntrinsics(const PinholeCamera& camera, const std::string& path)
   }
   catch (const Error& e)
   {
-    fail(path, std::string("refusing to write invalid intrinsics: ") + e.what());
+    throwFileError(path, std::string("refusing to write invalid intrinsics: ") + e.what());
   }
   try
   {
     cv::FileStorage storage(path, cv::FileStorage::WRITE);
     if (!storage.isOpened())
     {
-      fail(path, "cannot write the intrinsics file");
+      throwFileError(path, "cannot write the intrinsics file");
     }
     storage << "image_width" << camera.widthPx;
     storage << "image_height" << camera.heightPx;
@@ -377,7 +375,7 @@ void writeIntrinsics(const PinholeCamera& camera, const std::string& path)
   }
   catch (const cv::Exception& e)
   {
-    fail(path, "cannot write the intrinsics file (" + e.err + ")");
+    throwFileError(path, "cannot write the intrinsics file (" + e.err + ")");
   }
 }
 

@@ -1,6 +1,7 @@
 #include "TrackedSequenceFile.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/TransformSequenceFile.h>
 #include <vimlop/Video/FrameSequence.h>
@@ -20,11 +21,6 @@ namespace vimlop::detail
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 /// Where and how a sequence's frames are stored, from either header form.
 struct FrameLayout
@@ -55,7 +51,8 @@ void checkChannels(int channels, const std::string& path)
 {
   if (channels != 1 && channels != 3 && channels != 4)
   {
-    fail(path, "frames of " + std::to_string(channels) + " channels are not read (1, 3 or 4)");
+    throwFileError(
+      path, "frames of " + std::to_string(channels) + " channels are not read (1, 3 or 4)");
   }
 }
 
@@ -65,17 +62,17 @@ FrameLayout metaImageLayout(const SequenceMetafileHeader& header, const std::str
   const auto dims = header.fields.find("NDims");
   if (dims == header.fields.end() || dims->second != "3" || field == header.fields.end())
   {
-    fail(path, "not a sequence of images (NDims must be 3: width, height and frames)");
+    throwFileError(path, "not a sequence of images (NDims must be 3: width, height and frames)");
   }
   const std::vector<long> sizes = numbersOf(field->second);
   if (sizes.size() != 3 || sizes[0] < 1 || sizes[1] < 1 || sizes[2] < 1)
   {
-    fail(path, "DimSize '" + field->second + "' is not three positive sizes");
+    throwFileError(path, "DimSize '" + field->second + "' is not three positive sizes");
   }
   const auto type = header.fields.find("ElementType");
   if (type == header.fields.end() || type->second != "MET_UCHAR")
   {
-    fail(path,
+    throwFileError(path,
       "its pixels are " + (type == header.fields.end() ? "of no type" : type->second) +
         "; a tracked video needs 8-bit pixels (MET_UCHAR)");
   }
@@ -96,7 +93,7 @@ FrameLayout metaImageLayout(const SequenceMetafileHeader& header, const std::str
   {
     if (where.find(' ') != std::string::npos || where == "LIST")
     {
-      fail(path, "data in several files (ElementDataFile '" + where + "') is not read");
+      throwFileError(path, "data in several files (ElementDataFile '" + where + "') is not read");
     }
     layout.dataFile = where;
   }
@@ -115,7 +112,7 @@ FrameLayout nrrdLayout(const SequenceMetafileHeader& header, const std::string& 
   const std::string type = field("type");
   if (type != "uchar" && type != "unsigned char" && type != "uint8" && type != "uint8_t")
   {
-    fail(path,
+    throwFileError(path,
       "its pixels are " + (type.empty() ? "of no type" : "'" + type + "'") +
         "; a tracked video needs 8-bit pixels (uchar)");
   }
@@ -128,7 +125,7 @@ FrameLayout nrrdLayout(const SequenceMetafileHeader& header, const std::string& 
   }
   if (kinds.size() != sizes.size() || sizes.size() < 3)
   {
-    fail(path,
+    throwFileError(path,
       "its sizes '" + field("sizes") + "' and kinds '" + field("kinds") +
         "' do not name a sequence of images (e.g. sizes: 3 640 480 1 30, kinds: vector domain "
         "domain domain list)");
@@ -142,7 +139,8 @@ FrameLayout nrrdLayout(const SequenceMetafileHeader& header, const std::string& 
     {
       if (kind != "list" && kind != "time" && kind != "none" && kind != "???")
       {
-        fail(path, "its last axis is of kind '" + kinds[axis] + "', not a list of frames");
+        throwFileError(
+          path, "its last axis is of kind '" + kinds[axis] + "', not a list of frames");
       }
       layout.frames = sizes[axis];
     }
@@ -156,7 +154,8 @@ FrameLayout nrrdLayout(const SequenceMetafileHeader& header, const std::string& 
     }
     else
     {
-      fail(path, "its axis " + std::to_string(axis) + " is of kind '" + kinds[axis] + "'");
+      throwFileError(
+        path, "its axis " + std::to_string(axis) + " is of kind '" + kinds[axis] + "'");
     }
   }
   checkChannels(layout.channels, path);
@@ -166,21 +165,22 @@ FrameLayout nrrdLayout(const SequenceMetafileHeader& header, const std::string& 
   }
   if (spatial.size() != 2 || spatial[0] < 1 || spatial[1] < 1 || layout.frames < 1)
   {
-    fail(path, "its frames are not 2-D images (sizes '" + field("sizes") + "')");
+    throwFileError(path, "its frames are not 2-D images (sizes '" + field("sizes") + "')");
   }
   layout.width = spatial[0];
   layout.height = spatial[1];
   const std::string encoding = lowerCase(field("encoding"));
   if (encoding != "raw" && encoding != "gzip" && encoding != "gz")
   {
-    fail(path, "its data are in '" + field("encoding") + "' encoding; raw and gzip are read");
+    throwFileError(
+      path, "its data are in '" + field("encoding") + "' encoding; raw and gzip are read");
   }
   layout.compressed = encoding != "raw";
   layout.dataFile = field("data file").empty() ? field("datafile") : field("data file");
   if (layout.dataFile.find(' ') != std::string::npos ||
     layout.dataFile.find('%') != std::string::npos)
   {
-    fail(path, "data in several files (data file '" + layout.dataFile + "') is not read");
+    throwFileError(path, "data in several files (data file '" + layout.dataFile + "') is not read");
   }
   return layout;
 }
@@ -201,7 +201,7 @@ std::string dataOf(std::ifstream& file, const SequenceMetafileHeader& header,
     external.open(data, std::ios::binary);
     if (!external)
     {
-      fail(path, "its data file '" + data.string() + "' cannot be read");
+      throwFileError(path, "its data file '" + data.string() + "' cannot be read");
     }
     in = &external;
   }
@@ -233,7 +233,8 @@ std::string dataOf(std::ifstream& file, const SequenceMetafileHeader& header,
   if (status != Z_STREAM_END && status != Z_BUF_ERROR &&
     !(status == Z_OK && length == expectedBytes))
   {
-    fail(path, "its compressed data does not inflate (zlib error " + std::to_string(status) + ")");
+    throwFileError(
+      path, "its compressed data does not inflate (zlib error " + std::to_string(status) + ")");
   }
   inflated.resize(static_cast<size_t>(length));
   return inflated;
@@ -254,12 +255,12 @@ TrackedSequenceFrames readTrackedSequence(const std::string& path, int maxFrames
   std::ifstream file(path, std::ios::binary);
   if (!file)
   {
-    fail(path, "cannot be read");
+    throwFileError(path, "cannot be read");
   }
   const SequenceMetafileHeader header = readSequenceMetafileHeader(file, path);
   if (!header.complete)
   {
-    fail(path,
+    throwFileError(path,
       header.format == SequenceFileFormat::Nrrd
         ? "its NRRD header has no blank line before the data"
         : "not a MetaImage (no ElementDataFile line ends its header)");
@@ -283,7 +284,7 @@ TrackedSequenceFrames readTrackedSequence(const std::string& path, int maxFrames
     }
     if (!header.timestampS(frame, path))
     {
-      fail(path,
+      throwFileError(path,
         "frame " + std::to_string(frame) + " has no Seq_Frame" + std::to_string(frame) +
           "_Timestamp" +
           (header.format == SequenceFileFormat::Nrrd ? " and no sequence index value (axis 3 "
@@ -296,14 +297,14 @@ TrackedSequenceFrames readTrackedSequence(const std::string& path, int maxFrames
   }
   if (kept.empty())
   {
-    fail(path, "holds no frame whose image status is OK");
+    throwFileError(path, "holds no frame whose image status is OK");
   }
   const std::uint64_t frameBytes =
     static_cast<std::uint64_t>(layout.width) * static_cast<std::uint64_t>(layout.height) * channels;
   const std::uint64_t neededBytes = frameBytes * static_cast<std::uint64_t>(kept.back() + 1);
   if (neededBytes > FrameSequence::MaxDecodedBytes)
   {
-    fail(path,
+    throwFileError(path,
       "its frames up to frame " + std::to_string(kept.back()) + " take " +
         std::to_string(neededBytes >> 20) + " MiB, more than the " +
         std::to_string(FrameSequence::MaxDecodedBytes >> 20) + " MiB a sequence may take");
@@ -311,7 +312,7 @@ TrackedSequenceFrames readTrackedSequence(const std::string& path, int maxFrames
   const std::string data = dataOf(file, header, layout, path, neededBytes);
   if (data.size() < neededBytes)
   {
-    fail(path,
+    throwFileError(path,
       "its data ends inside frame " + std::to_string(data.size() / frameBytes) + " (" +
         std::to_string(data.size()) + " of " + std::to_string(neededBytes) + " bytes)");
   }
@@ -322,7 +323,7 @@ TrackedSequenceFrames readTrackedSequence(const std::string& path, int maxFrames
     const double timeS = *header.timestampS(frame, path);
     if (!sequence.timestampsS.empty() && !(timeS > sequence.timestampsS.back()))
     {
-      fail(path,
+      throwFileError(path,
         "the timestamps do not increase: frame " + std::to_string(frame) + " is at " +
           std::to_string(timeS) + " s, the frame before it at " +
           std::to_string(sequence.timestampsS.back()) + " s");

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/ChildProcess.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <opencv2/imgproc.hpp>
 
@@ -17,11 +18,6 @@ namespace vimlop::detail
 
 namespace
 {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem)
-{
-  throw Error("'" + path + "': " + problem);
-}
 
 /// The last line the decoder wrote to stderr, for a message.
 std::string lastLine(const std::string& text)
@@ -75,7 +71,7 @@ std::size_t readFrom(ChildProcess& decoder, const std::string& path, char* into,
   }
   catch (const Error& e)
   {
-    fail(path, "the video decoder stopped answering: " + std::string(e.what()));
+    throwFileError(path, "the video decoder stopped answering: " + std::string(e.what()));
   }
 }
 
@@ -133,7 +129,7 @@ bool readPpmHeader(ChildProcess& decoder, const std::string& path, int frame, do
   if (!ok || maxValue != 255 || !std::isspace(static_cast<unsigned char>(after)) || width == 0 ||
     height == 0)
   {
-    fail(path,
+    throwFileError(path,
       "the video decoder's output is not an 8-bit PPM image at frame " + std::to_string(frame));
   }
   return true;
@@ -196,7 +192,7 @@ std::vector<cv::Mat> decodeVideoFile(const std::string& path, int maxFrames,
   }
   catch (const Error& e)
   {
-    fail(path,
+    throwFileError(path,
       "a video file is decoded by FFmpeg's 'ffmpeg' program (Debian package 'ffmpeg', or "
       "$VIMLOP_FFMPEG), which cannot be run here: " +
         std::string(e.what()) + "; or give a folder of frame images");
@@ -215,7 +211,7 @@ std::vector<cv::Mat> decodeVideoFile(const std::string& path, int maxFrames,
     if (got != bytes)
     {
       decoder->finish(true);
-      fail(path,
+      throwFileError(path,
         "the video decoder stopped inside frame " + std::to_string(frames.size()) + " (" +
           std::to_string(got) + " of its " + std::to_string(bytes) + " bytes)" +
           said(program, path, *decoder));
@@ -229,14 +225,14 @@ std::vector<cv::Mat> decodeVideoFile(const std::string& path, int maxFrames,
   const ChildProcessResult end = decoder->finish(enough);
   if (!enough && (end.exitCode != 0 || end.signal != 0))
   {
-    fail(path,
+    throwFileError(path,
       (frames.empty() ? std::string("not a readable video file")
                       : "the video decoder failed after " + frameCount(frames.size())) +
         said(program, path, *decoder, &end));
   }
   if (frames.empty())
   {
-    fail(path, "the video has no readable frames" + said(program, path, *decoder));
+    throwFileError(path, "the video has no readable frames" + said(program, path, *decoder));
   }
   return frames;
 }
