@@ -2,6 +2,7 @@
 #include "Commands.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Video/FrameContoursIO.h>
 #include <vimlop/Video/FrameSequence.h>
@@ -79,7 +80,7 @@ void runContours(ContoursOptions o)
         (std::filesystem::path(o.overlay) / sequence.name(f)).replace_extension(".png").string();
       if (!cv::imwrite(path, drawFrameContours(picture, frames.back().points)))
       {
-        throw Error("'" + path + "': cannot write the image");
+        throwFileError(path, "cannot write the image");
       }
     }
   }

@@ -2,6 +2,7 @@
 
 #include "CommandLine.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Evaluation/SpeedBenchmark.h>
 #include <vimlop/Rendering/OffscreenRendering.h>
 
@@ -52,11 +53,11 @@ void runSpeed(SpeedCommand c)
   o.validate();
   if (fs::path(c.out).extension() != ".json")
   {
-    throw Error("'" + c.out + "': the output is JSON: name it *.json");
+    throwFileError(c.out, "the output is JSON: name it *.json");
   }
   if (!fs::exists(o.ctPath))
   {
-    throw Error("'" + o.ctPath + "': no such file or folder");
+    throwFileError(o.ctPath, "no such file or folder");
   }
   // simulate and register render (the frames, the registered video, the
   // report): without a display every child would fail, so say it once here.

@@ -2,7 +2,7 @@
 #include "Commands.h"
 
 #include "TerminalProgress.h"
-#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
 #include <vimlop/Evaluation/TemplateWarpProtocol.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
@@ -44,7 +44,7 @@ void runEvaluateWarp(EvaluateWarpOptions options)
   protocol.validate();
   if (outPath.extension() != ".json")
   {
-    throw Error("'" + options.out + "': the result file must be .json");
+    throwFileError(options.out, "the result file must be .json");
   }
   const ProgressCallback terminal = terminalProgress("evaluate warp");
   const EvaluationProgress progress = [&](const std::string& step, int done, int total)

@@ -2,6 +2,7 @@
 #include "Commands.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Imaging/MeshIO.h>
@@ -88,7 +89,7 @@ CommandSummary meshInfo(const std::string& path)
     }
     catch (const Error& e)
     {
-      throw Error("'" + path + "': " + e.what());
+      throwFileError(path, std::string(e.what()));
     }
     info.lines.push_back(formatText("triangles:   %d", mesh.numberOfFaces()));
     info.lines.push_back(formatText("area:        %.1f mm^2", mesh.totalArea()));
@@ -139,8 +140,8 @@ void runInfo(const InfoOptions& options)
   }
   else
   {
-    throw Error("'" + path +
-      "': unsupported file type (CT: .inv3 .nii .nii.gz .nrrd .nhdr .mha .mhd .dcm or a DICOM "
+    throwFileError(path,
+      "unsupported file type (CT: .inv3 .nii .nii.gz .nrrd .nhdr .mha .mhd .dcm or a DICOM "
       "folder; mesh: .vtp .vtk .stl .ply .obj; intrinsics: .yaml .yml .json .xml)");
   }
 }

@@ -3,6 +3,7 @@
 #include <vimlop/Cohort/CommandLineWords.h>
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/ProcessMemory.h>
 #include <vimlop/Core/TeeStream.h>
 #include <vimlop/Core/TextFormat.h>
@@ -141,7 +142,7 @@ void runRegister(RegisterCommand c)
   std::ofstream logFile(logPath);
   if (!logFile)
   {
-    throw Error("'" + logPath + "': cannot write the log file");
+    throwFileError(logPath, "cannot write the log file");
   }
   logFile << joinCommandLine(commandWords()) << "\n";
   writeFileAtomically((std::filesystem::path(folder.stagingFolder()) / "config.toml").string(),

@@ -2,6 +2,7 @@
 
 #include "CommandLine.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Rendering/OffscreenRendering.h>
 #include <vimlop/Report/RegistrationReport.h>
@@ -49,7 +50,7 @@ void runReport(const ReportCommandOptions& o)
     runs = readPerturbationRuns(o.perturbation);
     if (runs.empty())
     {
-      throw Error("'" + o.perturbation + "': the perturbation study has no runs");
+      throwFileError(o.perturbation, "the perturbation study has no runs");
     }
   }
   requireOffscreenRendering("vimlop report");

@@ -3,6 +3,7 @@
 
 #include "TerminalProgress.h"
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Imaging/AirwaySurface.h>
@@ -65,8 +66,8 @@ void runSegment(SegmentOptions options)
   }
   if (!options.labelOut.empty() && !isWritableCTVolumePath(options.labelOut))
   {
-    throw Error("'" + options.labelOut +
-      "': unsupported label output type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
+    throwFileError(options.labelOut,
+      "unsupported label output type (expected .nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd)");
   }
   if (!options.seed.empty())
   {

@@ -2,6 +2,7 @@
 #include "Commands.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
@@ -43,9 +44,9 @@ std::vector<FramePicture> framePicturesOf(
     const cv::Mat bgr = path.empty() ? cv::Mat() : cv::imread(path, cv::IMREAD_COLOR);
     if (bgr.empty())
     {
-      throw Error("'" + folder + "': frame " + std::to_string(record.result.frames[j].frameId) +
-        " has no readable picture" + (path.empty() ? std::string() : " ('" + path + "')") +
-        ", so --images cannot send it");
+      throwFileError(folder,
+        "frame " + std::to_string(record.result.frames[j].frameId) + " has no readable picture" +
+          (path.empty() ? std::string() : " ('" + path + "')") + ", so --images cannot send it");
     }
     cv::Mat rgb;
     cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);

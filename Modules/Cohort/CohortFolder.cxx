@@ -4,6 +4,7 @@
 #include <vimlop/Cohort/CohortRowCommand.h>
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 
 #include <nlohmann/json.hpp>
@@ -41,7 +42,7 @@ json readRecord(const std::string& path)
   catch (const json::exception&)
   {
   }
-  throw Error("'" + path + "': not a VIMLOP cohort record");
+  throwFileError(path, "not a VIMLOP cohort record");
 }
 
 } // namespace
@@ -130,7 +131,7 @@ void CohortFolder::prepare(const CohortManifest& manifest) const
   std::error_code error;
   if (fs::exists(this->Root, error) && !fs::is_directory(this->Root, error))
   {
-    throw Error("'" + this->Root + "': not a folder (a cohort folder is expected)");
+    throwFileError(this->Root, "not a folder (a cohort folder is expected)");
   }
   const json record = readRecord(this->recordPath());
   if (record.is_null() && fs::is_directory(this->Root, error) && !fs::is_empty(this->Root, error))
@@ -167,7 +168,7 @@ CohortManifest CohortFolder::manifest(const CohortCommandCatalog& catalog) const
   const json record = readRecord(this->recordPath());
   if (record.is_null())
   {
-    throw Error("'" + this->Root + "': not a cohort folder (no cohort.json)");
+    throwFileError(this->Root, "not a cohort folder (no cohort.json)");
   }
   const std::string original = record.at("manifest").get<std::string>();
   CohortManifest manifest = readCohortManifest(this->manifestCopyPath(original), catalog);

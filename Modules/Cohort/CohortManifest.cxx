@@ -2,6 +2,7 @@
 
 #include <vimlop/Cohort/CommandLineWords.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/Sha256.h>
 #include <vimlop/Core/TextFormat.h>
 
@@ -329,7 +330,7 @@ std::vector<CohortRow> readCsvRows(
   }
   if (header.empty())
   {
-    throw Error("'" + path + "': no header line (a manifest needs the columns id and command)");
+    throwFileError(path, "no header line (a manifest needs the columns id and command)");
   }
   return rows;
 }
@@ -367,11 +368,11 @@ std::vector<CohortRow> readJsonRows(
   }
   catch (const json::exception& e)
   {
-    throw Error("'" + path + "': not valid JSON (" + e.what() + ")");
+    throwFileError(path, std::string("not valid JSON (") + e.what() + ")");
   }
   if (!manifest.is_object() || !manifest.contains("rows") || !manifest.at("rows").is_array())
   {
-    throw Error("'" + path + "': a JSON manifest is an object with an array \"rows\"");
+    throwFileError(path, "a JSON manifest is an object with an array \"rows\"");
   }
   std::vector<CohortRow> rows;
   int position = 0;
@@ -483,12 +484,12 @@ CohortManifest readCohortManifest(const std::string& path, const CohortCommandCa
   std::error_code error;
   if (!fs::is_regular_file(path, error))
   {
-    throw Error("'" + path + "': " + (fs::exists(path, error) ? "not a file" : "no such file"));
+    throwFileError(path, fs::exists(path, error) ? "not a file" : "no such file");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
-    throw Error("'" + path + "': cannot read it");
+    throwFileError(path, "cannot read it");
   }
   const std::string extension = lowerCaseExtension(path);
   CohortManifest manifest;
@@ -504,7 +505,7 @@ CohortManifest readCohortManifest(const std::string& path, const CohortCommandCa
   }
   else
   {
-    throw Error("'" + path + "': a manifest is a .csv or .json file");
+    throwFileError(path, "a manifest is a .csv or .json file");
   }
   std::set<std::string> ids;
   const bool csv = extension == ".csv";
@@ -526,7 +527,7 @@ CohortManifest readCohortManifest(const std::string& path, const CohortCommandCa
   }
   if (manifest.rows.empty())
   {
-    throw Error("'" + path + "': no rows");
+    throwFileError(path, "no rows");
   }
   return manifest;
 }

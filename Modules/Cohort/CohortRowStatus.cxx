@@ -3,7 +3,7 @@
 #include <vimlop/Cohort/CohortFolder.h>
 #include <vimlop/Cohort/CohortManifest.h>
 #include <vimlop/Core/AtomicFile.h>
-#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <nlohmann/json.hpp>
 
@@ -39,7 +39,7 @@ CohortRowState stateFromString(const std::string& text, const std::string& path)
       return state;
     }
   }
-  throw Error("'" + path + "': unknown row state '" + text + "'");
+  throwFileError(path, "unknown row state '" + text + "'");
 }
 
 json attemptJson(const CohortAttempt& a)
@@ -115,7 +115,7 @@ CohortRowStatus readCohortRowStatus(const std::string& path)
   }
   catch (const json::exception& e)
   {
-    throw Error("'" + path + "': not a cohort row record (" + e.what() + ")");
+    throwFileError(path, std::string("not a cohort row record (") + e.what() + ")");
   }
   return status;
 }
@@ -178,7 +178,7 @@ CohortRowLock::CohortRowLock(const std::string& path)
   this->Fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (this->Fd < 0)
   {
-    throw Error("'" + path + "': cannot make the row's lock (" + std::strerror(errno) + ")");
+    throwFileError(path, std::string("cannot make the row's lock (") + std::strerror(errno) + ")");
   }
   if (::flock(this->Fd, LOCK_EX | LOCK_NB) != 0)
   {

@@ -7,6 +7,7 @@
 #include <vimlop/Cohort/CommandLineWords.h>
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/Sha256.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TextFormat.h>
@@ -41,7 +42,7 @@ json readJsonFile(const std::string& path)
   }
   catch (const json::exception& e)
   {
-    throw Error("'" + path + "': not valid JSON (" + e.what() + ")");
+    throwFileError(path, std::string("not valid JSON (") + e.what() + ")");
   }
 }
 

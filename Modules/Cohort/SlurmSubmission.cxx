@@ -8,6 +8,7 @@
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/ChildProcess.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <nlohmann/json.hpp>
 
@@ -382,7 +383,7 @@ std::vector<SlurmSubmission> readSlurmSubmissions(const CohortFolder& folder)
     }
     catch (const json::exception& e)
     {
-      throw Error("'" + path + "': not a Slurm submission record (" + e.what() + ")");
+      throwFileError(path, std::string("not a Slurm submission record (") + e.what() + ")");
     }
     submissions.push_back(std::move(s));
   }

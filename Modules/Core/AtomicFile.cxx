@@ -1,6 +1,6 @@
 #include <vimlop/Core/AtomicFile.h>
 
-#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -25,7 +25,7 @@ void syncToDisk(const std::string& path)
     {
       ::close(fd);
     }
-    throw Error("'" + path + "': cannot flush it to disk (" + reason + ")");
+    throwFileError(path, "cannot flush it to disk (" + reason + ")");
   }
   ::close(fd);
 }
@@ -64,14 +64,14 @@ void writeFileAtomically(const std::string& path, const std::string& contents)
   if (!written)
   {
     std::remove(temporary.c_str());
-    throw Error("'" + path + "': cannot write the file (" + reason + ")");
+    throwFileError(path, "cannot write the file (" + reason + ")");
   }
   std::error_code ec;
   std::filesystem::rename(temporary, target, ec);
   if (ec)
   {
     std::remove(temporary.c_str());
-    throw Error("'" + path + "': cannot write the file (" + ec.message() + ")");
+    throwFileError(path, "cannot write the file (" + ec.message() + ")");
   }
   syncToDisk(target.has_parent_path() ? target.parent_path().string() : std::string("."));
 }
@@ -104,7 +104,7 @@ std::string readWholeFile(const std::string& path)
   }
   if (error != 0)
   {
-    throw Error("'" + path + "': cannot read it (" + std::strerror(error) + ")");
+    throwFileError(path, std::string("cannot read it (") + std::strerror(error) + ")");
   }
   return bytes;
 }

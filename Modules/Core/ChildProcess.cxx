@@ -1,6 +1,7 @@
 #include <vimlop/Core/ChildProcess.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -126,7 +127,8 @@ pid_t spawn(const std::vector<std::string>& arguments, const SpawnSettings& sett
   const std::string path = programPath(arguments.front());
   if (path.empty())
   {
-    throw Error("'" + arguments.front() + "': cannot start it (" + std::strerror(ENOENT) + ")");
+    throwFileError(
+      arguments.front(), std::string("cannot start it (") + std::strerror(ENOENT) + ")");
   }
   std::vector<char*> argv;
   for (const std::string& a : arguments)
@@ -138,7 +140,8 @@ pid_t spawn(const std::vector<std::string>& arguments, const SpawnSettings& sett
   int report[2] = { -1, -1 };
   if (input.fd < 0 || ::pipe2(report, O_CLOEXEC) != 0)
   {
-    throw Error("'" + arguments.front() + "': cannot start it (" + std::strerror(errno) + ")");
+    throwFileError(
+      arguments.front(), std::string("cannot start it (") + std::strerror(errno) + ")");
   }
   const Descriptor reportRead(report[0]);
   Descriptor reportWrite(report[1]);
@@ -149,7 +152,8 @@ pid_t spawn(const std::vector<std::string>& arguments, const SpawnSettings& sett
   const pid_t pid = ::fork();
   if (pid < 0)
   {
-    throw Error("'" + arguments.front() + "': cannot start it (" + std::strerror(errno) + ")");
+    throwFileError(
+      arguments.front(), std::string("cannot start it (") + std::strerror(errno) + ")");
   }
   if (pid == 0)
   {
@@ -201,10 +205,10 @@ pid_t spawn(const std::vector<std::string>& arguments, const SpawnSettings& sett
     const std::string why = std::strerror(failure.error);
     if (failure.step == 1)
     {
-      throw Error("'" + arguments.front() + "': cannot start it in '" + *settings.workingDirectory +
-        "' (" + why + ")");
+      throwFileError(
+        arguments.front(), "cannot start it in '" + *settings.workingDirectory + "' (" + why + ")");
     }
-    throw Error("'" + arguments.front() + "': cannot start it (" + why + ")");
+    throwFileError(arguments.front(), "cannot start it (" + why + ")");
   }
   return pid;
 }
@@ -250,7 +254,7 @@ ChildProcessResult waitFor(pid_t pid, const std::string& program, double startS,
   result.stopped = stopped;
   if (waited != pid)
   {
-    throw Error("'" + program + "': lost the child process (" + std::strerror(errno) + ")");
+    throwFileError(program, std::string("lost the child process (") + std::strerror(errno) + ")");
   }
   if (WIFEXITED(status))
   {
@@ -273,7 +277,8 @@ int openOutput(const std::string& path)
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0)
   {
-    throw Error("'" + path + "': cannot write the child's output (" + std::strerror(errno) + ")");
+    throwFileError(
+      path, std::string("cannot write the child's output (") + std::strerror(errno) + ")");
   }
   return fd;
 }
@@ -408,7 +413,7 @@ std::size_t ChildProcess::read(char* into, std::size_t bytes, double idleTimeout
     {
       char timeout[32];
       std::snprintf(timeout, sizeof(timeout), "%g", idleTimeoutS);
-      throw Error("'" + this->Program + "': sent nothing for " + timeout + " s");
+      throwFileError(this->Program, std::string("sent nothing for ") + timeout + " s");
     }
     if (ready < 0)
     {
@@ -441,7 +446,7 @@ ChildProcessResult ChildProcess::finish(bool kill)
 {
   if (this->Pid <= 0)
   {
-    throw Error("'" + this->Program + "': the child process was finished already");
+    throwFileError(this->Program, "the child process was finished already");
   }
   closeOnce(this->Output); // a child still writing gets EPIPE and ends
   if (kill)

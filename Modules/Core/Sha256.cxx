@@ -1,6 +1,6 @@
 #include <vimlop/Core/Sha256.h>
 
-#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <cstring>
 #include <fstream>
@@ -133,7 +133,7 @@ std::uint64_t Sha256::updateFromFile(const std::string& path)
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
-    throw Error("'" + path + "': cannot read the file to identify it");
+    throwFileError(path, "cannot read the file to identify it");
   }
   std::vector<char> chunk(1 << 20);
   std::uint64_t bytes = 0;
@@ -144,7 +144,7 @@ std::uint64_t Sha256::updateFromFile(const std::string& path)
   }
   if (in.bad())
   {
-    throw Error("'" + path + "': cannot read the file to identify it");
+    throwFileError(path, "cannot read the file to identify it");
   }
   return bytes;
 }

@@ -1,7 +1,6 @@
 #include <vimlop/Core/TransformSequenceFile.h>
 
 #include <vimlop/Core/AtomicFile.h>
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 

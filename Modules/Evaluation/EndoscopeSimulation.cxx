@@ -1,6 +1,7 @@
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/LensDistortionRendering.h>
 #include <vimlop/Rendering/MucosaTexture.h>
@@ -292,7 +293,7 @@ void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder)
   fs::create_directories(fs::path(folder) / "truth" / "depth", ec);
   if (ec)
   {
-    throw Error("'" + folder + "': cannot create the folder (" + ec.message() + ")");
+    throwFileError(folder, "cannot create the folder (" + ec.message() + ")");
   }
   nlohmann::json frames = nlohmann::json::array();
   for (size_t f = 0; f < video.frames.size(); ++f)
@@ -300,7 +301,7 @@ void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder)
     const std::string framePath = (fs::path(folder) / "frames" / video.names[f]).string();
     if (!cv::imwrite(framePath, video.frames[f]))
     {
-      throw Error("'" + framePath + "': cannot write the image");
+      throwFileError(framePath, "cannot write the image");
     }
     const DepthMap& d = video.depth[f];
     cv::Mat depth(d.heightPx, d.widthPx, CV_32F);
@@ -317,7 +318,7 @@ void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder)
         .string();
     if (!cv::imwrite(depthPath, depth))
     {
-      throw Error("'" + depthPath + "': cannot write the depth map");
+      throwFileError(depthPath, "cannot write the depth map");
     }
     const Eigen::Matrix4d m = video.camerasCT[f].matrix();
     std::vector<double> rows;
@@ -348,7 +349,7 @@ void writeSimulatedVideo(const SimulatedVideo& video, const std::string& folder)
   out << poses.dump(1) << "\n";
   if (!out)
   {
-    throw Error("'" + posesPath + "': cannot write the file");
+    throwFileError(posesPath, "cannot write the file");
   }
   video.tracker.writeCsv((fs::path(folder) / "tracker.csv").string());
 }

@@ -1,6 +1,6 @@
 #include <vimlop/Evaluation/ErrorBudgetProtocol.h>
 
-#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Rendering/PNGImageIO.h>
 #include <vimlop/Rendering/ReportCharts.h>
@@ -24,7 +24,7 @@ void writeErrorBudgetPage(const ErrorBudgetReport& report, const std::string& fo
   fs::create_directories(folder, ec);
   if (ec)
   {
-    throw Error("'" + folder + "': cannot create the folder (" + ec.message() + ")");
+    throwFileError(folder, "cannot create the folder (" + ec.message() + ")");
   }
   const BudgetCondition* ideal = nullptr;
   for (const BudgetCondition& c : report.conditions)

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/MeshTree.h>
 #include <vimlop/Core/RegistrationModel.h>
 #include <vimlop/Core/TextFormat.h>
@@ -260,7 +261,7 @@ void writeSimulatedWorld(const SimulatedWorld& world, const std::string& folder)
   fs::create_directories(fs::path(folder) / "truth", ec);
   if (ec)
   {
-    throw Error("'" + folder + "': cannot create the folder (" + ec.message() + ")");
+    throwFileError(folder, "cannot create the folder (" + ec.message() + ")");
   }
   writePolyData(toPolyData(world.model), (fs::path(folder) / "model.vtp").string());
   if (!world.canonicalPosesCT.empty())

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/ChildProcess.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 
 #include <algorithm>
@@ -158,7 +159,7 @@ SpeedBenchmarkReport runSpeedBenchmark(const SpeedBenchmarkOptions& o, std::ostr
   fs::create_directories(work, ec);
   if (ec)
   {
-    throw Error("'" + work.string() + "': cannot create the work folder (" + ec.message() + ")");
+    throwFileError(work.string(), "cannot create the work folder (" + ec.message() + ")");
   }
   SpeedBenchmarkReport report;
   report.program = o.executable.empty() ? currentExecutablePath() : o.executable;
@@ -226,7 +227,7 @@ SpeedBenchmarkReport runSpeedBenchmark(const SpeedBenchmarkOptions& o, std::ostr
       }
       if (!summary.is_object() || !summary.contains("timings"))
       {
-        throw Error("'" + out.string() + "': the summary has no \"timings\"");
+        throwFileError(out.string(), "the summary has no \"timings\"");
       }
       SpeedBenchmarkRun run;
       run.frames = frames;

@@ -1,6 +1,6 @@
 #include <vimlop/Evaluation/TrialSaving.h>
 
-#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Rendering/PNGImageIO.h>
 #include <vimlop/Rendering/SurfaceView.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
@@ -31,7 +31,7 @@ void saveSyntheticTrial(const std::string& folder, const std::string& source,
   std::filesystem::create_directories(frames, ec);
   if (!std::filesystem::is_directory(frames))
   {
-    throw Error("'" + frames.string() + "': cannot create the folder");
+    throwFileError(frames.string(), "cannot create the folder");
   }
   for (size_t j = 0; j < trial.data.frames.size(); ++j)
   {

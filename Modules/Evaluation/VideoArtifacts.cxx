@@ -1,6 +1,7 @@
 #include <vimlop/Evaluation/VideoArtifacts.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 
 #include <Eigen/Geometry>
@@ -440,7 +441,7 @@ std::vector<cv::Mat> compressVideo(
   cv::VideoCapture capture(path.string(), cv::CAP_FFMPEG);
   if (!capture.isOpened())
   {
-    throw Error("'" + path.string() + "': cannot read back the " + name + " video");
+    throwFileError(path.string(), "cannot read back the " + name + " video");
   }
   std::vector<cv::Mat> decoded;
   cv::Mat frame;

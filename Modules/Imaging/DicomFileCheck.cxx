@@ -1,6 +1,5 @@
 #include <vimlop/Imaging/DicomFileCheck.h>
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Imaging/DicomAttributeRules.h>
 

@@ -4,7 +4,7 @@
 // zero one, 1 mm for a NaN spacing, -1024 HU for missing pixels).
 #include <vimlop/Imaging/DicomSeriesGeometry.h>
 
-#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Imaging/DicomFileCheck.h>
 
 #include <gdcmDataSet.h>
@@ -64,7 +64,7 @@ DicomSliceHeader readDicomSliceHeader(const std::string& file)
   reader.SetFileName(file.c_str());
   if (!reader.Read())
   {
-    throw Error("'" + file + "': not a DICOM file GDCM can read");
+    throwFileError(file, "not a DICOM file GDCM can read");
   }
   const gdcm::File& dicom = reader.GetFile();
   const gdcm::DataSet& data = dicom.GetDataSet();

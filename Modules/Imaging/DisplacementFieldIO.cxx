@@ -1,7 +1,6 @@
 // ITK translation unit: no Eigen here (see CTVolume.h).
 #include <vimlop/Imaging/DisplacementFieldIO.h>
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Imaging/CTHeaderChecks.h>
 #include <vimlop/Imaging/CTVolumeIO.h>

@@ -1,6 +1,5 @@
 #include <vimlop/Imaging/InVesaliusProjectReader.h>
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 
 #include <vtkNew.h>

@@ -2,7 +2,6 @@
 
 #include <vimlop/Imaging/MeshFileChecks.h>
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 

@@ -1,7 +1,6 @@
 // ITK translation unit: no Eigen here (see CTVolume.h).
 #include <vimlop/Imaging/LinearTransformIO.h>
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/ITKImageFiles.h>

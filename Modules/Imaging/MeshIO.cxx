@@ -1,6 +1,5 @@
 #include <vimlop/Imaging/MeshIO.h>
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/LegacyVtkFileCheck.h>

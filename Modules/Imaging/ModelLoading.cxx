@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/ModelLoading.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/OrientNormalsIntoAir.h>
 #include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Imaging/AirwaySurface.h>
@@ -25,7 +26,7 @@ TriangleMesh loadAirwayMesh(const std::string& path)
   }
   catch (const Error& e)
   {
-    throw Error("'" + path + "': " + e.what());
+    throwFileError(path, std::string(e.what()));
   }
   std::string note;
   mesh = orientNormalsIntoAir(mesh, &note);

@@ -1,6 +1,5 @@
 #include <vimlop/Imaging/PlyMeshReader.h>
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 
 #include <algorithm>

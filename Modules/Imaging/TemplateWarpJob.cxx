@@ -1,6 +1,7 @@
 #include <vimlop/Imaging/TemplateWarpJob.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Imaging/AirwaySurface.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
@@ -99,7 +100,7 @@ TemplateWarpJobReport runTemplateWarpJob(const TemplateWarpJobOptions& options,
   fs::create_directories(options.outputFolder, ec);
   if (!fs::is_directory(options.outputFolder))
   {
-    throw Error("'" + options.outputFolder + "': cannot create the output folder");
+    throwFileError(options.outputFolder, "cannot create the output folder");
   }
 
   const CTVolume templateCT = readCTVolume(options.templateCTPath);

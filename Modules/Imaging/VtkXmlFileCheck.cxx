@@ -1,6 +1,5 @@
 #include <vimlop/Imaging/VtkXmlFileCheck.h>
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Imaging/MeshFileChecks.h>
 

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TextFormat.h>
@@ -158,8 +159,9 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
   {
     if (!known[f])
     {
-      throw Error("'" + truthSource + "': has no pose for frame " + std::to_string(ids[f]) + " ('" +
-        pipeline.frameNames()[f] + "'), which was registered");
+      throwFileError(truthSource,
+        "has no pose for frame " + std::to_string(ids[f]) + " ('" + pipeline.frameNames()[f] +
+          "'), which was registered");
     }
     truth.camerasCT.push_back(truthPerSfmFrame[f]);
   }
@@ -187,7 +189,7 @@ void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
   fs::create_directories(fs::path(folder) / "frames", ec);
   if (ec)
   {
-    throw Error("'" + folder + "': cannot create the folder (" + ec.message() + ")");
+    throwFileError(folder, "cannot create the folder (" + ec.message() + ")");
   }
   // The usable result first: everything after it only shows it.
   const std::string posesPath = writeRegisteredPoses(pipeline, folder);

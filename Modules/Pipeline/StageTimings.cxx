@@ -1,6 +1,7 @@
 #include <vimlop/Pipeline/StageTimings.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 
 #include <algorithm>
@@ -195,7 +196,7 @@ StageTimings StageTimings::fromJson(const nlohmann::json& json, const std::strin
     }
     catch (const Error& e)
     {
-      throw Error("'" + source + "': " + e.what());
+      throwFileError(source, std::string(e.what()));
     }
   }
   if (!json.contains("marks"))
@@ -219,7 +220,7 @@ StageTimings StageTimings::fromJson(const nlohmann::json& json, const std::strin
     }
     catch (const Error& e)
     {
-      throw Error("'" + source + "': " + e.what());
+      throwFileError(source, std::string(e.what()));
     }
   }
   return timings;

@@ -4,6 +4,7 @@
 #include <vimlop/Core/CanonicalStarts.h>
 #include <vimlop/Core/CoordinateFrames.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
@@ -444,8 +445,8 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
   {
     if (in.trackerTransform.empty())
     {
-      throw Error("'" + in.trackerToCTPath +
-        "': a tracker registered to the CT turns the starts only with a tracked sequence's "
+      throwFileError(in.trackerToCTPath,
+        "a tracker registered to the CT turns the starts only with a tracked sequence's "
         "transform (--tracker-transform): a CSV tracker records positions only");
     }
     const AffineMatrix4 m = readLinearTransformFile(in.trackerToCTPath);
@@ -458,7 +459,7 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
     d.StartPoses = readFramePoses(in.startPosesPath);
     if (d.StartPoses.empty())
     {
-      throw Error("'" + in.startPosesPath + "': holds no pose");
+      throwFileError(in.startPosesPath, "holds no pose");
     }
   }
   else if (in.startMode == StartMode::Manual)
@@ -542,7 +543,7 @@ void VideoRegistrationPipeline::process()
     }
     catch (const Error& e)
     {
-      throw Error("'" + in.startPosesPath + "': " + e.what());
+      throwFileError(in.startPosesPath, std::string(e.what()));
     }
   }
   else if (startPoses.empty())

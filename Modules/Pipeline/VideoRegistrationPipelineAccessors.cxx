@@ -1,3 +1,4 @@
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 
 #include "VideoRegistrationPipelineInternals.h"
@@ -191,7 +192,7 @@ void VideoRegistrationPipeline::writeFrame(int index, const std::string& path) c
   }
   if (!cv::imwrite(path, d.Frames[static_cast<size_t>(index)]))
   {
-    throw Error("'" + path + "': cannot write the frame");
+    throwFileError(path, "cannot write the frame");
   }
 }
 

@@ -110,7 +110,7 @@ void VideoRegistrationPipeline::reconstructWithColmap(const std::string& executa
   fs::create_directories(images, ec);
   if (ec)
   {
-    throw Error("'" + images.string() + "': cannot create the folder (" + ec.message() + ")");
+    throwFileError(images.string(), "cannot create the folder (" + ec.message() + ")");
   }
   std::vector<std::string> fileNames;
   for (size_t f = 0; f < d.Frames.size(); ++f)
@@ -118,7 +118,7 @@ void VideoRegistrationPipeline::reconstructWithColmap(const std::string& executa
     fileNames.push_back(formatText("%06zu.png", f));
     if (!cv::imwrite((images / fileNames.back()).string(), d.Frames[f]))
     {
-      throw Error("'" + (images / fileNames.back()).string() + "': cannot write the frame");
+      throwFileError((images / fileNames.back()).string(), "cannot write the frame");
     }
   }
   PinholeCamera ideal = d.Intrinsics;
@@ -192,9 +192,9 @@ void VideoRegistrationPipeline::useReconstruction(
   }
   if (sfm.numberOfRegisteredFrames() < 2 || sfm.points.size() < 10)
   {
-    throw Error("'" + source + "': holds " + std::to_string(sfm.numberOfRegisteredFrames()) +
-      " of the frames and " + std::to_string(sfm.points.size()) +
-      " points seen in them; too few to register");
+    throwFileError(source,
+      "holds " + std::to_string(sfm.numberOfRegisteredFrames()) + " of the frames and " +
+        std::to_string(sfm.points.size()) + " points seen in them; too few to register");
   }
   d.say(formatText("SfM from '%s': %d of %zu frames, %zu points", source.c_str(),
     sfm.numberOfRegisteredFrames(), sfm.frames.size(), sfm.points.size()));

@@ -1,6 +1,6 @@
 #include <vimlop/Rendering/PNGImageIO.h>
 
-#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -16,7 +16,7 @@ void writePNG(vtkImageData* image, const std::string& path)
 {
   if (!image || image->GetScalarType() != VTK_UNSIGNED_CHAR)
   {
-    throw Error("'" + path + "': only unsigned char images can be written as PNG");
+    throwFileError(path, "only unsigned char images can be written as PNG");
   }
   vtkNew<vtkPNGWriter> writer;
   // zlib's fastest level: the pictures are the same (PNG is lossless), written
@@ -28,7 +28,7 @@ void writePNG(vtkImageData* image, const std::string& path)
   std::error_code ec;
   if (writer->GetErrorCode() != 0 || !std::filesystem::is_regular_file(path, ec))
   {
-    throw Error("'" + path + "': cannot write the picture");
+    throwFileError(path, "cannot write the picture");
   }
 }
 
@@ -37,12 +37,12 @@ vtkSmartPointer<vtkImageData> readPNG(const std::string& path)
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
   {
-    throw Error("'" + path + "': no such file");
+    throwFileError(path, "no such file");
   }
   vtkNew<vtkPNGReader> reader;
   if (!reader->CanReadFile(path.c_str()))
   {
-    throw Error("'" + path + "': not a PNG picture");
+    throwFileError(path, "not a PNG picture");
   }
   reader->SetFileName(path.c_str());
   reader->Update();
@@ -50,7 +50,7 @@ vtkSmartPointer<vtkImageData> readPNG(const std::string& path)
   const int components = input->GetNumberOfScalarComponents();
   if (input->GetScalarType() != VTK_UNSIGNED_CHAR || components < 1 || components > 4)
   {
-    throw Error("'" + path + "': only 8-bit PNG pictures are supported");
+    throwFileError(path, "only 8-bit PNG pictures are supported");
   }
   int dims[3];
   input->GetDimensions(dims);

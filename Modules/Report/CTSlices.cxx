@@ -1,6 +1,7 @@
 #include "CTSlices.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Imaging/CTVolume.h>
 
 #include <opencv2/imgcodecs.hpp>
@@ -147,7 +148,7 @@ void writeCTSlices(const CTVolume& ct, const std::vector<CameraPose>& camerasCT,
   }
   if (!cv::imwrite(pngPath, figure))
   {
-    throw Error("'" + pngPath + "': cannot write the picture");
+    throwFileError(pngPath, "cannot write the picture");
   }
 }
 

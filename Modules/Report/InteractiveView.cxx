@@ -1,6 +1,7 @@
 #include "InteractiveView.h"
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -260,7 +261,7 @@ void writeFile(const std::string& text, const std::filesystem::path& path)
   out << text;
   if (!out)
   {
-    throw Error("'" + path.string() + "': cannot write the file");
+    throwFileError(path.string(), "cannot write the file");
   }
 }
 

@@ -1,6 +1,7 @@
 #include <vimlop/Report/RegisteredVideo.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Rendering/ContourOverlay.h>
 #include <vimlop/Rendering/PNGImageIO.h>
 #include <vimlop/Rendering/SurfaceView.h>
@@ -128,7 +129,7 @@ std::vector<std::string> writeRegisteredVideo(const RegistrationRecord& record,
       underVerdictBanner(toBgrTopDown(placeSideBySide({ overlay, view }, 4)), verdict);
     if (!cv::imwrite(path, side))
     {
-      throw Error("'" + path + "': cannot write the picture");
+      throwFileError(path, "cannot write the picture");
     }
     written.push_back(name);
 
@@ -138,7 +139,7 @@ std::vector<std::string> writeRegisteredVideo(const RegistrationRecord& record,
         cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps, side.size());
       if (!video.isOpened())
       {
-        throw Error("'" + (fs::path(folder) / videoName).string() + "': cannot write the video");
+        throwFileError((fs::path(folder) / videoName).string(), "cannot write the video");
       }
     }
     video.write(side);
@@ -172,7 +173,7 @@ void writeCameraPath(const RegistrationResult& result, const std::string& path)
   writer->SetInputData(path3d);
   if (writer->Write() != 1)
   {
-    throw Error("'" + path + "': cannot write the camera path");
+    throwFileError(path, "cannot write the camera path");
   }
 }
 

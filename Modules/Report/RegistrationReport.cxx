@@ -6,6 +6,7 @@
 
 #include <vimlop/Core/ContourMatcher.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/KdTree2D.h>
 #include <vimlop/Core/OccludingContours.h>
 #include <vimlop/Core/RegistrationMetrics.h>
@@ -209,7 +210,7 @@ void writeText(const std::string& text, const fs::path& path)
   out << text;
   if (!out)
   {
-    throw Error("'" + path.string() + "': cannot write the file");
+    throwFileError(path.string(), "cannot write the file");
   }
 }
 
@@ -229,7 +230,7 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
   fs::create_directories(out / "overlays", ec);
   if (!fs::is_directory(out / "overlays"))
   {
-    throw Error("'" + outFolder + "': cannot create the folder");
+    throwFileError(outFolder, "cannot create the folder");
   }
 
   RegistrationReport report;

@@ -1,6 +1,7 @@
 #include <vimlop/Results/InputIdentity.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/Sha256.h>
 
 #include <algorithm>
@@ -17,7 +18,7 @@ RegistrationRecord::InputFile identifyInput(const std::string& role, const std::
   std::error_code ec;
   if (!fs::exists(path, ec))
   {
-    throw Error("'" + path + "': no such file or folder to identify");
+    throwFileError(path, "no such file or folder to identify");
   }
   RegistrationRecord::InputFile input{ role, path, 0, std::string() };
   Sha256 digest;
@@ -37,7 +38,7 @@ RegistrationRecord::InputFile identifyInput(const std::string& role, const std::
   }
   if (ec)
   {
-    throw Error("'" + path + "': cannot list the folder to identify it (" + ec.message() + ")");
+    throwFileError(path, "cannot list the folder to identify it (" + ec.message() + ")");
   }
   std::sort(files.begin(), files.end());
   for (const std::string& file : files)

@@ -1,6 +1,6 @@
 #include <vimlop/Results/PerturbationRuns.h>
 
-#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <nlohmann/json.hpp>
 
@@ -15,7 +15,7 @@ std::vector<PerturbationRun> readPerturbationRuns(const std::string& path)
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
   {
-    throw Error("'" + path + "': no such file");
+    throwFileError(path, "no such file");
   }
   nlohmann::json j;
   std::ifstream in(path);
@@ -25,11 +25,11 @@ std::vector<PerturbationRun> readPerturbationRuns(const std::string& path)
   }
   catch (const nlohmann::json::exception& e)
   {
-    throw Error("'" + path + "': not valid JSON (" + e.what() + ")");
+    throwFileError(path, std::string("not valid JSON (") + e.what() + ")");
   }
   if (!j.is_object() || !j.contains("runs") || !j.at("runs").is_array())
   {
-    throw Error("'" + path + "': no \"runs\" list (a perturbation study lists its runs)");
+    throwFileError(path, "no \"runs\" list (a perturbation study lists its runs)");
   }
   std::vector<PerturbationRun> runs;
   for (const nlohmann::json& r : j.at("runs"))
@@ -46,8 +46,9 @@ std::vector<PerturbationRun> readPerturbationRuns(const std::string& path)
     }
     catch (const nlohmann::json::exception&)
     {
-      throw Error("'" + path + "': run " + std::to_string(runs.size()) +
-        " needs numbers offset_mm, final_error_mm and contour_error_px");
+      throwFileError(path,
+        "run " + std::to_string(runs.size()) +
+          " needs numbers offset_mm, final_error_mm and contour_error_px");
     }
   }
   return runs;
@@ -66,7 +67,7 @@ void writePerturbationRuns(const std::vector<PerturbationRun>& runs, const std::
   out << nlohmann::json({ { "runs", list } }).dump(2) << "\n";
   if (!out)
   {
-    throw Error("'" + path + "': cannot write the file");
+    throwFileError(path, "cannot write the file");
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Imaging/MeshIO.h>
 #include <vimlop/Imaging/PolyDataConversion.h>
@@ -148,7 +149,7 @@ void writeTable(vtkTable* table, const fs::path& path)
   writer->SetDataModeToBinary();
   if (writer->Write() != 1)
   {
-    throw Error("'" + path.string() + "': cannot write the table");
+    throwFileError(path.string(), "cannot write the table");
   }
 }
 
@@ -156,7 +157,7 @@ vtkSmartPointer<vtkTable> readTable(const fs::path& path)
 {
   if (!fs::exists(path))
   {
-    throw Error("'" + path.string() + "': no such file");
+    throwFileError(path.string(), "no such file");
   }
   vtkNew<vtkXMLTableReader> reader;
   reader->SetFileName(path.string().c_str());
@@ -164,7 +165,7 @@ vtkSmartPointer<vtkTable> readTable(const fs::path& path)
   vtkTable* table = reader->GetOutput();
   if (!table || table->GetNumberOfColumns() == 0)
   {
-    throw Error("'" + path.string() + "': not a readable VTK table");
+    throwFileError(path.string(), "not a readable VTK table");
   }
   return table;
 }
@@ -174,12 +175,12 @@ vtkSmartPointer<vtkPolyData> readPossiblyEmpty(const fs::path& path)
 {
   if (!fs::exists(path))
   {
-    throw Error("'" + path.string() + "': no such file");
+    throwFileError(path.string(), "no such file");
   }
   vtkNew<vtkXMLPolyDataReader> reader;
   if (!reader->CanReadFile(path.string().c_str()))
   {
-    throw Error("'" + path.string() + "': not a VTK XML polydata file");
+    throwFileError(path.string(), "not a VTK XML polydata file");
   }
   reader->SetFileName(path.string().c_str());
   reader->Update();
@@ -219,7 +220,7 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
   fs::create_directories(dir, ec);
   if (!fs::is_directory(dir))
   {
-    throw Error("'" + folder + "': cannot create the folder");
+    throwFileError(folder, "cannot create the folder");
   }
   const RegistrationResult& result = record.result;
   writePolyData(toPolyData(record.model), (dir / "model.vtp").string());
@@ -356,16 +357,16 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
   const fs::path dir(folder);
   if (fs::exists(dir) && !fs::is_directory(dir))
   {
-    throw Error("'" + folder + "': not a folder (a result folder is expected)");
+    throwFileError(folder, "not a folder (a result folder is expected)");
   }
   if (!fs::is_directory(dir))
   {
-    throw Error("'" + folder + "': no such folder");
+    throwFileError(folder, "no such folder");
   }
   const fs::path jsonPath = dir / "result.json";
   if (!fs::exists(jsonPath))
   {
-    throw Error("'" + folder + "': not a VIMLOP result folder (no result.json)");
+    throwFileError(folder, "not a VIMLOP result folder (no result.json)");
   }
   json j;
   {
@@ -376,15 +377,15 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
     }
     catch (const json::exception& e)
     {
-      throw Error("'" + jsonPath.string() + "': not valid JSON (" + e.what() + ")");
+      throwFileError(jsonPath.string(), std::string("not valid JSON (") + e.what() + ")");
     }
   }
   // value() throws on anything but an object, and "format" may be no string.
   const json* format = j.is_object() && j.contains("format") ? &j.at("format") : nullptr;
   if (!format || !format->is_string() || format->get<std::string>() != resultFormatName())
   {
-    throw Error("'" + jsonPath.string() + "': not a VIMLOP result (format is not '" +
-      resultFormatName() + "')");
+    throwFileError(jsonPath.string(),
+      std::string("not a VIMLOP result (format is not '") + resultFormatName() + "')");
   }
   int version = 0;
   try
@@ -393,12 +394,13 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
   }
   catch (const Error& e)
   {
-    throw Error("'" + jsonPath.string() + "': " + e.what());
+    throwFileError(jsonPath.string(), std::string(e.what()));
   }
   if (version > resultFormatVersion())
   {
-    throw Error("'" + jsonPath.string() + "': format version " + std::to_string(version) +
-      " is newer than this program reads (" + std::to_string(resultFormatVersion()) + ")");
+    throwFileError(jsonPath.string(),
+      "format version " + std::to_string(version) + " is newer than this program reads (" +
+        std::to_string(resultFormatVersion()) + ")");
   }
 
   RegistrationRecord record;
@@ -549,7 +551,7 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
   }
   catch (const json::exception& e)
   {
-    throw Error("'" + jsonPath.string() + "': " + e.what());
+    throwFileError(jsonPath.string(), std::string(e.what()));
   }
   catch (const Error& e)
   {

@@ -5,6 +5,7 @@
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/CoordinateFrames.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/TransformSequenceFile.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
@@ -291,8 +292,8 @@ SlicerSceneFiles exportResultForSlicer(const std::string& resultFolder,
   const fs::path out(exportFolder);
   if (fs::exists(out / "result.json", error) || fs::exists(out / "registered-poses.json", error))
   {
-    throw Error("'" + exportFolder +
-      "': is a registration result folder; an export never replaces one (choose another --out)");
+    throwFileError(exportFolder,
+      "is a registration result folder; an export never replaces one (choose another --out)");
   }
   ResultFolderTransaction transaction(exportFolder,
     replace ? ResultFolderTransaction::Existing::Replace

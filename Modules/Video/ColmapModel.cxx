@@ -1,6 +1,5 @@
 #include <vimlop/Video/ColmapModel.h>
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 
 namespace vimlop::detail

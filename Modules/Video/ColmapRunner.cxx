@@ -1,6 +1,7 @@
 #include <vimlop/Video/ColmapRunner.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Video/ColmapImport.h>
 
 #include <cstdlib>
@@ -68,7 +69,7 @@ std::string ColmapRunner::run(
   fs::create_directories(textModelFolder(workFolder), ec);
   if (ec)
   {
-    throw Error("'" + workFolder + "': cannot create the folder (" + ec.message() + ")");
+    throwFileError(workFolder, "cannot create the folder (" + ec.message() + ")");
   }
   const std::string database = (fs::path(workFolder) / "database.db").string();
   const std::string log = (fs::path(workFolder) / "colmap.log").string();

@@ -1,7 +1,6 @@
 #include <vimlop/Video/FrameContoursIO.h>
 
 #include <vimlop/Core/AtomicFile.h>
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 
 #include <nlohmann/json.hpp>

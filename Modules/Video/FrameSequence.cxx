@@ -1,6 +1,5 @@
 #include <vimlop/Video/FrameSequence.h>
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/AtomicFile.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 
 #include <nlohmann/json.hpp>
 
@@ -126,7 +127,7 @@ SfmReconstruction readSfmReconstruction(const std::string& path)
   std::ifstream in(path);
   if (!in)
   {
-    throw Error("'" + path + "': no such file or not readable");
+    throwFileError(path, "no such file or not readable");
   }
   json document;
   try
@@ -135,13 +136,13 @@ SfmReconstruction readSfmReconstruction(const std::string& path)
   }
   catch (const json::exception&)
   {
-    throw Error("'" + path + "': not a JSON file");
+    throwFileError(path, "not a JSON file");
   }
   // value() would throw for a "format" that is no string (found by fuzzing).
   const auto format = document.is_object() ? document.find("format") : document.end();
   if (format == document.end() || !format->is_string() || *format != "vimlop-sfm")
   {
-    throw Error("'" + path + "': not a VIMLOP SfM file (no \"format\": \"vimlop-sfm\")");
+    throwFileError(path, "not a VIMLOP SfM file (no \"format\": \"vimlop-sfm\")");
   }
   SfmReconstruction r;
   try
@@ -194,11 +195,11 @@ SfmReconstruction readSfmReconstruction(const std::string& path)
   }
   catch (const json::exception& e)
   {
-    throw Error("'" + path + "': malformed SfM file (" + e.what() + ")");
+    throwFileError(path, std::string("malformed SfM file (") + e.what() + ")");
   }
   catch (const Error& e)
   {
-    throw Error("'" + path + "': malformed SfM file (" + e.what() + ")");
+    throwFileError(path, std::string("malformed SfM file (") + e.what() + ")");
   }
   try
   {
@@ -206,7 +207,7 @@ SfmReconstruction readSfmReconstruction(const std::string& path)
   }
   catch (const Error& e)
   {
-    throw Error("'" + path + "': " + e.what());
+    throwFileError(path, std::string(e.what()));
   }
   return r;
 }

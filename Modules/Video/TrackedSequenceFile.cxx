@@ -1,6 +1,5 @@
 #include "TrackedSequenceFile.h"
 
-#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/TransformSequenceFile.h>

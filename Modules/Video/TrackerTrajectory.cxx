@@ -1,6 +1,7 @@
 #include <vimlop/Video/TrackerTrajectory.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Core/TransformSequenceFile.h>
 
@@ -161,8 +162,9 @@ TrackerTrajectory TrackerTrajectory::readTrackedSequence(
   }
   if (samples.size() < 2)
   {
-    throw Error("'" + path + "': the transform '" + transformName + "' has " +
-      std::to_string(samples.size()) + " usable frame; a tracker needs at least 2");
+    throwFileError(path,
+      "the transform '" + transformName + "' has " + std::to_string(samples.size()) +
+        " usable frame; a tracker needs at least 2");
   }
   return TrackerTrajectory(std::move(samples), warnings);
 }
@@ -173,7 +175,7 @@ TrackerTrajectory TrackerTrajectory::readCsv(
   std::ifstream in(path);
   if (!in)
   {
-    throw Error("'" + path + "': no such file or not readable");
+    throwFileError(path, "no such file or not readable");
   }
   std::string line;
   int lineNumber = 0;
@@ -190,7 +192,7 @@ TrackerTrajectory TrackerTrajectory::readCsv(
   }
   if (header.empty())
   {
-    throw Error("'" + path + "': the file is empty (expected a header: time_s,x_mm,y_mm,z_mm)");
+    throwFileError(path, "the file is empty (expected a header: time_s,x_mm,y_mm,z_mm)");
   }
   const std::map<std::string, int> columnOf = [&]
   {
@@ -258,8 +260,8 @@ TrackerTrajectory TrackerTrajectory::readCsv(
   }
   if (samples.size() < 2)
   {
-    throw Error("'" + path + "': too few tracker rows: " + std::to_string(samples.size()) +
-      " usable, at least 2 needed");
+    throwFileError(path,
+      "too few tracker rows: " + std::to_string(samples.size()) + " usable, at least 2 needed");
   }
   try
   {
@@ -267,7 +269,7 @@ TrackerTrajectory TrackerTrajectory::readCsv(
   }
   catch (const Error& e)
   {
-    throw Error("'" + path + "': " + e.what());
+    throwFileError(path, std::string(e.what()));
   }
 }
 
@@ -284,7 +286,7 @@ void TrackerTrajectory::writeCsv(const std::string& path) const
   }
   if (!out)
   {
-    throw Error("'" + path + "': cannot write the file");
+    throwFileError(path, "cannot write the file");
   }
 }
 

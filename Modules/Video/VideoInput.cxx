@@ -1,6 +1,7 @@
 #include <vimlop/Video/VideoInput.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Video/ColmapImport.h>
 #include <vimlop/Video/StructureFromMotion.h>
 
@@ -20,9 +21,10 @@ std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCam
 {
   if (k.widthPx != sequence.widthPx() || k.heightPx != sequence.heightPx())
   {
-    throw Error("'" + intrinsicsPath + "': the intrinsics are for " + std::to_string(k.widthPx) +
-      "x" + std::to_string(k.heightPx) + " pixels but the frames in '" + framesPath + "' are " +
-      std::to_string(sequence.widthPx()) + "x" + std::to_string(sequence.heightPx()));
+    throwFileError(intrinsicsPath,
+      "the intrinsics are for " + std::to_string(k.widthPx) + "x" + std::to_string(k.heightPx) +
+        " pixels but the frames in '" + framesPath + "' are " + std::to_string(sequence.widthPx()) +
+        "x" + std::to_string(sequence.heightPx()));
   }
   // SfM and contours work on ideal pinhole frames: lens distortion is removed first.
   const bool distorted = k.hasDistortion();

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/ChildProcess.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
 
 #include <cstdio>
@@ -30,7 +31,7 @@ std::vector<std::array<double, 3>> readOutputPoints(const std::string& path)
   std::ifstream in(path);
   if (!in)
   {
-    throw Error("'" + path + "': transformix wrote no output points");
+    throwFileError(path, "transformix wrote no output points");
   }
   std::vector<std::array<double, 3>> points;
   std::string line;
@@ -45,7 +46,7 @@ std::vector<std::array<double, 3>> readOutputPoints(const std::string& path)
     std::array<double, 3> p{};
     if (!(values >> p[0] >> p[1] >> p[2]))
     {
-      throw Error("'" + path + "': unreadable output point: " + line);
+      throwFileError(path, "unreadable output point: " + line);
     }
     points.push_back(p);
   }
@@ -84,7 +85,7 @@ ElastixRegistration ElastixRegistration::compute(const CTVolume& fixed, const CT
   {
     if (!std::filesystem::is_regular_file(file))
     {
-      throw Error("'" + file + "': no such elastix parameter file");
+      throwFileError(file, "no such elastix parameter file");
     }
   }
   namespace fs = std::filesystem;
