@@ -1,3 +1,4 @@
+#include "ColmapBinaryWriting.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Video/ColmapImport.h>
 
@@ -10,6 +11,8 @@
 #include <fstream>
 
 using namespace vimlop;
+using fixtures::put;
+using fixtures::putImage;
 namespace fs = std::filesystem;
 
 namespace
@@ -53,12 +56,6 @@ void writeText(
     << "101 -1 0.5 12 10 20 30 0.2 11 1 12 1\n";
 }
 
-template <typename T>
-void put(std::ofstream& f, T value)
-{
-  f.write(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-
 void writeBinary(const std::string& folder, int pinholeModelId = 1)
 {
   {
@@ -84,29 +81,9 @@ void writeBinary(const std::string& folder, int pinholeModelId = 1)
   {
     std::ofstream f(folder + "/images.bin", std::ios::binary);
     put<std::uint64_t>(f, 2);
-    auto image = [&](std::uint32_t id, const Eigen::Quaterniond& q, const Eigen::Vector3d& t,
-                   std::uint32_t camera, const std::string& name,
-                   const std::vector<std::pair<Eigen::Vector2d, std::uint64_t>>& points)
-    {
-      put(f, id);
-      const Eigen::Quaterniond n = q.normalized();
-      for (double v : { n.w(), n.x(), n.y(), n.z(), t.x(), t.y(), t.z() })
-      {
-        put(f, v);
-      }
-      put(f, camera);
-      f.write(name.c_str(), static_cast<std::streamsize>(name.size() + 1));
-      put<std::uint64_t>(f, points.size());
-      for (const auto& [xy, point] : points)
-      {
-        put(f, xy.x());
-        put(f, xy.y());
-        put(f, point);
-      }
-    };
-    image(12, qA, tA, 7, "frameA.png",
+    putImage(f, 12, qA, tA, 7, "frameA.png",
       { { { 10.5, 20.5 }, 100 }, { { 30, 40 }, std::numeric_limits<std::uint64_t>::max() } });
-    image(11, qB, tB, 3, "frameB.png", { { { 11.5, 22.5 }, 100 }, { { 50.5, 60.5 }, 101 } });
+    putImage(f, 11, qB, tB, 3, "frameB.png", { { { 11.5, 22.5 }, 100 }, { { 50.5, 60.5 }, 101 } });
   }
   {
     std::ofstream f(folder + "/points3D.bin", std::ios::binary);
