@@ -3,9 +3,9 @@
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
-#include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
+#include <vimlop/Results/RegistrationVerdict.h>
 #include <vimlop/Server/PoseServing.h>
 
 #include <CLI/CLI.hpp>
@@ -110,10 +110,8 @@ ServedPoses servedPosesOf(const RegistrationRecord& record)
   if (const auto& c = record.confidence)
   {
     const std::string reason = c->reason.empty() ? "flagged as a failure" : c->reason;
-    poses.verdict = PoseVerdict{ c->failure,
-      c->failure ? reason
-                 : formatText("contour error %.2f px, within the failure threshold %.2f px",
-                     record.result.contourErrorPx, c->failureThresholdPx) };
+    poses.verdict =
+      PoseVerdict{ c->failure, c->failure ? reason : RegistrationVerdict::of(record).headline() };
   }
   return poses;
 }

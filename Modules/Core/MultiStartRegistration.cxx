@@ -40,6 +40,10 @@ void MultiStartOptions::validate() const
   {
     throw Error("multi-start: the failure threshold must be positive");
   }
+  if (!(this->failureResidualErrorMm > 0.0))
+  {
+    throw Error("multi-start: the failure threshold on the 3-D residual must be positive");
+  }
   if (!(this->minMatchedFraction >= 0.0 && this->minMatchedFraction <= 1.0))
   {
     throw Error("multi-start: the least matched fraction must lie in [0, 1]");
@@ -72,6 +76,11 @@ std::string failureReason(const RegistrationResult& result, const MultiStartOpti
     return formatText("the contour error %.2f px is above the threshold of %.2f px",
       result.contourErrorPx, options.failureContourErrorPx);
   }
+  if (!(result.residualErrorMm <= options.failureResidualErrorMm))
+  {
+    return formatText("the 3-D residual %.2f mm is above the threshold of %.2f mm",
+      result.residualErrorMm, options.failureResidualErrorMm);
+  }
   return std::string();
 }
 
@@ -83,6 +92,7 @@ bool isFlaggedAsFailure(const RegistrationResult& result, const MultiStartOption
 void MultiStartResult::flagFailure(const MultiStartOptions& options)
 {
   this->failureThresholdPx = options.failureContourErrorPx;
+  this->failureResidualMm = options.failureResidualErrorMm;
   this->failureReason = vimlop::failureReason(this->best, options);
   this->failure = !this->failureReason.empty();
 }

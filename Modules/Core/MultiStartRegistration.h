@@ -42,8 +42,16 @@ struct MultiStartOptions
   /// Threads over candidates, 0 for all cores. The result does not depend on it.
   int threads = 0;
   /// Mean contour error (px) above which the winner is flagged as a failure
-  /// (default 6 px; calibrated on P3, see Documentation/Algorithm.md).
-  double failureContourErrorPx = 6.0;
+  /// (default 4 px). With `failureResidualErrorMm`, chosen on P5's
+  /// registrations of seeds 1-9 where the model is not the anatomy and
+  /// checked on seeds 10-27 (Documentation/Algorithm.md): at 6 px alone,
+  /// nearly half of the registrations 1-3 mm off passed.
+  double failureContourErrorPx = 4.0;
+  /// Mean 3-D residual (mm, SfM points to the surface) above which the
+  /// winner is flagged as a failure (default 0.8 mm, chosen with
+  /// `failureContourErrorPx`): a pose can fit the contours of a wrong
+  /// stretch of airway while its points stand off the walls.
+  double failureResidualErrorMm = 0.8;
   /// Least fraction of the video contour points matched to a model contour
   /// at the end (default 0.5). A pose that sees no model contour (a camera
   /// facing a wall, or outside) has no matches and a mean error of zero over
@@ -81,7 +89,8 @@ struct MultiStartResult
   std::vector<MultiStartCandidate> candidates;
   /// True when the winner is flagged as a failure (see failureReason()).
   bool failure = false;
-  double failureThresholdPx = 0.0;
+  double failureThresholdPx = 0.0; ///< the options' failureContourErrorPx
+  double failureResidualMm = 0.0;  ///< the options' failureResidualErrorMm
   /// Why the winner is flagged, empty when it is not.
   std::string failureReason;
 
@@ -104,8 +113,9 @@ SimilarityTransform startFromCameraPose(
 double matchedContourFraction(const RegistrationResult& result);
 
 /**
- * @brief The failure flag of V13 for one result: a mean contour error above
- * the options' threshold, or too few video contour points matched.
+ * @brief The failure flag of V13 for one result: too few video contour
+ * points matched, or a mean contour error or 3-D residual above the options'
+ * thresholds.
  */
 bool isFlaggedAsFailure(const RegistrationResult& result, const MultiStartOptions& options);
 

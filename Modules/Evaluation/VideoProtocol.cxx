@@ -34,7 +34,8 @@ nlohmann::json methodJson(const VideoProtocolMethodReport& m)
     const VideoMultiStartFigures& f = *m.multiStart;
     j.update({ { "failure_flag", f.failureFlag }, { "contour_error_px", f.contourErrorPx },
       { "matched_fraction", f.matchedFraction }, { "failure_threshold_px", f.failureThresholdPx },
-      { "winner", f.winner }, { "skipped_candidates", f.skippedCandidates } });
+      { "failure_residual_mm", f.failureResidualMm }, { "winner", f.winner },
+      { "skipped_candidates", f.skippedCandidates } });
   }
   return j;
 }
@@ -195,6 +196,7 @@ VideoProtocolReport runVideoProtocol(
       f.contourErrorPx = ms.best.contourErrorPx;
       f.matchedFraction = matchedContourFraction(ms.best);
       f.failureThresholdPx = ms.failureThresholdPx;
+      f.failureResidualMm = ms.failureResidualMm;
       f.winner = ms.bestCandidate;
       m.multiStart = f;
     }

@@ -73,6 +73,7 @@ struct VideoMultiStartFigures
   double contourErrorPx = 0.0;
   double matchedFraction = 0.0;
   double failureThresholdPx = 0.0;
+  double failureResidualMm = 0.0;
   int winner = -1;
   int skippedCandidates = 0;
 };

@@ -71,6 +71,7 @@ std::string writeRegisteredPoses(
   document["failure"] = outcome.failure;
   document["failure_reason"] = outcome.failureReason;
   document["failure_threshold_px"] = outcome.failureThresholdPx;
+  document["failure_residual_mm"] = outcome.failureResidualMm;
   document["contour_error_px"] = result.contourErrorPx;
   document["residual_error_mm"] = result.residualErrorMm;
   const std::string path = (fs::path(folder) / registeredPosesFileName()).string();
@@ -98,7 +99,7 @@ RegistrationRecord makeRegistrationRecord(const VideoRegistrationPipeline& pipel
   record.runWallS = pipeline.timings().totalWallS();
   record.confidence = RegistrationRecord::Confidence{ outcome.failure, outcome.failureThresholdPx,
     outcome.failureReason, pipeline.startMode() == StartMode::Manual ? "manual" : "canonical",
-    static_cast<int>(outcome.candidates.size()), outcome.bestCandidate };
+    static_cast<int>(outcome.candidates.size()), outcome.bestCandidate, outcome.failureResidualMm };
   record.versions = { { "vtk", vtkVersion::GetVTKVersion() }, { "opencv", CV_VERSION } };
   std::vector<bool> posed(pipeline.frameIds().size(), false);
   for (int f : pipeline.frameOf())
@@ -259,7 +260,8 @@ nlohmann::json registrationSummaryJson(const VideoRegistrationPipeline& pipeline
     { "candidates", outcome.candidates.size() }, { "termination", toString(result.termination) },
     { "residual_error_mm", result.residualErrorMm }, { "contour_error_px", result.contourErrorPx },
     { "failure", outcome.failure }, { "failure_reason", outcome.failureReason },
-    { "failure_threshold_px", outcome.failureThresholdPx }, { "runtime_s", seconds } };
+    { "failure_threshold_px", outcome.failureThresholdPx },
+    { "failure_residual_mm", outcome.failureResidualMm }, { "runtime_s", seconds } };
   if (timings)
   {
     summary["timings"] = timings->toJson();

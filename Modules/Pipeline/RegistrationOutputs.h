@@ -89,8 +89,9 @@ void writeRegistrationOutputs(const VideoRegistrationPipeline& pipeline,
  * FramePoseIO.h (each registered frame's "frame_id" and 4 x 4 "camera_to_ct",
  * so `vimlop serve --poses`, `--truth` and readFramePoses() read it) plus
  * "format" "vimlop-registered-poses", "version" 1, "sfm_to_ct" (T, as in
- * result.json's "transform"), "failure", "failure_threshold_px",
- * "contour_error_px" and "residual_error_mm".
+ * result.json's "transform"), "failure", "failure_reason",
+ * "failure_threshold_px", "failure_residual_mm", "contour_error_px" and
+ * "residual_error_mm".
  * @return the path written.
  * @throws vimlop::Error when the file cannot be written.
  */

@@ -30,6 +30,9 @@
   X(FailureThresholdPx, double, multiStart.failureContourErrorPx, "failure_threshold_px", \
     "--failure-threshold-px", 0.01, 10000.0, \
     "V13: contour error above which the result is flagged as a failure, px") \
+  X(FailureResidualMm, double, multiStart.failureResidualErrorMm, "failure_residual_mm", \
+    "--failure-residual-mm", 0.001, 1000.0, \
+    "V13: 3-D residual above which the result is flagged as a failure, mm") \
   X(MinMatchedFraction, double, multiStart.minMatchedFraction, "min_matched_fraction", \
     "--min-matched-fraction", 0.0, 1.0, \
     "V13: least fraction of video contour points matched, else flagged as a failure") \

@@ -190,6 +190,11 @@ void vtkVIMLOPRegistration::SetFailureThresholdPx(double threshold)
   this->SetOption(this->MultiStart.failureContourErrorPx, threshold);
 }
 
+void vtkVIMLOPRegistration::SetFailureResidualMm(double threshold)
+{
+  this->SetOption(this->MultiStart.failureResidualErrorMm, threshold);
+}
+
 namespace
 {
 
@@ -410,6 +415,7 @@ void vtkVIMLOPRegistration::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "InitialScale: " << this->InitialScale << "\n";
   os << indent << "FailureThresholdPx: " << this->MultiStart.failureContourErrorPx << "\n";
+  os << indent << "FailureResidualMm: " << this->MultiStart.failureResidualErrorMm << "\n";
   os << indent << "Transform: " << this->Transform.Get() << "\n";
   os << indent << "Result: " << vimlop::toString(this->Result.termination) << " after "
      << this->Result.iterations << " iterations, residual " << this->Result.residualErrorMm

@@ -79,10 +79,11 @@ class RegistrationModel;
  * camera placed at canonical poses along the model's airway (at
  * InitialScale). Each start runs (times each scale factor, candidates in
  * parallel), the least contour error wins, and GetFlaggedAsFailure() says
- * whether the winner's contour error exceeds FailureThresholdPx (a single
- * start is flagged the same way). The defaults of every option are Core's,
- * the main job's (vimlop::VideoRegistrationOptions holds the same ones for
- * `vimlop register` and Python's `vimlop.register_video`).
+ * whether the winner's contour error exceeds FailureThresholdPx or its 3-D
+ * residual FailureResidualMm (a single start is flagged the same way). The
+ * defaults of every option are Core's, the main job's
+ * (vimlop::VideoRegistrationOptions holds the same ones for `vimlop
+ * register` and Python's `vimlop.register_video`).
  *
  * Events: after every iteration that updates the estimate (vimlop's
  * iteration callback; the iterations that stop on a stall return to an
@@ -189,9 +190,15 @@ public:
   ///@}
 
   ///@{
-  /// V13: mean contour error above which a result is flagged as a failure, px (default 6).
+  /// V13: mean contour error above which a result is flagged as a failure, px (default 4).
   void SetFailureThresholdPx(double threshold);
   double GetFailureThresholdPx() const { return this->MultiStart.failureContourErrorPx; }
+  ///@}
+
+  ///@{
+  /// V13: mean 3-D residual above which a result is flagged as a failure, mm (default 0.8).
+  void SetFailureResidualMm(double threshold);
+  double GetFailureResidualMm() const { return this->MultiStart.failureResidualErrorMm; }
   ///@}
 
   ///@{
@@ -306,8 +313,9 @@ public:
   {
     return this->Result.contourErrorPx;
   }
-  /// V13: true when the result's contour error exceeds FailureThresholdPx (or
-  /// too few video contour points matched): do not navigate with it.
+  /// V13: true when the result's contour error exceeds FailureThresholdPx, its
+  /// 3-D residual FailureResidualMm, or too few video contour points matched:
+  /// do not navigate with it.
   bool GetFlaggedAsFailure() const
   {
     return this->Outcome.failure;

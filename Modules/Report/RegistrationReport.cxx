@@ -257,7 +257,8 @@ RegistrationReport RegistrationReport::write(const RegistrationRecord* record,
     report.verdict = verdict;
     reportJson["verdict"] = { { "status", toString(verdict.status) },
       { "headline", verdict.headline() }, { "contour_error_px", verdict.contourErrorPx },
-      { "threshold_px", verdict.thresholdPx }, { "reason", verdict.reason } };
+      { "threshold_px", verdict.thresholdPx }, { "residual_error_mm", verdict.residualErrorMm },
+      { "threshold_residual_mm", verdict.thresholdResidualMm }, { "reason", verdict.reason } };
     html << "<div id=\"verdict\" class=\"verdict " << toString(verdict.status) << "\">"
          << escapeHtml(verdict.headline()) << "</div>\n";
     // The model's search structures once: the caller's when it has them.

@@ -88,7 +88,8 @@ struct RegistrationRecord
   /// How much to trust the result (V13): written as "confidence".
   struct Confidence
   {
-    /// True when the contour error exceeds the threshold: do not navigate with it.
+    /// True when the contour error or the 3-D residual exceeds its threshold
+    /// (or too few contour points matched): do not navigate with it.
     bool failure = false;
     double failureThresholdPx = 0.0;
     /// Why the result is flagged, for people (empty when it is not); written as "failure_reason".
@@ -98,6 +99,9 @@ struct RegistrationRecord
     /// Candidates of a multi-start (1 for a single start) and the winner's index.
     int candidates = 1;
     int winner = 0;
+    /// The threshold on the 3-D residual, mm; 0 when the check had none (a
+    /// record from before it). Written as "failure_residual_mm".
+    double failureResidualMm = 0.0;
   };
   std::optional<Confidence> confidence;
   /// The command that ran the registration, as a shell reads it (each word

@@ -318,7 +318,8 @@ void writeRegistrationRecord(const RegistrationRecord& record, const std::string
   {
     const RegistrationRecord::Confidence& c = *record.confidence;
     summary["confidence"] = { { "failure", c.failure },
-      { "failure_threshold_px", c.failureThresholdPx }, { "failure_reason", c.reason },
+      { "failure_threshold_px", c.failureThresholdPx },
+      { "failure_residual_mm", c.failureResidualMm }, { "failure_reason", c.reason },
       { "init", c.init }, { "candidates", c.candidates }, { "winner", c.winner } };
   }
   summary["versions"] = versionsJson(record);
@@ -503,6 +504,7 @@ RegistrationRecord readRegistrationRecord(const std::string& folder)
       RegistrationRecord::Confidence c;
       c.failure = cj.at("failure").get<bool>();
       c.failureThresholdPx = cj.value("failure_threshold_px", 0.0);
+      c.failureResidualMm = cj.value("failure_residual_mm", 0.0);
       c.reason = cj.value("failure_reason", std::string());
       c.init = cj.value("init", std::string());
       c.candidates = cj.value("candidates", 1);

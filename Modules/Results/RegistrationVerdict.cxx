@@ -28,6 +28,8 @@ RegistrationVerdict RegistrationVerdict::of(const RegistrationRecord& record)
     return verdict;
   }
   verdict.thresholdPx = record.confidence->failureThresholdPx;
+  verdict.residualErrorMm = record.result.residualErrorMm;
+  verdict.thresholdResidualMm = record.confidence->failureResidualMm;
   if (record.confidence->failure)
   {
     verdict.status = VerdictStatus::Flagged;
@@ -50,6 +52,13 @@ std::string RegistrationVerdict::headline() const
   switch (this->status)
   {
     case VerdictStatus::Registered:
+      if (this->thresholdResidualMm > 0.0)
+      {
+        return formatText(
+          "REGISTERED: contour error %.2f px, residual %.2f mm (flagged above %.2f px or %.2f mm)",
+          this->contourErrorPx, this->residualErrorMm, this->thresholdPx,
+          this->thresholdResidualMm);
+      }
       return formatText("REGISTERED: contour error %.2f px (flagged above %.2f px)",
         this->contourErrorPx, this->thresholdPx);
     case VerdictStatus::Flagged:

@@ -32,6 +32,11 @@ struct RegistrationVerdict
   double contourErrorPx = 0.0;
   /// The error above which a result is flagged, px (0 when unchecked).
   double thresholdPx = 0.0;
+  /// The result's mean 3-D residual (V13's second measure), mm.
+  double residualErrorMm = 0.0;
+  /// The residual above which a result is flagged, mm (0 when unchecked, or
+  /// a record from before the check had it: the headline then leaves it out).
+  double thresholdResidualMm = 0.0;
   /// Why it is flagged (empty unless flagged).
   std::string reason;
 
@@ -40,7 +45,8 @@ struct RegistrationVerdict
 
   /**
    * @brief One line for people, short enough for a video banner, e.g.
-   * "REGISTERED: contour error 0.80 px (flagged above 3.00 px)" or
+   * "REGISTERED: contour error 0.80 px, residual 0.21 mm (flagged above
+   * 4.00 px or 0.80 mm)" or
    * "FLAGGED AS A FAILURE, do not navigate: the contour error 10.30 px is
    * above the threshold of 3.00 px".
    */

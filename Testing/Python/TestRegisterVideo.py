@@ -87,11 +87,13 @@ for key, value in r.items():
               "%s.Get%s() == %s" % (face.GetClassName(), name, value))
     compared += 1
 check(compared >= 20, "%d registration settings compared" % compared)
-for key in ("failure_threshold_px", "finalists", "canonical_spacing_mm", "scale_bound_factor"):
+for key in ("failure_threshold_px", "failure_residual_mm", "finalists", "canonical_spacing_mm", "scale_bound_factor"):
     check(getattr(source_filter, "Get" + vtk_name(key))() == cli[key],
           "vtkVIMLOPVideoRegistration.Get%s() == %s" % (vtk_name(key), cli[key]))
 check(flt.GetFailureThresholdPx() == cli["failure_threshold_px"],
       "and the filter's failure threshold")
+check(flt.GetFailureResidualMm() == cli["failure_residual_mm"],
+      "and the filter's failure threshold on the 3-D residual")
 source_filter.SetTrimFraction(7.0)
 check(source_filter.GetTrimFraction() == source_filter.GetTrimFractionMaxValue() == 0.9,
       "a value outside the table's range is clamped into it")

@@ -27,6 +27,8 @@
   X("sizeof MultiStartOptions", sizeof(vimlop::MultiStartOptions))                                 \
   X("offsetof MultiStartOptions::failureContourErrorPx",                                           \
     offsetof(vimlop::MultiStartOptions, failureContourErrorPx))                                    \
+  X("offsetof MultiStartOptions::failureResidualErrorMm",                                          \
+    offsetof(vimlop::MultiStartOptions, failureResidualErrorMm))                                   \
   X("sizeof PoseUpdateProblem", sizeof(vimlop::PoseUpdateProblem))                                 \
   X("offsetof PoseUpdateProblem::kappa", offsetof(vimlop::PoseUpdateProblem, kappa))               \
   X("sizeof ContourPair", sizeof(vimlop::ContourPair))                                             \

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace vimlop;
 
 namespace
@@ -172,8 +174,14 @@ TEST(MultiStartRegistration, APoseThatMatchesNoContourIsAFailureNotAPerfectFit)
   good.contourErrorPx = 1.5;
   EXPECT_DOUBLE_EQ(matchedContourFraction(good), 147.0 / 150.0);
   EXPECT_FALSE(isFlaggedAsFailure(good, MultiStartOptions()));
-  good.contourErrorPx = 7.0; // above the 6 px threshold
+  good.contourErrorPx = 4.5; // above the 4 px threshold
   EXPECT_TRUE(isFlaggedAsFailure(good, MultiStartOptions()));
+  // Contours that fit while the SfM points stand off the walls: flagged too.
+  good.contourErrorPx = 1.5;
+  good.residualErrorMm = 0.9; // above the 0.8 mm threshold
+  EXPECT_TRUE(isFlaggedAsFailure(good, MultiStartOptions()));
+  good.residualErrorMm = 0.7;
+  EXPECT_FALSE(isFlaggedAsFailure(good, MultiStartOptions()));
   EXPECT_DOUBLE_EQ(matchedContourFraction(RegistrationResult()), 0.0);
 }
 
@@ -190,16 +198,43 @@ TEST(MultiStartRegistration, TheFailureFlagSaysWhyInWords)
     "only 12 % of the video contour points matched a model contour (at least 50 % needed)");
   r.frames[0].matched = 190;
   r.contourErrorPx = 7.25;
+  r.residualErrorMm = 1.25;
+  // The contours first: they are what V13 ranks the starts by.
   EXPECT_EQ(failureReason(r, MultiStartOptions()),
-    "the contour error 7.25 px is above the threshold of 6.00 px");
+    "the contour error 7.25 px is above the threshold of 4.00 px");
   r.contourErrorPx = 1.0;
+  EXPECT_EQ(failureReason(r, MultiStartOptions()),
+    "the 3-D residual 1.25 mm is above the threshold of 0.80 mm");
+  r.residualErrorMm = 0.3;
   EXPECT_EQ(failureReason(r, MultiStartOptions()), "");
 
   MultiStartResult outcome;
   outcome.best = r;
-  outcome.best.contourErrorPx = 7.25;
-  outcome.flagFailure(MultiStartOptions());
+  outcome.best.residualErrorMm = 0.95;
+  MultiStartOptions o;
+  o.failureResidualErrorMm = 0.9;
+  outcome.flagFailure(o);
   EXPECT_TRUE(outcome.failure);
-  EXPECT_EQ(outcome.failureThresholdPx, 6.0);
-  EXPECT_EQ(outcome.failureReason, "the contour error 7.25 px is above the threshold of 6.00 px");
+  EXPECT_EQ(outcome.failureThresholdPx, 4.0);
+  EXPECT_EQ(outcome.failureResidualMm, 0.9);
+  EXPECT_EQ(outcome.failureReason, "the 3-D residual 0.95 mm is above the threshold of 0.90 mm");
+}
+
+TEST(MultiStartRegistration, RejectsAFailureThresholdOnTheResidualThatIsNotPositive)
+{
+  MultiStartOptions o;
+  for (double bad : { 0.0, -0.5, std::nan("") })
+  {
+    o.failureResidualErrorMm = bad;
+    try
+    {
+      o.validate();
+      FAIL() << "expected an error for " << bad;
+    }
+    catch (const Error& e)
+    {
+      EXPECT_STREQ(
+        e.what(), "multi-start: the failure threshold on the 3-D residual must be positive");
+    }
+  }
 }

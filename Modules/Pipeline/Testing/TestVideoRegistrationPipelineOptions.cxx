@@ -71,7 +71,8 @@ TEST(VideoRegistrationPipelineOptions, AreWrittenAsJsonWithTheRegistrationOption
   EXPECT_EQ(j["registration"]["max_iterations"].get<int>(), 300);
   EXPECT_DOUBLE_EQ(j["scale_bound_factor"].get<double>(), 1.25);
   EXPECT_EQ(j["scale_factors"].size(), 3u);
-  EXPECT_DOUBLE_EQ(j["failure_threshold_px"].get<double>(), 6.0);
+  EXPECT_DOUBLE_EQ(j["failure_threshold_px"].get<double>(), 4.0);
+  EXPECT_DOUBLE_EQ(j["failure_residual_mm"].get<double>(), 0.8);
 }
 
 } // namespace

@@ -459,6 +459,8 @@ TEST(vtkVIMLOPRegistration, OptionsDefaultToCoreAndArePrinted)
   EXPECT_FALSE(registration->GetStartFromCanonicalPoses());
   EXPECT_DOUBLE_EQ(
     registration->GetFailureThresholdPx(), MultiStartOptions().failureContourErrorPx);
+  EXPECT_DOUBLE_EQ(
+    registration->GetFailureResidualMm(), MultiStartOptions().failureResidualErrorMm);
   EXPECT_EQ(registration->GetVisibilityBackend(), vtkVIMLOPRegistration::VisibilityBackend::Embree);
 
   const vtkMTimeType before = registration->GetMTime();
@@ -546,6 +548,15 @@ TEST(vtkVIMLOPRegistration, AMultiStartKeepsTheLeastContourErrorAndFlagsAboveThe
   std::ostringstream printed;
   registration->Print(printed);
   EXPECT_NE(printed.str().find("FLAGGED AS A FAILURE"), std::string::npos);
+
+  // So does a threshold on the 3-D residual below the winner's residual.
+  registration->SetFailureThresholdPx(2.0 * contourErrorPx);
+  registration->SetFailureResidualMm(0.5 * registration->GetResidualErrorMm());
+  registration->Update();
+  EXPECT_TRUE(registration->GetFlaggedAsFailure());
+  registration->SetFailureResidualMm(2.0 * registration->GetResidualErrorMm());
+  registration->Update();
+  EXPECT_FALSE(registration->GetFlaggedAsFailure());
 }
 
 TEST(vtkVIMLOPRegistration, CanonicalStartsWithoutAnInitialScaleAreAnError)

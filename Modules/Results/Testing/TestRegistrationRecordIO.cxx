@@ -47,7 +47,7 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   changed.options.contourMatch.kappa = 150.0;
   changed.options.method = RegistrationMethod::IMLP;
   changed.confidence =
-    RegistrationRecord::Confidence{ true, 6.5, "contour error 7.0 px", "canonical", 120, 17 };
+    RegistrationRecord::Confidence{ true, 6.5, "contour error 7.0 px", "canonical", 120, 17, 0.75 };
   changed.frameTimesS = { 0.0, 0.04, 0.12 };
   changed.versions["opencv"] = "4.6.0";
   changed.commandLine = "vimlop register --frames 'my frames' --ct ct.nrrd";
@@ -129,6 +129,7 @@ TEST(RegistrationRecordIO, RoundTripsEverything)
   ASSERT_TRUE(back.confidence.has_value());
   EXPECT_TRUE(back.confidence->failure);
   EXPECT_DOUBLE_EQ(back.confidence->failureThresholdPx, 6.5);
+  EXPECT_DOUBLE_EQ(back.confidence->failureResidualMm, 0.75);
   EXPECT_EQ(back.confidence->reason, "contour error 7.0 px");
   EXPECT_EQ(back.frameTimesS, changed.frameTimesS);
   EXPECT_EQ(back.confidence->init, "canonical");

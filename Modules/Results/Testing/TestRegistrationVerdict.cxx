@@ -26,6 +26,18 @@ TEST(RegistrationVerdict, AResultPassingTheCheckIsRegisteredWithItsErrorAndThres
   EXPECT_EQ(verdict.headline(), "REGISTERED: contour error 0.80 px (flagged above 3.00 px)");
 }
 
+TEST(RegistrationVerdict, AResultCheckedOnItsResidualTooStatesBothMeasuresAndThresholds)
+{
+  RegistrationRecord record = recordWithContourError(0.8);
+  record.result.residualErrorMm = 0.214;
+  record.confidence = RegistrationRecord::Confidence{ false, 4.0, "", "canonical", 150, 4, 0.8 };
+  const RegistrationVerdict verdict = RegistrationVerdict::of(record);
+  EXPECT_EQ(verdict.status, VerdictStatus::Registered);
+  EXPECT_DOUBLE_EQ(verdict.thresholdResidualMm, 0.8);
+  EXPECT_EQ(verdict.headline(),
+    "REGISTERED: contour error 0.80 px, residual 0.21 mm (flagged above 4.00 px or 0.80 mm)");
+}
+
 TEST(RegistrationVerdict, AFlaggedResultSaysDoNotNavigateAndWhy)
 {
   RegistrationRecord record = recordWithContourError(10.3);
