@@ -29,6 +29,7 @@ struct PoseServingOptions;
 struct RegistrationRecord;
 struct ServedPoses;
 struct SimulatedWorldOptions;
+struct TemplateRegistrationOptions;
 struct WorldSettings;
 struct VideoRegistrationOptions;
 
@@ -68,6 +69,15 @@ void addPipelineOptions(CLI::App& command, VideoRegistrationOptions& options);
  * that simulate (`vimlop evaluate video`).
  */
 void addSimulationOptions(CLI::App& command, EndoscopeSimulationOptions& options);
+
+/**
+ * @brief Adds a flag for every setting of the template registration
+ * (TemplateRegistrationOptions: margin, affine and SyN levels, iterations,
+ * metric, smoothing) to `command`, stored into `options` (which must
+ * outlive the parse); the region is the command's to set. Shared by
+ * `vimlop warp` and `vimlop evaluate warp`.
+ */
+void addTemplateRegistrationOptions(CLI::App& command, TemplateRegistrationOptions& options);
 
 /**
  * @brief Adds a flag for every model error of the simulated world

@@ -104,6 +104,7 @@ void addEvaluateWarpCommand(CLI::App& evaluate)
     "Fail (exit 1) when the mean vertex error exceeds this (mm)");
   warp->add_option("--require-p95-mm", options->requireP95Mm,
     "Fail (exit 1) when the 95th percentile vertex error exceeds this (mm)");
+  addTemplateRegistrationOptions(*warp, options->protocol.registration);
   addJsonFlag(*warp, options->json);
   warp->callback([options] { runEvaluateWarp(*options); });
 }

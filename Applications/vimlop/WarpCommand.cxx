@@ -52,13 +52,10 @@ void addWarpCommand(CLI::App& app)
   warp->add_option("--template-poses", options->templatePosesPath,
     "Camera poses in the template CT frame (JSON, see Modules/Imaging/FramePoseIO.h)");
   warp
-    ->add_option("--margin-mm", options->marginMm,
-      "Margin around the meshes and poses of the registered region (mm)")
-    ->capture_default_str();
-  warp
     ->add_option("--out", options->outputFolder,
       "Output folder: warped meshes (.vtp), poses.json, displacement fields, registration.json")
     ->required();
+  addTemplateRegistrationOptions(*warp, options->registration);
   addJsonFlag(*warp, *json);
   warp->callback([options, json] { runWarp(*options, *json); });
 }

@@ -8,6 +8,7 @@
 #include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Imaging/AirwaySurface.h>
 #include <vimlop/Imaging/TemplateRegistration.h>
+#include <vimlop/Imaging/TemplateWarpJob.h>
 #include <vimlop/Imaging/VolumeCrop.h>
 
 #include <vtkPolyData.h>
@@ -131,7 +132,7 @@ nlohmann::json TemplateWarpProtocolReport::toJson() const
     { "correlation",
       { { "initial", this->initialCorrelation }, { "affine", this->affineCorrelation },
         { "final", this->finalCorrelation } } },
-    { "template_crop_mm", this->templateCropMm } };
+    { "template_crop_mm", this->templateCropMm }, { "settings", settingsJson(this->settings) } };
   if (this->elastix)
   {
     nlohmann::json e = errorsJson(this->elastix->errors);
@@ -225,6 +226,7 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
   r.affineOnly = summarizeErrors(affineOnly, truth);
   r.affineS = result.affineSeconds;
   r.synS = result.synSeconds;
+  r.settings = result.settings;
   r.overlapFraction = result.overlapFraction;
   r.initialCorrelation = result.initialCorrelation;
   r.affineCorrelation = result.affineCorrelation;

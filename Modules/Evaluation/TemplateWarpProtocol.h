@@ -79,6 +79,8 @@ struct TemplateWarpProtocolReport
   double affineCorrelation = 0.0;
   double finalCorrelation = 0.0;
   std::array<double, 6> templateCropMm{ 0, 0, 0, 0, 0, 0 };
+  /// The registration's settings, its region included.
+  TemplateRegistrationOptions settings;
   /// The registration's warnings (e.g. a low correlation).
   std::vector<std::string> warnings;
 

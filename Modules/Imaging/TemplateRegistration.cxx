@@ -210,10 +210,11 @@ void checkOptions(const TemplateRegistrationOptions& o)
   }
   if (o.histogramBins < 4 || !(o.affineSamplingFraction > 0.0 && o.affineSamplingFraction <= 1.0) ||
     !(o.synLearningRate > 0.0) || o.updateFieldVariance < 0.0 || o.totalFieldVariance < 0.0 ||
-    !(o.marginMm >= 0.0))
+    !(o.marginMm >= 0.0) || o.correlationRadiusVoxels < 1)
   {
     throw Error("registration options out of range (histogram bins >= 4, sampling fraction in (0, "
-                "1], positive learning rate, non-negative variances and margin)");
+                "1], positive learning rate, non-negative variances and margin, correlation "
+                "radius >= 1 voxel)");
   }
   if (!(o.regionMm[0] <= o.regionMm[1] && o.regionMm[2] <= o.regionMm[3] &&
         o.regionMm[4] <= o.regionMm[5]))
@@ -233,6 +234,34 @@ void checkVolume(const CTVolume& v, const std::string& name)
 
 } // namespace
 
+std::string templateRegistrationMetricName(TemplateRegistrationMetric metric)
+{
+  switch (metric)
+  {
+    case TemplateRegistrationMetric::MeanSquares:
+      return "ms";
+    case TemplateRegistrationMetric::NeighborhoodCorrelation:
+      return "cc";
+    case TemplateRegistrationMetric::MattesMutualInformation:
+      break;
+  }
+  return "mi";
+}
+
+TemplateRegistrationMetric templateRegistrationMetricFromName(const std::string& name)
+{
+  for (const TemplateRegistrationMetric metric :
+    { TemplateRegistrationMetric::MattesMutualInformation, TemplateRegistrationMetric::MeanSquares,
+      TemplateRegistrationMetric::NeighborhoodCorrelation })
+  {
+    if (templateRegistrationMetricName(metric) == name)
+    {
+      return metric;
+    }
+  }
+  throw Error("unknown SyN metric '" + name + "' (mi, ms or cc)");
+}
+
 TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
   const CTVolume& patientCT, const TemplateRegistrationOptions& options,
   const ProgressCallback& progress)
@@ -241,6 +270,7 @@ TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
   checkVolume(patientCT, "patient");
   checkOptions(options);
   TemplateRegistration result;
+  result.settings = options;
 
   // 1. The template crop and the clamped patient.
   std::array<double, 6> region = options.regionMm;

@@ -2,6 +2,7 @@
 // instantiates ITK's SyN registration method.
 #include <vimlop/Imaging/TemplateSyNStage.h>
 
+#include <itkANTSNeighborhoodCorrelationImageToImageMetricv4.h>
 #include <itkDisplacementFieldTransformParametersAdaptor.h>
 #include <itkMattesMutualInformationImageToImageMetricv4.h>
 #include <itkMeanSquaresImageToImageMetricv4.h>
@@ -38,6 +39,14 @@ TemplateSyNStage TemplateSyNStage::compute(const CTVolume& fixedVolume, const Im
   if (options.metric == TemplateRegistrationMetric::MeanSquares)
   {
     syn->SetMetric(itk::MeanSquaresImageToImageMetricv4<Image, Image>::New());
+  }
+  else if (options.metric == TemplateRegistrationMetric::NeighborhoodCorrelation)
+  {
+    auto metric = itk::ANTSNeighborhoodCorrelationImageToImageMetricv4<Image, Image>::New();
+    itk::Size<3> radius;
+    radius.Fill(static_cast<itk::SizeValueType>(options.correlationRadiusVoxels));
+    metric->SetRadius(radius);
+    syn->SetMetric(metric);
   }
   else
   {

@@ -58,6 +58,22 @@ std::vector<std::string> meshOutputNames(const std::vector<std::string>& meshPat
 
 } // namespace
 
+nlohmann::json settingsJson(const TemplateRegistrationOptions& o)
+{
+  nlohmann::json settings = { { "region_mm", o.regionMm }, { "margin_mm", o.marginMm },
+    { "affine_levels_mm", o.affineLevelSpacingMm }, { "affine_iterations", o.affineIterations },
+    { "histogram_bins", o.histogramBins }, { "affine_sampling_fraction", o.affineSamplingFraction },
+    { "syn_metric", templateRegistrationMetricName(o.metric) },
+    { "syn_levels_mm", o.synLevelSpacingMm }, { "syn_iterations", o.synIterations },
+    { "syn_learning_rate", o.synLearningRate }, { "update_field_variance", o.updateFieldVariance },
+    { "total_field_variance", o.totalFieldVariance } };
+  if (o.metric == TemplateRegistrationMetric::NeighborhoodCorrelation)
+  {
+    settings["correlation_radius_voxels"] = o.correlationRadiusVoxels;
+  }
+  return settings;
+}
+
 nlohmann::json TemplateWarpJobReport::toJson() const
 {
   const TemplateRegistration& r = this->registration;
@@ -74,6 +90,7 @@ nlohmann::json TemplateWarpJobReport::toJson() const
   report["metric"] = { { "affine_mattes_mi", r.affineMetricValue }, { "syn", r.synMetricValue } };
   report["seconds"] = { { "affine", r.affineSeconds }, { "syn", r.synSeconds },
     { "total", this->totalSeconds } };
+  report["settings"] = settingsJson(r.settings);
   report["warnings"] = r.warnings;
   report["outputs"] = this->outputPaths;
   return report;
@@ -148,9 +165,8 @@ TemplateWarpJobReport runTemplateWarpJob(const TemplateWarpJobOptions& options,
     grow(region, pose.cameraToWorld.centre.data());
   }
   report.regionMm = region;
-  TemplateRegistrationOptions registration;
+  TemplateRegistrationOptions registration = options.registration;
   registration.regionMm = region;
-  registration.marginMm = options.marginMm;
   report.registration = TemplateRegistration::compute(templateCT, patientCT, registration,
     [&](double f, const std::string& step) { reportProgress(progress, 0.05 + 0.95 * f, step); });
   const TemplateRegistration& result = report.registration;

@@ -33,8 +33,10 @@ struct TemplateWarpJobOptions
   std::string templatePosesPath;
   /// Folder of the outputs, created when missing. Required.
   std::string outputFolder;
-  /// Margin around the meshes and poses of the registered region (mm). Default 15.
-  double marginMm = 15.0;
+  /// The registration's settings (TemplateRegistration's defaults); its
+  /// region is replaced by the bounds of the meshes and poses, to which
+  /// `registration.marginMm` is added.
+  TemplateRegistrationOptions registration;
 };
 
 /// @brief What runTemplateWarpJob() did.
@@ -64,6 +66,10 @@ struct TemplateWarpJobReport
   /// @brief The content of registration.json, written in the output folder.
   VIMLOPIMAGING_EXPORT nlohmann::json toJson() const;
 };
+
+/// @brief The settings of a template registration as written in
+/// registration.json and P4's report: "metric", "syn_levels_mm", ...
+VIMLOPIMAGING_EXPORT nlohmann::json settingsJson(const TemplateRegistrationOptions& options);
 
 /**
  * @brief Registers the template CT to the patient CT (TemplateRegistration)

@@ -119,7 +119,11 @@ TEST(SyntheticDeformation, MakesThePatientByResamplingThroughTheField)
   EXPECT_EQ(d.makePatient(ct, 20.0, 9).intensities, noisy.intensities);
 }
 
-TEST(TemplateRegistration, RecoversAKnownDeformationOfThePhantom)
+class TemplateRegistrationMetrics : public ::testing::TestWithParam<TemplateRegistrationMetric>
+{
+};
+
+TEST_P(TemplateRegistrationMetrics, RecoverAKnownDeformationOfThePhantom)
 {
   const CTVolume ct = HeadPhantom::make();
   SyntheticDeformationOptions deformation;
@@ -138,6 +142,7 @@ TEST(TemplateRegistration, RecoversAKnownDeformationOfThePhantom)
   options.affineLevelSpacingMm = { 2.0, 1.0 };
   options.synLevelSpacingMm = { 2.0, 1.0 };
   options.synIterations = { 30, 20 };
+  options.metric = GetParam();
   double last = -1.0;
   bool monotone = true;
   const TemplateRegistration r = TemplateRegistration::compute(ct, patient, options,
@@ -149,6 +154,8 @@ TEST(TemplateRegistration, RecoversAKnownDeformationOfThePhantom)
   EXPECT_TRUE(monotone);
   EXPECT_EQ(last, 1.0);
   EXPECT_TRUE(r.warnings.empty());
+  EXPECT_EQ(r.settings.metric, GetParam());
+  EXPECT_EQ(r.settings.synIterations, options.synIterations);
   EXPECT_DOUBLE_EQ(r.overlapFraction, 1.0);
   EXPECT_GT(r.finalCorrelation, r.initialCorrelation);
   EXPECT_GT(r.finalCorrelation, 0.9);
@@ -170,9 +177,15 @@ TEST(TemplateRegistration, RecoversAKnownDeformationOfThePhantom)
     after += distance(y, truth) / points.size();
     roundTrip += distance(r.patientToTemplate.transformPoint(y), x) / points.size();
   }
-  std::printf("phantom: before %.2f mm, after %.2f mm, round trip %.2f mm, correlation %.3f\n",
-    before, after, roundTrip, r.finalCorrelation);
+  std::printf(
+    "phantom, metric %d: before %.2f mm, after %.2f mm, round trip %.2f mm, correlation %.3f\n",
+    static_cast<int>(GetParam()), before, after, roundTrip, r.finalCorrelation);
   EXPECT_GT(before, 1.0);
   EXPECT_LT(after, 0.5);
   EXPECT_LT(roundTrip, 0.3);
 }
+
+// Mutual information, the default, and ANTs' neighbourhood correlation.
+INSTANTIATE_TEST_SUITE_P(SyN, TemplateRegistrationMetrics,
+  ::testing::Values(TemplateRegistrationMetric::MattesMutualInformation,
+    TemplateRegistrationMetric::NeighborhoodCorrelation));

@@ -46,6 +46,7 @@ TEST(TemplateRegistration, WarnsWithTheCorrelationWhenNothingMatches)
   const auto& box = HeadPhantom::kAirwayBox;
   options.regionMm = { double(box[0]), double(box[1]), double(box[2]), double(box[3]),
     double(box[4]), double(box[5]) };
+  options.synLevelSpacingMm = { 4.0, 2.0 };
   options.synIterations = { 5, 3 };
   const TemplateRegistration r = TemplateRegistration::compute(ct, noise, options);
   EXPECT_LT(std::abs(r.finalCorrelation), 0.3);
@@ -86,4 +87,25 @@ TEST(TemplateRegistration, RefusesImagesThatDoNotOverlap)
   CTVolume flat = fixtures::emptyVolume({ 64, 64, 1 });
   EXPECT_EQ(registrationError(ct, flat, options),
     "the patient CT is not a 3-D volume (64 x 64 x 1 voxels)");
+}
+
+TEST(TemplateRegistration, NamesEachSyNMetricAndRefusesUnknownNames)
+{
+  for (const TemplateRegistrationMetric metric :
+    { TemplateRegistrationMetric::MattesMutualInformation, TemplateRegistrationMetric::MeanSquares,
+      TemplateRegistrationMetric::NeighborhoodCorrelation })
+  {
+    EXPECT_EQ(templateRegistrationMetricFromName(templateRegistrationMetricName(metric)), metric);
+  }
+  EXPECT_EQ(
+    templateRegistrationMetricName(TemplateRegistrationMetric::NeighborhoodCorrelation), "cc");
+  try
+  {
+    templateRegistrationMetricFromName("ncc");
+    FAIL() << "an unknown metric was accepted";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_STREQ(e.what(), "unknown SyN metric 'ncc' (mi, ms or cc)");
+  }
 }
