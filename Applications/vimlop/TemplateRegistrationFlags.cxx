@@ -57,6 +57,27 @@ void addTemplateRegistrationOptions(CLI::App& c, TemplateRegistrationOptions& r)
     ->capture_default_str()
     ->check(CLI::Range(4, 1024));
   c.add_option_function<std::string>(
+     "--bspline-grid-mm",
+     [&r](const std::string& list) { r.bsplineGridMm = parseNumbers(list, "--bspline-grid-mm"); },
+     "B-spline stage: control point spacing of each level, coarse to fine (mm; none: no stage)")
+    ->default_str(joinNumbers(r.bsplineGridMm));
+  c.add_option_function<std::string>(
+     "--bspline-levels-mm",
+     [&r](const std::string& list)
+     { r.bsplineLevelSpacingMm = parseNumbers(list, "--bspline-levels-mm"); },
+     "B-spline stage: voxel size of each level (mm)")
+    ->default_str(joinNumbers(r.bsplineLevelSpacingMm));
+  c.add_option_function<std::string>(
+     "--bspline-iterations",
+     [&r](const std::string& list)
+     { r.bsplineIterations = parseCounts(list, "--bspline-iterations"); },
+     "B-spline stage: L-BFGS-B iterations of each level")
+    ->default_str(joinCounts(r.bsplineIterations));
+  c.add_option("--bspline-sampling", r.bsplineSamplingFraction,
+     "B-spline stage: fraction of each level's voxels the metric samples")
+    ->capture_default_str()
+    ->check(CLI::Range(1e-4, 1.0));
+  c.add_option_function<std::string>(
      "--syn-metric",
      [&r](const std::string& name) { r.metric = templateRegistrationMetricFromName(name); },
      "SyN stage: similarity, mi (Mattes mutual information), ms (mean squares) or cc (ANTs' "

@@ -127,8 +127,8 @@ nlohmann::json TemplateWarpProtocolReport::toJson() const
   report["runtime_s"] = this->runtimeS;
   report["before_registration"] = errorsJson(this->beforeRegistration);
   report["affine_only"] = errorsJson(this->affineOnly);
-  report["registration"] = { { "affine_s", this->affineS }, { "syn_s", this->synS },
-    { "overlap_fraction", this->overlapFraction },
+  report["registration"] = { { "affine_s", this->affineS }, { "bspline_s", this->bsplineS },
+    { "syn_s", this->synS }, { "overlap_fraction", this->overlapFraction },
     { "correlation",
       { { "initial", this->initialCorrelation }, { "affine", this->affineCorrelation },
         { "final", this->finalCorrelation } } },
@@ -226,6 +226,7 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
   r.affineOnly = summarizeErrors(affineOnly, truth);
   r.affineS = result.affineSeconds;
   r.synS = result.synSeconds;
+  r.bsplineS = result.bsplineSeconds;
   r.settings = result.settings;
   r.overlapFraction = result.overlapFraction;
   r.initialCorrelation = result.initialCorrelation;

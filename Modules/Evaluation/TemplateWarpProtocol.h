@@ -74,6 +74,7 @@ struct TemplateWarpProtocolReport
   /// The registration's own account.
   double affineS = 0.0;
   double synS = 0.0;
+  double bsplineS = 0.0;
   double overlapFraction = 0.0;
   double initialCorrelation = 0.0;
   double affineCorrelation = 0.0;

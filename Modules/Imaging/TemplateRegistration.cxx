@@ -7,10 +7,12 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Imaging/ITKImageConversion.h>
 #include <vimlop/Imaging/TemplateAffineStage.h>
+#include <vimlop/Imaging/TemplateBSplineStage.h>
 #include <vimlop/Imaging/TemplateRegistrationITK.h>
 #include <vimlop/Imaging/TemplateSyNStage.h>
 #include <vimlop/Imaging/VolumeCrop.h>
 
+#include <itkCompositeTransform.h>
 #include <itkLinearInterpolateImageFunction.h>
 
 #include <algorithm>
@@ -203,12 +205,17 @@ void checkOptions(const TemplateRegistrationOptions& o)
   if (!positive(o.affineLevelSpacingMm) ||
     o.affineIterations.size() != o.affineLevelSpacingMm.size() || !counts(o.affineIterations) ||
     !positive(o.synLevelSpacingMm) || o.synIterations.size() != o.synLevelSpacingMm.size() ||
-    !counts(o.synIterations))
+    !counts(o.synIterations) ||
+    !(o.bsplineGridMm.empty() ||
+      (positive(o.bsplineGridMm) && o.bsplineLevelSpacingMm.size() == o.bsplineGridMm.size() &&
+        positive(o.bsplineLevelSpacingMm) && o.bsplineIterations.size() == o.bsplineGridMm.size() &&
+        counts(o.bsplineIterations))))
   {
     throw Error("registration options: each stage needs one positive voxel size and one "
                 "non-negative iteration count per level");
   }
   if (o.histogramBins < 4 || !(o.affineSamplingFraction > 0.0 && o.affineSamplingFraction <= 1.0) ||
+    !(o.bsplineSamplingFraction > 0.0 && o.bsplineSamplingFraction <= 1.0) ||
     !(o.synLearningRate > 0.0) || o.updateFieldVariance < 0.0 || o.totalFieldVariance < 0.0 ||
     !(o.marginMm >= 0.0) || o.correlationRadiusVoxels < 1)
   {
@@ -304,7 +311,7 @@ TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
   const auto affineStart = Clock::now();
   const TemplateAffineStage affineStage = TemplateAffineStage::compute(
     templateCT, patientCT, fixedVolume, fixed, moving, options, progress);
-  const AffineTransform* affine = affineStage.transform;
+  AffineTransform* affine = affineStage.transform;
   result.initialCorrelation = affineStage.initialCorrelation;
   result.affineMetricValue = affineStage.metricValue;
   for (int row = 0; row < 3; ++row)
@@ -327,7 +334,8 @@ TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
     noOverlap(result.overlapFraction);
   }
 
-  // 4. SyN on the patient crop that covers the affinely mapped template crop.
+  // 4. SyN (after the B-spline stage, when asked for) on the patient crop
+  // that covers the affinely mapped template crop.
   reportProgress(progress, 0.2, "deformable registration");
   const auto synStart = Clock::now();
   std::array<double, 6> mapped{ std::numeric_limits<double>::max(),
@@ -347,24 +355,52 @@ TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
   const CTVolume patientVolume = cropVolume(patientCT, mapped, kLowestHU, kHighestHU);
   moving = itkconv::toITKImage<Image>(patientVolume);
 
+  // The B-spline stage, when asked for, after the affine map, on the same crops.
+  auto initial = itk::CompositeTransform<double, 3>::New();
+  initial->AddTransform(affine); // applied last
+  FieldTransform::Pointer bspline;
+  if (!options.bsplineGridMm.empty())
+  {
+    const auto bsplineStart = Clock::now();
+    bspline = TemplateBSplineStage::compute(
+      fixedVolume, fixed, moving, affine, result.overlapFraction, options, progress)
+                .field;
+    initial->AddTransform(bspline); // applied first
+    result.bsplineSeconds = seconds(bsplineStart);
+  }
+
   const TemplateSyNStage synStage = TemplateSyNStage::compute(
-    fixedVolume, fixed, moving, affine, result.overlapFraction, options, progress);
+    fixedVolume, fixed, moving, initial, result.overlapFraction, options, progress);
   result.synMetricValue = synStage.metricValue;
   FieldTransform* phi = synStage.phi;
-  result.synSeconds = seconds(synStart);
+  result.synSeconds = seconds(synStart) - result.bsplineSeconds;
 
   // 5. The fields.
   reportProgress(progress, 0.95, "sampling the fields");
   const auto forward = [&](const Point& x)
-  { return affine->TransformPoint(phi->TransformPoint(x)); };
+  { return initial->TransformPoint(phi->TransformPoint(x)); };
   result.templateToPatient = sampleField(fixedVolume, forward);
   auto affineInverse = AffineTransform::New();
   affine->GetInverse(affineInverse);
   FieldTransform::Pointer phiInverse = FieldTransform::New();
   phiInverse->SetDisplacementField(phi->GetModifiableInverseDisplacementField());
   phiInverse->SetInverseDisplacementField(phi->GetModifiableDisplacementField());
+  FieldTransform::Pointer bsplineInverse;
+  if (bspline)
+  {
+    bsplineInverse = FieldTransform::New();
+    bsplineInverse->SetDisplacementField(bspline->GetModifiableInverseDisplacementField());
+  }
   result.patientToTemplate = sampleField(patientVolume,
-    [&](const Point& y) { return phiInverse->TransformPoint(affineInverse->TransformPoint(y)); });
+    [&](const Point& y)
+    {
+      Point x = affineInverse->TransformPoint(y);
+      if (bsplineInverse)
+      {
+        x = bsplineInverse->TransformPoint(x);
+      }
+      return phiInverse->TransformPoint(x);
+    });
   result.finalCorrelation = correlation(fixedVolume, moving, forward);
   if (result.finalCorrelation < options.warningCorrelation)
   {

@@ -55,6 +55,18 @@ struct TemplateRegistrationOptions
   /// sampling). Default 0.3.
   double affineSamplingFraction = 0.3;
 
+  /// B-spline stage (between the affine stage and SyN): spacing (mm) of the
+  /// cubic B-spline's control points at each level, coarse to fine. Default
+  /// empty: no B-spline stage.
+  std::vector<double> bsplineGridMm;
+  /// B-spline stage: voxel size (mm) of each level. Default: none.
+  std::vector<double> bsplineLevelSpacingMm;
+  /// B-spline stage: L-BFGS-B iterations per level. Default: none.
+  std::vector<int> bsplineIterations;
+  /// B-spline stage: fraction of the level's voxels sampled (at random,
+  /// fixed seed) by the metric. Default 0.05.
+  double bsplineSamplingFraction = 0.05;
+
   /// SyN stage: similarity measure. Default Mattes mutual information.
   TemplateRegistrationMetric metric = TemplateRegistrationMetric::MattesMutualInformation;
   /// SyN stage with NeighborhoodCorrelation: radius of the neighbourhood,
@@ -101,10 +113,14 @@ struct TemplateRegistrationOptions
  * 3. **overlap check**: the fraction of the template crop that the affine
  *    map sends into the patient volume; below `minimumOverlap` the images do
  *    not overlap and compute() fails;
- * 4. **SyN**: ITK's greedy symmetric diffeomorphic registration
+ * 4. **B-spline** (only when `bsplineGridMm` is given): a cubic B-spline
+ *    deformation after the affine map, its control grid refined level by
+ *    level (Mattes mutual information, L-BFGS), sampled at 1 mm as a
+ *    displacement field with a numerical inverse;
+ * 5. **SyN**: ITK's greedy symmetric diffeomorphic registration
  *    (itk::SyNImageRegistrationMethod), multi-resolution, on the template
  *    crop and the matching patient crop, the affine map composed before it;
- * 5. the composed map is sampled as two displacement fields.
+ * 6. the composed map is sampled as two displacement fields.
  *
  * ITK's registration methods return a transform from the fixed image's
  * points to the moving image's points. The template is the fixed image and
@@ -141,6 +157,8 @@ struct TemplateRegistration
   /// Wall-clock time of each stage (s).
   double affineSeconds = 0.0;
   double synSeconds = 0.0;
+  /// Wall-clock time of the B-spline stage (s; 0 without it).
+  double bsplineSeconds = 0.0;
   /// Things the user should know (for instance a poor final correlation).
   std::vector<std::string> warnings;
   /// The options it ran with, its region included.

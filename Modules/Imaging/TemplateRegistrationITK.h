@@ -3,7 +3,7 @@
 
 // Private to the translation units of TemplateRegistration (not installed):
 // the driver (TemplateRegistration.cxx, which defines what is declared here),
-// the affine stage and the SyN stage. Each stage instantiates ITK's heavy v4
+// the affine, B-spline and SyN stages. Each stage instantiates ITK's heavy v4
 // registration templates in a unit of its own, so that a change to one does
 // not rebuild the other. Like every ITK translation unit they include no
 // Eigen (see CTVolume.h).
@@ -26,6 +26,8 @@ namespace vimlop::templatereg
 using Image = itk::Image<float, 3>;
 using AffineTransform = itk::AffineTransform<double, 3>;
 using FieldTransform = itk::DisplacementFieldTransform<double, 3>;
+/// A stage's map composed before the next stage (template to patient).
+using InitialTransform = itk::Transform<double, 3, 3>;
 using Point = itk::Point<double, 3>;
 /// A point map, template to patient or back (mm).
 using PointMap = std::function<Point(const Point&)>;

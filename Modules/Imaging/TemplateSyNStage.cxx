@@ -16,7 +16,7 @@ namespace vimlop::templatereg
 {
 
 TemplateSyNStage TemplateSyNStage::compute(const CTVolume& fixedVolume, const Image* fixed,
-  const Image* moving, const AffineTransform* affine, double overlapFraction,
+  const Image* moving, const InitialTransform* initial, double overlapFraction,
   const TemplateRegistrationOptions& options, const ProgressCallback& progress)
 {
   using SyN = itk::SyNImageRegistrationMethod<Image, Image, FieldTransform>;
@@ -24,7 +24,7 @@ TemplateSyNStage TemplateSyNStage::compute(const CTVolume& fixedVolume, const Im
   const std::size_t synLevels = options.synLevelSpacingMm.size();
   syn->SetFixedImage(fixed);
   syn->SetMovingImage(moving);
-  syn->SetMovingInitialTransform(affine);
+  syn->SetMovingInitialTransform(initial);
   // The level adaptors resample the output transform's field at every
   // level, the first included, so it starts as a zero field on the crop.
   auto zero = FieldTransform::DisplacementFieldType::New();

@@ -11,28 +11,29 @@ namespace vimlop::templatereg
 {
 
 /**
- * @brief Step 4 of TemplateRegistration::compute(): ITK's greedy symmetric
+ * @brief Step 5 of TemplateRegistration::compute(): ITK's greedy symmetric
  * diffeomorphic registration (itk::SyNImageRegistrationMethod),
  * multi-resolution, of the template crop (fixed) to the patient crop
- * (moving), the affine map composed before it.
+ * (moving), the earlier stages' map composed before it.
  */
 struct TemplateSyNStage
 {
   /// The deformation on the template crop: a template point x goes to
-  /// affine(phi(x)) in the patient. Carries its inverse field too.
+  /// initial(phi(x)) in the patient. Carries its inverse field too.
   FieldTransform::Pointer phi;
   /// Last value of the metric (ITK's sign: lower is better).
   double metricValue = 0.0;
 
   /**
    * @brief Registers `fixed`, the clamped template crop `fixedVolume`, to
-   * `moving`, the clamped patient crop, after `affine`. Progress goes from
+   * `moving`, the clamped patient crop, after `initial` (the affine map, or
+   * the affine map after the B-spline stage). Progress goes from
    * 0.2 to 0.95.
    * @throws vimlop::Error when ITK fails; a transform that left the patient
    * crop is reported with the affine stage's `overlapFraction`.
    */
   static TemplateSyNStage compute(const CTVolume& fixedVolume, const Image* fixed,
-    const Image* moving, const AffineTransform* affine, double overlapFraction,
+    const Image* moving, const InitialTransform* initial, double overlapFraction,
     const TemplateRegistrationOptions& options, const ProgressCallback& progress);
 };
 

@@ -66,7 +66,9 @@ nlohmann::json settingsJson(const TemplateRegistrationOptions& o)
     { "syn_metric", templateRegistrationMetricName(o.metric) },
     { "syn_levels_mm", o.synLevelSpacingMm }, { "syn_iterations", o.synIterations },
     { "syn_learning_rate", o.synLearningRate }, { "update_field_variance", o.updateFieldVariance },
-    { "total_field_variance", o.totalFieldVariance } };
+    { "total_field_variance", o.totalFieldVariance }, { "bspline_grid_mm", o.bsplineGridMm },
+    { "bspline_levels_mm", o.bsplineLevelSpacingMm }, { "bspline_iterations", o.bsplineIterations },
+    { "bspline_sampling_fraction", o.bsplineSamplingFraction } };
   if (o.metric == TemplateRegistrationMetric::NeighborhoodCorrelation)
   {
     settings["correlation_radius_voxels"] = o.correlationRadiusVoxels;
@@ -88,8 +90,8 @@ nlohmann::json TemplateWarpJobReport::toJson() const
   report["correlation"] = { { "initial", r.initialCorrelation }, { "affine", r.affineCorrelation },
     { "final", r.finalCorrelation } };
   report["metric"] = { { "affine_mattes_mi", r.affineMetricValue }, { "syn", r.synMetricValue } };
-  report["seconds"] = { { "affine", r.affineSeconds }, { "syn", r.synSeconds },
-    { "total", this->totalSeconds } };
+  report["seconds"] = { { "affine", r.affineSeconds }, { "bspline", r.bsplineSeconds },
+    { "syn", r.synSeconds }, { "total", this->totalSeconds } };
   report["settings"] = settingsJson(r.settings);
   report["warnings"] = r.warnings;
   report["outputs"] = this->outputPaths;

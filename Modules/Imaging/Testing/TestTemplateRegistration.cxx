@@ -84,6 +84,14 @@ TEST(TemplateRegistration, RefusesImagesThatDoNotOverlap)
   TemplateRegistrationOptions levels = options;
   levels.synIterations = { 10 };
   EXPECT_EQ(registrationError(ct, ct, levels).rfind("registration options:", 0), 0u);
+  TemplateRegistrationOptions bspline = options;
+  bspline.bsplineGridMm = { 20.0, 10.0 };
+  bspline.bsplineLevelSpacingMm = { 2.0 };
+  bspline.bsplineIterations = { 10, 10 };
+  EXPECT_EQ(registrationError(ct, ct, bspline).rfind("registration options: each stage", 0), 0u);
+  bspline.bsplineLevelSpacingMm = { 2.0, 1.0 };
+  bspline.bsplineSamplingFraction = 0.0;
+  EXPECT_EQ(registrationError(ct, ct, bspline).rfind("registration options out of range", 0), 0u);
   CTVolume flat = fixtures::emptyVolume({ 64, 64, 1 });
   EXPECT_EQ(registrationError(ct, flat, options),
     "the patient CT is not a 3-D volume (64 x 64 x 1 voxels)");
