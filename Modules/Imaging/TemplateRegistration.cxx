@@ -369,8 +369,14 @@ TemplateRegistration TemplateRegistration::compute(const CTVolume& templateCT,
     result.bsplineSeconds = seconds(bsplineStart);
   }
 
+  // The SyN stage reports from 0.2 to 0.95; after a B-spline stage (0.2 to
+  // 0.5) from 0.5 on.
+  const ProgressCallback synProgress = !bspline
+    ? progress
+    : ProgressCallback([&](double fraction, const std::string& step)
+        { reportProgress(progress, 0.5 + 0.6 * (fraction - 0.2), step); });
   const TemplateSyNStage synStage = TemplateSyNStage::compute(
-    fixedVolume, fixed, moving, initial, result.overlapFraction, options, progress);
+    fixedVolume, fixed, moving, initial, result.overlapFraction, options, synProgress);
   result.synMetricValue = synStage.metricValue;
   FieldTransform* phi = synStage.phi;
   result.synSeconds = seconds(synStart) - result.bsplineSeconds;

@@ -214,7 +214,16 @@ TEST(TemplateRegistration, RecoversAKnownDeformationOfThePhantomWithABSplineStag
   options.bsplineSamplingFraction = 0.2;
   options.synLevelSpacingMm = { 2.0 };
   options.synIterations = { 0 };
-  const TemplateRegistration r = TemplateRegistration::compute(ct, patient, options);
+  double last = -1.0;
+  bool monotone = true;
+  const TemplateRegistration r = TemplateRegistration::compute(ct, patient, options,
+    [&](double fraction, const std::string&)
+    {
+      monotone = monotone && fraction >= last;
+      last = fraction;
+    });
+  EXPECT_TRUE(monotone);
+  EXPECT_EQ(last, 1.0);
   EXPECT_GT(r.bsplineSeconds, 0.0);
   EXPECT_EQ(r.settings.bsplineGridMm, options.bsplineGridMm);
 
