@@ -125,16 +125,24 @@ std::string ColmapRunner::run(
       quote(colmapPinholeParameters(k)) +
       " --SiftExtraction.use_gpu 0 --SiftExtraction.peak_threshold " +
       std::to_string(this->Opts.siftPeakThreshold) + " --SiftExtraction.num_threads " + threads);
-  step("exhaustive_matcher",
-    "--database_path " + quote(database) + " --SiftMatching.use_gpu 0 --SiftMatching.num_threads " +
-      threads);
   const std::uint64_t frames = imageFiles(imageFolder);
   std::uint64_t best = 0;
   for (int run = 1; run <= this->Opts.mapperRuns && 2 * best < frames; ++run)
   {
+    // Each run matches and maps with its own seed: the mapper is
+    // deterministic on a given database, and a bad two-view geometry from
+    // the matcher's RANSAC can start it from a degenerate pair.
+    const std::string seed = " --random_seed " + std::to_string(run);
+    if (run > 1)
+    {
+      step("database_cleaner", "--database_path " + quote(database) + " --type matches");
+    }
+    step("exhaustive_matcher",
+      "--database_path " + quote(database) +
+        " --SiftMatching.use_gpu 0 --SiftMatching.num_threads " + threads + seed);
     fs::remove_all(model, ec);
     step("mapper",
-      "--database_path " + quote(database) + " --image_path " + quote(imageFolder) +
+      "--database_path " + quote(database) + " --image_path " + quote(imageFolder) + seed +
         " --output_path " + quote((fs::path(workFolder) / "sparse").string()) +
         " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0"
         " --Mapper.ba_refine_extra_params 0 --Mapper.multiple_models 0"

@@ -22,19 +22,21 @@ struct ColmapRunnerOptions
   /// SIFT peak threshold (default 0.0017; COLMAP's 0.0067 finds a few dozen
   /// features on low-contrast mucosa, this about as many as the built-in SfM).
   double siftPeakThreshold = 0.0017;
-  /// Runs of COLMAP's mapper, at most (default 3), while one registers fewer
-  /// than half of the frames; the run that registers the most is kept. Its
-  /// incremental mapping is randomised (worker threads seed from the clock):
-  /// on the 12 frames of the P2 test, about 1 run in 8 registered only 3.
+  /// Runs of COLMAP's matching and mapping, at most (default 3), while one
+  /// registers fewer than half of the frames; the run that registers the
+  /// most is kept. Run n matches afresh and maps with random seed n: on the
+  /// 12 frames of the P2 test about 1 run in 8 registered only 3 frames,
+  /// and running the mapper alone again on the same matches gave the same 3.
   int mapperRuns = 3;
 };
 
 /**
  * @brief Runs the `colmap` program (COLMAP 3.x, e.g. Debian's package) on a
  * folder of frames: CPU SIFT extraction with the given pinhole intrinsics
- * (one camera, held fixed), exhaustive matching, incremental mapping (run
- * again, up to `mapperRuns` times, while it registers fewer than half of
- * the frames), and a text copy of the model. Everything COLMAP prints goes
+ * (one camera, held fixed), exhaustive matching and incremental mapping
+ * (both run again with another seed, up to `mapperRuns` times, while the
+ * mapper registers fewer than half of the frames), and a text copy of the
+ * model. Everything COLMAP prints goes
  * to `workFolder/colmap.log`, with a line for each mapper run that was not
  * enough; it runs headless (QT_QPA_PLATFORM=offscreen).
  */

@@ -1,4 +1,4 @@
-// ColmapRunner's handling of COLMAP's randomised mapper, with a stand-in for
+// ColmapRunner's handling of COLMAP's randomised matching and mapping, with a stand-in for
 // the `colmap` program whose mapper registers as many frames as a list says.
 
 #include "ColmapBinaryWriting.h"
@@ -33,7 +33,8 @@ void writeImages(const fs::path& folder, std::uint32_t count)
 }
 
 /// A folder with 12 frames and a stand-in `colmap` whose n-th mapper run
-/// registers `registered[n]` frames (0: no model); returns the folder.
+/// registers `registered[n]` frames (0: no model); it logs each step, with
+/// its random seed, in `calls`. Returns the folder.
 fs::path fakeColmap(const std::string& name, const std::vector<int>& registered)
 {
   const fs::path root = fs::path(VIMLOP_TEST_OUTPUT_DIR) / name;
@@ -55,13 +56,15 @@ fs::path fakeColmap(const std::string& name, const std::vector<int>& registered)
   const fs::path script = root / "colmap";
   std::ofstream(script) << "#!/bin/sh\n"
                         << "D='" << root.string() << "'\n"
-                        << "step=$1; shift\n"
-                        << "echo \"$step\" >> \"$D/calls\"\n"
-                        << "[ \"$step\" = mapper ] || exit 0\n"
+                        << "step=$1; shift; seed=\n"
                         << "while [ $# -gt 0 ]; do\n"
-                        << "  [ \"$1\" = --output_path ] && out=$2; shift\n"
+                        << "  [ \"$1\" = --output_path ] && out=$2\n"
+                        << "  [ \"$1\" = --random_seed ] && seed=\" $2\"\n"
+                        << "  shift\n"
                         << "done\n"
-                        << "k=$(grep -c mapper \"$D/calls\")\n"
+                        << "echo \"$step$seed\" >> \"$D/calls\"\n"
+                        << "[ \"$step\" = mapper ] || exit 0\n"
+                        << "k=$(grep -c ^mapper \"$D/calls\")\n"
                         << "n=$(sed -n \"${k}p\" \"$D/runs\")\n"
                         << "[ \"$n\" = 0 ] && exit 0\n"
                         << "mkdir -p \"$out/0\" && cp \"$D/models/$n/images.bin\" \"$out/0/\"\n";
@@ -88,13 +91,15 @@ size_t imagesIn(const std::string& model)
 
 } // namespace
 
-TEST(ColmapRunner, RunsTheMapperAgainWhileItRegistersFewerThanHalfTheFrames)
+TEST(ColmapRunner, MatchesAndMapsAgainWhileTheMapperRegistersFewerThanHalfTheFrames)
 {
   const fs::path root = fakeColmap("colmap-runner-again", { 3, 12, 12 });
   const std::string model = run(root);
   EXPECT_EQ(imagesIn(model), 12u);
   EXPECT_EQ(readWholeFile((root / "calls").string()),
-    "help\nfeature_extractor\nexhaustive_matcher\nmapper\nmapper\nmodel_converter\n");
+    "help\nfeature_extractor\nexhaustive_matcher 1\nmapper 1\ndatabase_cleaner\nexhaustive_matcher "
+    "2\n"
+    "mapper 2\nmodel_converter\n");
   EXPECT_NE(readWholeFile((root / "work" / "colmap.log").string())
               .find("vimlop: mapper run 1 of 3 registered 3 of 12 frames\n"),
     std::string::npos);
