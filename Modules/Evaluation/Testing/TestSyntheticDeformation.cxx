@@ -119,40 +119,89 @@ TEST(SyntheticDeformation, MakesThePatientByResamplingThroughTheField)
   EXPECT_EQ(d.makePatient(ct, 20.0, 9).intensities, noisy.intensities);
 }
 
+/// The phantom, a known 3 mm deformation of it (the patient), options that
+/// suit its size, and how far a registration carries its airway.
+class PhantomDeformation
+{
+public:
+  const CTVolume ct = HeadPhantom::make();
+  const SyntheticDeformation truth{ ct, deformationOptions() };
+  const CTVolume patient = truth.makePatient(ct, 10.0, 11);
+
+  /// The airway box plus 10 mm; finer affine levels than the CT defaults.
+  static TemplateRegistrationOptions options()
+  {
+    TemplateRegistrationOptions o;
+    const auto& box = HeadPhantom::kAirwayBox;
+    o.regionMm = { double(box[0]), double(box[1]), double(box[2]), double(box[3]), double(box[4]),
+      double(box[5]) };
+    o.marginMm = 10.0;
+    o.affineLevelSpacingMm = { 2.0, 1.0 };
+    return o;
+  }
+
+  /// Registers the phantom to the patient, expecting progress that never goes back and ends at 1.
+  TemplateRegistration registered(const TemplateRegistrationOptions& o) const
+  {
+    double last = -1.0;
+    bool monotone = true;
+    TemplateRegistration r = TemplateRegistration::compute(ct, patient, o,
+      [&](double fraction, const std::string&)
+      {
+        monotone = monotone && fraction >= last;
+        last = fraction;
+      });
+    EXPECT_TRUE(monotone);
+    EXPECT_EQ(last, 1.0);
+    return r;
+  }
+
+  /// Mean distances over the airway points (mm): before registration, after
+  /// it, and of the round trip template -> patient -> template.
+  struct Recovery
+  {
+    double before = 0.0;
+    double after = 0.0;
+    double roundTrip = 0.0;
+  };
+  Recovery recovery(const TemplateRegistration& r) const
+  {
+    Recovery m;
+    const std::vector<Point> points = airwayPoints();
+    for (const Point& x : points)
+    {
+      const Point y = r.templateToPatient.transformPoint(x);
+      m.before += distance(x, truth.templateToPatient(x)) / points.size();
+      m.after += distance(y, truth.templateToPatient(x)) / points.size();
+      m.roundTrip += distance(r.patientToTemplate.transformPoint(y), x) / points.size();
+    }
+    return m;
+  }
+
+private:
+  static SyntheticDeformationOptions deformationOptions()
+  {
+    SyntheticDeformationOptions o;
+    o.maxDisplacementMm = 3.0;
+    o.controlSpacingMm = 24.0;
+    o.seed = 3;
+    return o;
+  }
+};
+
 class TemplateRegistrationMetrics : public ::testing::TestWithParam<TemplateRegistrationMetric>
 {
 };
 
 TEST_P(TemplateRegistrationMetrics, RecoverAKnownDeformationOfThePhantom)
 {
-  const CTVolume ct = HeadPhantom::make();
-  SyntheticDeformationOptions deformation;
-  deformation.maxDisplacementMm = 3.0;
-  deformation.controlSpacingMm = 24.0;
-  deformation.seed = 3;
-  const SyntheticDeformation d(ct, deformation);
-  const CTVolume patient = d.makePatient(ct, 10.0, 11);
-
-  TemplateRegistrationOptions options;
-  const auto& box = HeadPhantom::kAirwayBox;
-  options.regionMm = { double(box[0]), double(box[1]), double(box[2]), double(box[3]),
-    double(box[4]), double(box[5]) };
-  options.marginMm = 10.0;
+  const PhantomDeformation phantom;
+  TemplateRegistrationOptions options = PhantomDeformation::options();
   // The phantom is small: finer levels than the CT defaults.
-  options.affineLevelSpacingMm = { 2.0, 1.0 };
   options.synLevelSpacingMm = { 2.0, 1.0 };
   options.synIterations = { 30, 20 };
   options.metric = GetParam();
-  double last = -1.0;
-  bool monotone = true;
-  const TemplateRegistration r = TemplateRegistration::compute(ct, patient, options,
-    [&](double fraction, const std::string&)
-    {
-      monotone = monotone && fraction >= last;
-      last = fraction;
-    });
-  EXPECT_TRUE(monotone);
-  EXPECT_EQ(last, 1.0);
+  const TemplateRegistration r = phantom.registered(options);
   EXPECT_TRUE(r.warnings.empty());
   EXPECT_EQ(r.settings.metric, GetParam());
   EXPECT_EQ(r.settings.synIterations, options.synIterations);
@@ -160,29 +209,18 @@ TEST_P(TemplateRegistrationMetrics, RecoverAKnownDeformationOfThePhantom)
   EXPECT_GT(r.finalCorrelation, r.initialCorrelation);
   EXPECT_GT(r.finalCorrelation, 0.9);
   // The template crop is the region plus the margin, within the CT.
-  EXPECT_DOUBLE_EQ(r.templateCropMm[0], box[0] - 10.0);
-  EXPECT_DOUBLE_EQ(r.templateCropMm[5], box[5] + 10.0);
+  EXPECT_DOUBLE_EQ(r.templateCropMm[0], HeadPhantom::kAirwayBox[0] - 10.0);
+  EXPECT_DOUBLE_EQ(r.templateCropMm[5], HeadPhantom::kAirwayBox[5] + 10.0);
   ASSERT_TRUE(r.templateToPatient.isValid());
   ASSERT_TRUE(r.patientToTemplate.isValid());
 
-  double before = 0.0;
-  double after = 0.0;
-  double roundTrip = 0.0;
-  const std::vector<Point> points = airwayPoints();
-  for (const Point& x : points)
-  {
-    const Point truth = d.templateToPatient(x);
-    const Point y = r.templateToPatient.transformPoint(x);
-    before += distance(x, truth) / points.size();
-    after += distance(y, truth) / points.size();
-    roundTrip += distance(r.patientToTemplate.transformPoint(y), x) / points.size();
-  }
+  const PhantomDeformation::Recovery m = phantom.recovery(r);
   std::printf(
     "phantom, metric %d: before %.2f mm, after %.2f mm, round trip %.2f mm, correlation %.3f\n",
-    static_cast<int>(GetParam()), before, after, roundTrip, r.finalCorrelation);
-  EXPECT_GT(before, 1.0);
-  EXPECT_LT(after, 0.5);
-  EXPECT_LT(roundTrip, 0.3);
+    static_cast<int>(GetParam()), m.before, m.after, m.roundTrip, r.finalCorrelation);
+  EXPECT_GT(m.before, 1.0);
+  EXPECT_LT(m.after, 0.5);
+  EXPECT_LT(m.roundTrip, 0.3);
 }
 
 // Mutual information, the default, and ANTs' neighbourhood correlation.
@@ -194,54 +232,22 @@ TEST(TemplateRegistration, RecoversAKnownDeformationOfThePhantomWithABSplineStag
 {
   // The B-spline stage alone (SyN given no iterations): its field and the
   // numerical inverse of it carry the phantom's airway to the truth and back.
-  const CTVolume ct = HeadPhantom::make();
-  SyntheticDeformationOptions deformation;
-  deformation.maxDisplacementMm = 3.0;
-  deformation.controlSpacingMm = 24.0;
-  deformation.seed = 3;
-  const SyntheticDeformation d(ct, deformation);
-  const CTVolume patient = d.makePatient(ct, 10.0, 11);
-
-  TemplateRegistrationOptions options;
-  const auto& box = HeadPhantom::kAirwayBox;
-  options.regionMm = { double(box[0]), double(box[1]), double(box[2]), double(box[3]),
-    double(box[4]), double(box[5]) };
-  options.marginMm = 10.0;
-  options.affineLevelSpacingMm = { 2.0, 1.0 };
+  const PhantomDeformation phantom;
+  TemplateRegistrationOptions options = PhantomDeformation::options();
   options.bsplineGridMm = { 24.0, 12.0 };
   options.bsplineLevelSpacingMm = { 2.0, 1.0 };
   options.bsplineIterations = { 30, 30 };
   options.bsplineSamplingFraction = 0.2;
   options.synLevelSpacingMm = { 2.0 };
   options.synIterations = { 0 };
-  double last = -1.0;
-  bool monotone = true;
-  const TemplateRegistration r = TemplateRegistration::compute(ct, patient, options,
-    [&](double fraction, const std::string&)
-    {
-      monotone = monotone && fraction >= last;
-      last = fraction;
-    });
-  EXPECT_TRUE(monotone);
-  EXPECT_EQ(last, 1.0);
+  const TemplateRegistration r = phantom.registered(options);
   EXPECT_GT(r.bsplineSeconds, 0.0);
   EXPECT_EQ(r.settings.bsplineGridMm, options.bsplineGridMm);
 
-  double before = 0.0;
-  double after = 0.0;
-  double roundTrip = 0.0;
-  const std::vector<Point> points = airwayPoints();
-  for (const Point& x : points)
-  {
-    const Point truth = d.templateToPatient(x);
-    const Point y = r.templateToPatient.transformPoint(x);
-    before += distance(x, truth) / points.size();
-    after += distance(y, truth) / points.size();
-    roundTrip += distance(r.patientToTemplate.transformPoint(y), x) / points.size();
-  }
+  const PhantomDeformation::Recovery m = phantom.recovery(r);
   std::printf("phantom, B-spline stage: before %.2f mm, after %.2f mm, round trip %.2f mm\n",
-    before, after, roundTrip);
-  EXPECT_GT(before, 1.0);
-  EXPECT_LT(after, 0.5);
-  EXPECT_LT(roundTrip, 0.3);
+    m.before, m.after, m.roundTrip);
+  EXPECT_GT(m.before, 1.0);
+  EXPECT_LT(m.after, 0.5);
+  EXPECT_LT(m.roundTrip, 0.3);
 }
