@@ -226,7 +226,9 @@ TEST_P(TemplateRegistrationMetrics, RecoverAKnownDeformationOfThePhantom)
 // Mutual information, the default, and ANTs' neighbourhood correlation.
 INSTANTIATE_TEST_SUITE_P(SyN, TemplateRegistrationMetrics,
   ::testing::Values(TemplateRegistrationMetric::MattesMutualInformation,
-    TemplateRegistrationMetric::NeighborhoodCorrelation));
+    TemplateRegistrationMetric::NeighborhoodCorrelation),
+  [](const ::testing::TestParamInfo<TemplateRegistrationMetric>& info)
+  { return templateRegistrationMetricName(info.param); });
 
 TEST(TemplateRegistration, RecoversAKnownDeformationOfThePhantomWithABSplineStage)
 {
