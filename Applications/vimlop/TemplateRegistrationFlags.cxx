@@ -71,7 +71,7 @@ void addTemplateRegistrationOptions(CLI::App& c, TemplateRegistrationOptions& r)
      "--bspline-iterations",
      [&r](const std::string& list)
      { r.bsplineIterations = parseCounts(list, "--bspline-iterations"); },
-     "B-spline stage: L-BFGS-B iterations of each level")
+     "B-spline stage: L-BFGS function evaluations of each level, at most")
     ->default_str(joinCounts(r.bsplineIterations));
   c.add_option("--bspline-sampling", r.bsplineSamplingFraction,
      "B-spline stage: fraction of each level's voxels the metric samples")

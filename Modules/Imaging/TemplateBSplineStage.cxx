@@ -24,15 +24,19 @@ using BSpline = itk::BSplineTransform<double, 3, 3>;
 /// Spacing of the samples of the B-spline's displacement field (mm).
 constexpr double kFieldSpacingMm = 1.0;
 
+/// Distance between the first and last voxel centres of `image` along axis `a` (mm).
+double extentMm(const Image* image, unsigned a)
+{
+  return image->GetSpacing()[a] * (image->GetLargestPossibleRegion().GetSize()[a] - 1);
+}
+
 /// Mesh cells of a control grid `gridMm` apart over the physical extent of `image`.
 BSpline::MeshSizeType meshSize(const Image* image, double gridMm)
 {
   BSpline::MeshSizeType cells;
   for (unsigned a = 0; a < 3; ++a)
   {
-    const double extentMm =
-      image->GetSpacing()[a] * (image->GetLargestPossibleRegion().GetSize()[a] - 1);
-    cells[a] = static_cast<unsigned>(std::max(1.0, std::round(extentMm / gridMm)));
+    cells[a] = static_cast<unsigned>(std::max(1.0, std::round(extentMm(image, a) / gridMm)));
   }
   return cells;
 }
@@ -51,7 +55,7 @@ TemplateBSplineStage TemplateBSplineStage::compute(const CTVolume& fixedVolume, 
     BSpline::PhysicalDimensionsType dimensions;
     for (unsigned a = 0; a < 3; ++a)
     {
-      dimensions[a] = fixed->GetSpacing()[a] * (fixed->GetLargestPossibleRegion().GetSize()[a] - 1);
+      dimensions[a] = extentMm(fixed, a);
     }
     bspline->SetTransformDomainOrigin(fixed->GetOrigin());
     bspline->SetTransformDomainDirection(fixed->GetDirection());

@@ -61,7 +61,7 @@ struct TemplateRegistrationOptions
   std::vector<double> bsplineGridMm;
   /// B-spline stage: voxel size (mm) of each level. Default: none.
   std::vector<double> bsplineLevelSpacingMm;
-  /// B-spline stage: L-BFGS-B iterations per level. Default: none.
+  /// B-spline stage: L-BFGS function evaluations per level, at most. Default: none.
   std::vector<int> bsplineIterations;
   /// B-spline stage: fraction of the level's voxels sampled (at random,
   /// fixed seed) by the metric. Default 0.05.
