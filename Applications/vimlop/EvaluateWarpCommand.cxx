@@ -29,6 +29,7 @@ struct EvaluateWarpOptions
   std::string elastixParameters = defaultElastixParametersFolder();
   double requireMeanMm = -1.0;
   double requireP95Mm = -1.0;
+  bool requireElastix = false;
   bool json = false;
 };
 
@@ -67,6 +68,10 @@ void runEvaluateWarp(EvaluateWarpOptions options)
     options.json);
   std::fflush(stdout);
   report.requireErrorsAtMost(options.requireMeanMm, options.requireP95Mm);
+  if (options.requireElastix)
+  {
+    report.requireNoWorseThanElastix();
+  }
 }
 
 } // namespace
@@ -104,6 +109,8 @@ void addEvaluateWarpCommand(CLI::App& evaluate)
     "Fail (exit 1) when the mean vertex error exceeds this (mm)");
   warp->add_option("--require-p95-mm", options->requireP95Mm,
     "Fail (exit 1) when the 95th percentile vertex error exceeds this (mm)");
+  warp->add_flag("--require-no-worse-than-elastix", options->requireElastix,
+    "Fail (exit 1) when the mean vertex error or the runtime exceeds elastix's in this run");
   addTemplateRegistrationOptions(*warp, options->protocol.registration);
   addJsonFlag(*warp, options->json);
   warp->callback([options] { runEvaluateWarp(*options); });

@@ -58,7 +58,11 @@ void addTemplateRegistrationOptions(CLI::App& c, TemplateRegistrationOptions& r)
     ->check(CLI::Range(4, 1024));
   c.add_option_function<std::string>(
      "--bspline-grid-mm",
-     [&r](const std::string& list) { r.bsplineGridMm = parseNumbers(list, "--bspline-grid-mm"); },
+     [&r](const std::string& list)
+     {
+       r.bsplineGridMm =
+         list == "none" ? std::vector<double>{} : parseNumbers(list, "--bspline-grid-mm");
+     },
      "B-spline stage: control point spacing of each level, coarse to fine (mm; none: no stage)")
     ->default_str(joinNumbers(r.bsplineGridMm));
   c.add_option_function<std::string>(
@@ -77,6 +81,10 @@ void addTemplateRegistrationOptions(CLI::App& c, TemplateRegistrationOptions& r)
      "B-spline stage: fraction of each level's voxels the metric samples")
     ->capture_default_str()
     ->check(CLI::Range(1e-4, 1.0));
+  c.add_option("--bspline-bending", r.bsplineBendingWeightMm2,
+     "B-spline stage: weight of the bending energy (mm^2)")
+    ->capture_default_str()
+    ->check(CLI::NonNegativeNumber);
   c.add_option_function<std::string>(
      "--syn-metric",
      [&r](const std::string& name) { r.metric = templateRegistrationMetricFromName(name); },

@@ -25,7 +25,7 @@ void runWarp(const TemplateWarpJobOptions& options, bool json)
   CommandSummary summary;
   summary.lines.push_back(
     formatText("vimlop warp: %zu meshes, %zu poses to the patient; correlation %.3f -> %.3f "
-               "(affine) -> %.3f (SyN), %.1f s -> %s",
+               "(affine) -> %.3f (deformable), %.1f s -> %s",
       report.meshCount, report.poseCount, r.initialCorrelation, r.affineCorrelation,
       r.finalCorrelation, report.totalSeconds, options.outputFolder.c_str()));
   // What registration.json holds, and where it and the other files are.

@@ -110,6 +110,24 @@ void TemplateWarpProtocolReport::requireErrorsAtMost(double meanMm, double p95Mm
   }
 }
 
+void TemplateWarpProtocolReport::requireNoWorseThanElastix() const
+{
+  if (!this->elastix)
+  {
+    throw Error("elastix did not run (" + this->elastixStatus + "): nothing to compare with");
+  }
+  if (this->errors.meanMm > this->elastix->errors.meanMm)
+  {
+    throw Error(formatText("the mean vertex error %.3f mm exceeds elastix's %.3f mm",
+      this->errors.meanMm, this->elastix->errors.meanMm));
+  }
+  if (this->elastix->runtimeRatio < 1.0)
+  {
+    throw Error(formatText("the registration took %.1f s, longer than elastix's %.1f s",
+      this->runtimeS, this->elastix->runtimeS));
+  }
+}
+
 nlohmann::json TemplateWarpProtocolReport::toJson() const
 {
   nlohmann::json report;

@@ -109,6 +109,13 @@ struct TemplateWarpProtocolReport
    * mm" (or the 95th percentile's) when one is exceeded.
    */
   void requireErrorsAtMost(double meanMm, double p95Mm) const;
+  /**
+   * @brief Checks that VIMLOP's mean error and runtime are at most elastix's
+   * in this run (the bar of Documentation/TemplateWarp.md).
+   * @throws vimlop::Error naming the figure that is worse, or elastix's status
+   * when it did not run.
+   */
+  void requireNoWorseThanElastix() const;
 };
 
 /**

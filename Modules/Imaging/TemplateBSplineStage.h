@@ -14,14 +14,15 @@ namespace vimlop::templatereg
  * @brief Step 4 of TemplateRegistration::compute(), when
  * `bsplineGridMm` is not empty: a cubic B-spline deformation of the template
  * crop (fixed) to the patient crop (moving), after `affine`, its control
- * grid refined level by level (Mattes mutual information, L-BFGS-B).
+ * grid refined level by level: L-BFGS on BSplineMutualInformationCost.
  */
 struct TemplateBSplineStage
 {
   /// The deformation sampled on the template crop's grid: a template point x
   /// goes to affine(b(x)) in the patient. Carries its inverse field too.
   FieldTransform::Pointer field;
-  /// Last value of the metric (ITK's sign: lower is better).
+  /// Last value of the cost (negated mutual information plus the weighted
+  /// bending energy: lower is better).
   double metricValue = 0.0;
 
   /**

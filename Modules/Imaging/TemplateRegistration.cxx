@@ -216,12 +216,13 @@ void checkOptions(const TemplateRegistrationOptions& o)
   }
   if (o.histogramBins < 4 || !(o.affineSamplingFraction > 0.0 && o.affineSamplingFraction <= 1.0) ||
     !(o.bsplineSamplingFraction > 0.0 && o.bsplineSamplingFraction <= 1.0) ||
-    !(o.synLearningRate > 0.0) || o.updateFieldVariance < 0.0 || o.totalFieldVariance < 0.0 ||
-    !(o.marginMm >= 0.0) || o.correlationRadiusVoxels < 1)
+    !(o.bsplineBendingWeightMm2 >= 0.0) || !(o.synLearningRate > 0.0) ||
+    o.updateFieldVariance < 0.0 || o.totalFieldVariance < 0.0 || !(o.marginMm >= 0.0) ||
+    o.correlationRadiusVoxels < 1)
   {
     throw Error("registration options out of range (histogram bins >= 4, sampling fraction in (0, "
                 "1], positive learning rate, non-negative variances and margin, correlation "
-                "radius >= 1 voxel)");
+                "radius >= 1 voxel, non-negative bending weight)");
   }
   if (!(o.regionMm[0] <= o.regionMm[1] && o.regionMm[2] <= o.regionMm[3] &&
         o.regionMm[4] <= o.regionMm[5]))

@@ -68,7 +68,8 @@ nlohmann::json settingsJson(const TemplateRegistrationOptions& o)
     { "syn_learning_rate", o.synLearningRate }, { "update_field_variance", o.updateFieldVariance },
     { "total_field_variance", o.totalFieldVariance }, { "bspline_grid_mm", o.bsplineGridMm },
     { "bspline_levels_mm", o.bsplineLevelSpacingMm }, { "bspline_iterations", o.bsplineIterations },
-    { "bspline_sampling_fraction", o.bsplineSamplingFraction } };
+    { "bspline_sampling_fraction", o.bsplineSamplingFraction },
+    { "bspline_bending_weight_mm2", o.bsplineBendingWeightMm2 } };
   if (o.metric == TemplateRegistrationMetric::NeighborhoodCorrelation)
   {
     settings["correlation_radius_voxels"] = o.correlationRadiusVoxels;

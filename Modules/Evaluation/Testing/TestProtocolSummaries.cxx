@@ -149,3 +149,35 @@ TEST(ProtocolSummaries, TemplateWarpGivesOursThenElastixAndChecksTheBounds)
     EXPECT_STREQ(e.what(), "the 95th percentile vertex error 1.25 mm exceeds the required 1.00 mm");
   }
 }
+
+TEST(ProtocolSummaries, TemplateWarpComparesItsMeanAndRuntimeWithElastixs)
+{
+  TemplateWarpProtocolReport report;
+  report.errors.meanMm = 0.10;
+  report.runtimeS = 8.0;
+  report.elastixStatus = "not installed";
+  auto errorOf = [&]
+  {
+    try
+    {
+      report.requireNoWorseThanElastix();
+    }
+    catch (const Error& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(errorOf(), "elastix did not run (not installed): nothing to compare with");
+  report.elastix = TemplateWarpProtocolReport::Elastix();
+  report.elastix->errors.meanMm = 0.12;
+  report.elastix->runtimeS = 16.0;
+  report.elastix->runtimeRatio = 2.0;
+  EXPECT_EQ(errorOf(), "");
+  report.elastix->errors.meanMm = 0.09;
+  EXPECT_EQ(errorOf(), "the mean vertex error 0.100 mm exceeds elastix's 0.090 mm");
+  report.elastix->errors.meanMm = 0.12;
+  report.elastix->runtimeS = 6.0;
+  report.elastix->runtimeRatio = 0.75;
+  EXPECT_EQ(errorOf(), "the registration took 8.0 s, longer than elastix's 6.0 s");
+}
