@@ -2,6 +2,7 @@
 #include "Commands.h"
 
 #include "TerminalProgress.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
 #include <vimlop/Evaluation/TemplateWarpProtocol.h>
@@ -99,6 +100,44 @@ void addEvaluateWarpCommand(CLI::App& evaluate)
   warp
     ->add_option("--control-spacing-mm", options->protocol.controlSpacingMm,
       "Control point spacing of the known deformation (mm)")
+    ->capture_default_str();
+  PatientScanOptions& scan = options->protocol.scan;
+  warp
+    ->add_option("--patient-pixel-mm", scan.pixelSpacingMm,
+      "In-plane voxel spacing of the patient's scan (mm; 0: the CT's)")
+    ->capture_default_str();
+  warp
+    ->add_option("--patient-slice-mm", scan.sliceSpacingMm,
+      "Slice spacing and thickness of the patient's scan (mm; 0: the CT's)")
+    ->capture_default_str();
+  warp
+    ->add_option("--patient-blur-mm", scan.blurMm,
+      "Extra Gaussian blur of the patient's scan, a softer kernel (sigma, mm)")
+    ->capture_default_str();
+  warp
+    ->add_option("--patient-rotation-deg", scan.rotationDeg,
+      "The patient's head turned in the scanner about the left-right axis (deg)")
+    ->capture_default_str();
+  warp->add_option_function<std::string>(
+    "--patient-shift-mm",
+    [&scan](const std::string& list)
+    {
+      const std::vector<double> shift = parseNumbers(list, "--patient-shift-mm");
+      if (shift.size() != 3)
+      {
+        throw Error("--patient-shift-mm: '" + list + "' must be three numbers (x,y,z mm)");
+      }
+      scan.shiftMm = { shift[0], shift[1], shift[2] };
+    },
+    "The patient's head moved in the scanner (x,y,z mm)");
+  AnatomyEditOptions& edits = options->protocol.edits;
+  warp
+    ->add_option("--edits", edits.count,
+      "Local edits of the patient's anatomy (tissue grown, shrunk, air filled, in turn)")
+    ->capture_default_str();
+  warp->add_option("--edit-radius-mm", edits.radiusMm, "Radius of each edit (mm)")
+    ->capture_default_str();
+  warp->add_option("--edit-depth-mm", edits.depthMm, "How far an edit grows or shrinks tissue (mm)")
     ->capture_default_str();
   warp->add_flag("--no-elastix", options->noElastix, "Do not run elastix even if it is installed");
   warp

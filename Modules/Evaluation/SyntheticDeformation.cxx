@@ -31,6 +31,59 @@ std::array<double, 4> bsplineWeights(double f)
 
 } // namespace
 
+double sampleTrilinear(const CTVolume& volume, const std::array<double, 3>& index)
+{
+  const std::array<int, 3> d = volume.dims;
+  std::array<int, 3> base{};
+  std::array<double, 3> f{};
+  for (int a = 0; a < 3; ++a)
+  {
+    if (index[a] < 0.0 || index[a] > d[a] - 1)
+    {
+      return -1000.0;
+    }
+    base[a] = std::min(static_cast<int>(index[a]), d[a] - 2);
+    f[a] = index[a] - base[a];
+  }
+  double value = 0.0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    double w = 1.0;
+    std::size_t at = 0;
+    std::size_t stride = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      const int step = (corner >> a) & 1;
+      w *= step ? f[a] : 1.0 - f[a];
+      at += stride * static_cast<std::size_t>(base[a] + step);
+      stride *= static_cast<std::size_t>(d[a]);
+    }
+    value += w * volume.intensities[at];
+  }
+  return value;
+}
+
+void addGaussianNoise(CTVolume& volume, double noiseHU, std::uint32_t seed)
+{
+  if (!(noiseHU > 0.0))
+  {
+    return;
+  }
+  std::mt19937 generator(seed);
+  for (std::size_t n = 0; n < volume.intensities.size(); n += 2)
+  {
+    // Box-Muller: two independent normal values per pair of uniforms.
+    const double u1 = 1.0 - uniform01(generator);
+    const double u2 = uniform01(generator);
+    const double radius = noiseHU * std::sqrt(-2.0 * std::log(u1));
+    volume.intensities[n] += static_cast<float>(radius * std::cos(2.0 * M_PI * u2));
+    if (n + 1 < volume.intensities.size())
+    {
+      volume.intensities[n + 1] += static_cast<float>(radius * std::sin(2.0 * M_PI * u2));
+    }
+  }
+}
+
 SyntheticDeformation::SyntheticDeformation(
   const CTVolume& grid, const SyntheticDeformationOptions& options)
 {
@@ -179,36 +232,6 @@ CTVolume SyntheticDeformation::makePatient(
   patient.warnings.clear();
   patient.format = "synthetic patient";
   const std::array<int, 3> d = templateCT.dims;
-  auto sample = [&](const std::array<double, 3>& index)
-  {
-    std::array<int, 3> base{};
-    std::array<double, 3> f{};
-    for (int a = 0; a < 3; ++a)
-    {
-      if (index[a] < 0.0 || index[a] > d[a] - 1)
-      {
-        return -1000.0;
-      }
-      base[a] = std::min(static_cast<int>(index[a]), d[a] - 2);
-      f[a] = index[a] - base[a];
-    }
-    double value = 0.0;
-    for (int corner = 0; corner < 8; ++corner)
-    {
-      double w = 1.0;
-      std::size_t at = 0;
-      std::size_t stride = 1;
-      for (int a = 0; a < 3; ++a)
-      {
-        const int step = (corner >> a) & 1;
-        w *= step ? f[a] : 1.0 - f[a];
-        at += stride * static_cast<std::size_t>(base[a] + step);
-        stride *= static_cast<std::size_t>(d[a]);
-      }
-      value += w * templateCT.intensities[at];
-    }
-    return value;
-  };
   // Slabs of slices in parallel: each voxel is independent.
   auto work = [&](int kBegin, int kEnd)
   {
@@ -225,7 +248,7 @@ CTVolume SyntheticDeformation::makePatient(
           const std::array<double, 3> x{ y[0] + b[0], y[1] + b[1], y[2] + b[2] };
           patient.intensities[static_cast<std::size_t>(i) +
             static_cast<std::size_t>(d[0]) * (j + static_cast<std::size_t>(d[1]) * k)] =
-            static_cast<float>(sample(templateCT.physicalToIndex(x)));
+            static_cast<float>(sampleTrilinear(templateCT, templateCT.physicalToIndex(x)));
         }
       }
     }
@@ -241,22 +264,7 @@ CTVolume SyntheticDeformation::makePatient(
     thread.join();
   }
   // Noise after the (parallel) resampling, in voxel order: reproducible.
-  if (noiseHU > 0.0)
-  {
-    std::mt19937 generator(noiseSeed);
-    for (std::size_t n = 0; n < patient.intensities.size(); n += 2)
-    {
-      // Box-Muller: two independent normal values per pair of uniforms.
-      const double u1 = 1.0 - uniform01(generator);
-      const double u2 = uniform01(generator);
-      const double radius = noiseHU * std::sqrt(-2.0 * std::log(u1));
-      patient.intensities[n] += static_cast<float>(radius * std::cos(2.0 * M_PI * u2));
-      if (n + 1 < patient.intensities.size())
-      {
-        patient.intensities[n + 1] += static_cast<float>(radius * std::sin(2.0 * M_PI * u2));
-      }
-    }
-  }
+  addGaussianNoise(patient, noiseHU, noiseSeed);
   return patient;
 }
 

@@ -10,6 +10,19 @@
 namespace vimlop
 {
 
+/**
+ * @brief Trilinear interpolation of `volume` at a continuous voxel index;
+ * -1000 HU (air) outside its grid.
+ */
+double sampleTrilinear(const CTVolume& volume, const std::array<double, 3>& index);
+
+/**
+ * @brief Adds zero-mean Gaussian noise of `noiseHU` standard deviation to
+ * every voxel, in voxel order from a Mersenne Twister seeded with `seed`
+ * (Box-Muller): the same noise on every platform. Nothing for noiseHU <= 0.
+ */
+void addGaussianNoise(CTVolume& volume, double noiseHU, std::uint32_t seed);
+
 /// @brief Parameters of the deformation.
 struct SyntheticDeformationOptions
 {

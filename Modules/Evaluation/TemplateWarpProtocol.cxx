@@ -1,15 +1,20 @@
 #include <vimlop/Evaluation/TemplateWarpProtocol.h>
 
+#include <vimlop/Core/CanonicalPoses.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
 #include <vimlop/Evaluation/Peers/ElastixRegistration.h>
 #include <vimlop/Evaluation/SyntheticDeformation.h>
 #include <vimlop/Imaging/AirwaySegmentation.h>
 #include <vimlop/Imaging/AirwaySurface.h>
+#include <vimlop/Imaging/PolyDataConversion.h>
 #include <vimlop/Imaging/TemplateRegistration.h>
+#include <vimlop/Imaging/TemplateWarp.h>
 #include <vimlop/Imaging/TemplateWarpJob.h>
 #include <vimlop/Imaging/VolumeCrop.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 
 #include <vtkPolyData.h>
 
@@ -58,6 +63,81 @@ nlohmann::json errorsJson(const VertexErrorSummary& s)
   return { { "mean_mm", s.meanMm }, { "p95_mm", s.p95Mm }, { "max_mm", s.maxMm } };
 }
 
+nlohmann::json poseErrorsJson(const PoseErrorSummary& s)
+{
+  return { { "poses", s.poses }, { "mean_mm", s.meanMm }, { "max_mm", s.maxMm },
+    { "mean_deg", s.meanDeg }, { "max_deg", s.maxDeg } };
+}
+
+/// Step (mm) of the frame points that carry a pose's orientation through a
+/// map known only at points (the truth, elastix's).
+constexpr double kFrameStepMm = 1.0;
+
+/// Four points per pose: its centre and the centre 1 mm along each CT axis.
+std::vector<Point> framePoints(const std::vector<CameraPose>& poses)
+{
+  std::vector<Point> points;
+  for (const CameraPose& pose : poses)
+  {
+    for (int a = -1; a < 3; ++a)
+    {
+      Eigen::Vector3d p = pose.centre;
+      if (a >= 0)
+      {
+        p[a] += kFrameStepMm;
+      }
+      points.push_back({ p.x(), p.y(), p.z() });
+    }
+  }
+  return points;
+}
+
+/// The poses carried by a map, from their frame points' images (from
+/// `first` on): the centre's image, and the rotation part of the map's
+/// Jacobian from forward differences, as warpCameraPose() turns them.
+std::vector<CameraPose> carriedPoses(
+  const std::vector<CameraPose>& poses, const std::vector<Point>& images, std::size_t first)
+{
+  std::vector<CameraPose> carried;
+  for (std::size_t i = 0; i < poses.size(); ++i)
+  {
+    auto image = [&](std::size_t k)
+    {
+      const Point& p = images[first + 4 * i + k];
+      return Eigen::Vector3d(p[0], p[1], p[2]);
+    };
+    Eigen::Matrix3d jacobian;
+    for (int a = 0; a < 3; ++a)
+    {
+      jacobian.col(a) = (image(static_cast<std::size_t>(a) + 1) - image(0)) / kFrameStepMm;
+    }
+    CameraPose pose;
+    pose.centre = image(0);
+    pose.rotation = nearestRotation(jacobian) * poses[i].rotation;
+    carried.push_back(pose);
+  }
+  return carried;
+}
+
+PoseErrorSummary summarizePoseErrors(
+  const std::vector<CameraPose>& estimate, const std::vector<CameraPose>& truth)
+{
+  PoseErrorSummary s;
+  s.poses = truth.size();
+  for (std::size_t i = 0; i < truth.size(); ++i)
+  {
+    const double mm = (estimate[i].centre - truth[i].centre).norm();
+    const double cosine = std::clamp(
+      0.5 * ((estimate[i].rotation.transpose() * truth[i].rotation).trace() - 1.0), -1.0, 1.0);
+    const double deg = std::acos(cosine) * 180.0 / M_PI;
+    s.meanMm += mm / static_cast<double>(truth.size());
+    s.meanDeg += deg / static_cast<double>(truth.size());
+    s.maxMm = std::max(s.maxMm, mm);
+    s.maxDeg = std::max(s.maxDeg, deg);
+  }
+  return s;
+}
+
 double secondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -75,6 +155,8 @@ void TemplateWarpProtocolOptions::validate() const
   {
     throw Error("--noise-hu must not be negative");
   }
+  this->scan.validate();
+  this->edits.validate();
   if (this->runElastix && this->elastixWorkFolder.empty())
   {
     throw Error("P4: elastix needs a work folder");
@@ -92,6 +174,22 @@ std::string TemplateWarpProtocolReport::summaryText() const
     const Elastix& e = *this->elastix;
     text += formatText("; elastix mean %.2f mm, p95 %.2f mm, max %.2f mm, %.1f s (%.2fx our time)",
       e.errors.meanMm, e.errors.p95Mm, e.errors.maxMm, e.runtimeS, e.runtimeRatio);
+  }
+  if (!this->edits.empty())
+  {
+    text += formatText(
+      "; %zu anatomy edits (%zu vertices left out)", this->edits.size(), this->verticesNearEdits);
+  }
+  if (this->poseErrors.poses > 0)
+  {
+    text += formatText("; %zu canonical poses: mean %.2f mm, %.2f deg, max %.2f mm, %.2f deg",
+      this->poseErrors.poses, this->poseErrors.meanMm, this->poseErrors.meanDeg,
+      this->poseErrors.maxMm, this->poseErrors.maxDeg);
+    if (this->elastix)
+    {
+      text += formatText(" (elastix %.2f mm, %.2f deg)", this->elastix->poseErrors.meanMm,
+        this->elastix->poseErrors.meanDeg);
+    }
   }
   return text;
 }
@@ -143,6 +241,19 @@ nlohmann::json TemplateWarpProtocolReport::toJson() const
   report["max_mm"] = this->errors.maxMm;
   report["max_at_mm"] = this->maxAtMm;
   report["runtime_s"] = this->runtimeS;
+  report["scan"] = { { "pixel_spacing_mm", this->scan.pixelSpacingMm },
+    { "slice_spacing_mm", this->scan.sliceSpacingMm }, { "blur_mm", this->scan.blurMm },
+    { "rotation_deg", this->scan.rotationDeg }, { "shift_mm", this->scan.shiftMm } };
+  nlohmann::json placed = nlohmann::json::array();
+  for (const AnatomyEdit& e : this->edits)
+  {
+    placed.push_back({ { "kind", anatomyEditKindName(e.kind) }, { "centre_mm", e.centreMm } });
+  }
+  report["edits"] = { { "count", this->editOptions.count },
+    { "radius_mm", this->editOptions.radiusMm }, { "depth_mm", this->editOptions.depthMm },
+    { "placed", placed }, { "voxels_changed", this->editedVoxels },
+    { "vertices_left_out", this->verticesNearEdits }, { "poses_left_out", this->posesNearEdits } };
+  report["canonical_poses"] = poseErrorsJson(this->poseErrors);
   report["before_registration"] = errorsJson(this->beforeRegistration);
   report["affine_only"] = errorsJson(this->affineOnly);
   report["registration"] = { { "affine_s", this->affineS }, { "bspline_s", this->bsplineS },
@@ -154,6 +265,7 @@ nlohmann::json TemplateWarpProtocolReport::toJson() const
   if (this->elastix)
   {
     nlohmann::json e = errorsJson(this->elastix->errors);
+    e["canonical_poses"] = poseErrorsJson(this->elastix->poseErrors);
     e["runtime_s"] = this->elastix->runtimeS;
     e["runtime_ratio"] = this->elastix->runtimeRatio;
     e["parameter_files"] = this->elastix->parameterFiles;
@@ -201,21 +313,92 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
   deformationOptions.seed = options.seed;
   deformationOptions.regionMm = region;
   const SyntheticDeformation deformation(ct, deformationOptions);
-  const CTVolume patient = deformation.makePatient(ct, options.noiseHU, options.seed + 1000u);
+  // With the template's scan, the patient is the deformed CT itself (the
+  // figures before the scan options, bit for bit).
+  const bool scanned = !options.scan.isTemplateGrid();
+  const PatientScan scan(ct, options.scan);
+  // The local edits, on the template's anatomy before the deformation.
+  AnatomyEditOptions editOptions = options.edits;
+  editOptions.seed = options.seed;
+  const std::vector<AnatomyEdit> edits = placeAnatomyEdits(vertices, editOptions);
+  CTVolume edited;
+  std::size_t editedVoxels = 0;
+  if (!edits.empty())
+  {
+    edited = ct;
+    editedVoxels = applyAnatomyEdits(edited, edits, editOptions);
+  }
+  const CTVolume& anatomy = edits.empty() ? ct : edited;
+  const CTVolume patient = scanned
+    ? scan.scan(deformation.makePatient(anatomy, 0.0, 0u), options.noiseHU, options.seed + 1000u)
+    : deformation.makePatient(anatomy, options.noiseHU, options.seed + 1000u);
+  // The vertices scored: those away from every edit.
+  std::vector<std::size_t> scored;
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+  {
+    if (!nearAnatomyEdit(vertices[i], edits, editOptions))
+    {
+      scored.push_back(i);
+    }
+  }
+  if (scored.empty())
+  {
+    throw Error("the anatomy edits cover the whole airway mesh: use fewer or smaller edits");
+  }
+  const auto scoredOnly = [&](const std::vector<Point>& all)
+  {
+    std::vector<Point> some;
+    some.reserve(scored.size());
+    for (std::size_t i : scored)
+    {
+      some.push_back(all[i]);
+    }
+    return some;
+  };
+  const auto truthMap = [&](const Point& x)
+  {
+    const Point y = deformation.templateToPatient(x);
+    return scanned ? scan.place(y) : y;
+  };
   std::vector<Point> truth(vertices.size());
   for (std::size_t i = 0; i < vertices.size(); ++i)
   {
-    truth[i] = deformation.templateToPatient(vertices[i]);
+    truth[i] = truthMap(vertices[i]);
   }
+  // The template's canonical poses, and where the known map carries them.
+  report(0.045, "canonical poses");
+  std::vector<CameraPose> poses;
+  std::size_t posesNearEdits = 0;
+  for (const CameraPose& pose :
+    makeCanonicalPoses(makeEmbreeRegistrationModel(toTriangleMesh(surface.surface)), {}))
+  {
+    if (nearAnatomyEdit({ pose.centre.x(), pose.centre.y(), pose.centre.z() }, edits, editOptions))
+    {
+      ++posesNearEdits;
+      continue;
+    }
+    poses.push_back(pose);
+  }
+  const std::vector<Point> poseFrames = framePoints(poses);
+  std::vector<Point> poseFrameImages(poseFrames.size());
+  std::transform(poseFrames.begin(), poseFrames.end(), poseFrameImages.begin(), truthMap);
+  const std::vector<CameraPose> truePoses = carriedPoses(poses, poseFrameImages, 0);
 
   TemplateWarpProtocolReport r;
   r.seed = options.seed;
   r.maxDisplacementMm = options.maxDisplacementMm;
   r.controlSpacingMm = options.controlSpacingMm;
   r.noiseHU = options.noiseHU;
+  r.scan = options.scan;
+  r.editOptions = editOptions;
+  r.edits = edits;
+  r.editedVoxels = editedVoxels;
+  r.verticesNearEdits = vertices.size() - scored.size();
+  r.posesNearEdits = posesNearEdits;
   r.vertices = vertices.size();
   r.airwayVolumeCm3 = airway.volumeMm3 / 1000.0;
-  r.beforeRegistration = summarizeErrors(vertices, truth);
+  const std::vector<Point> scoredTruth = scoredOnly(truth);
+  r.beforeRegistration = summarizeErrors(scoredOnly(vertices), scoredTruth);
 
   // VIMLOP's registration.
   TemplateRegistrationOptions registration = options.registration;
@@ -238,10 +421,16 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
     }
   }
   r.runtimeS = secondsSince(start);
+  std::vector<CameraPose> warpedPoses;
+  for (const CameraPose& pose : poses)
+  {
+    warpedPoses.push_back(warpCameraPose(pose, result.templateToPatient));
+  }
+  r.poseErrors = summarizePoseErrors(warpedPoses, truePoses);
   std::size_t worst = 0;
-  r.errors = summarizeErrors(warped, truth, &worst);
-  r.maxAtMm = vertices[worst];
-  r.affineOnly = summarizeErrors(affineOnly, truth);
+  r.errors = summarizeErrors(scoredOnly(warped), scoredTruth, &worst);
+  r.maxAtMm = vertices[scored[worst]];
+  r.affineOnly = summarizeErrors(scoredOnly(affineOnly), scoredTruth);
   r.affineS = result.affineSeconds;
   r.synS = result.synSeconds;
   r.bsplineS = result.bsplineSeconds;
@@ -280,11 +469,18 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
       around[2 * a] -= registration.marginMm;
       around[2 * a + 1] += registration.marginMm;
     }
+    // The mesh's vertices, then the poses' frame points.
+    std::vector<Point> points = vertices;
+    points.insert(points.end(), poseFrames.begin(), poseFrames.end());
     const ElastixRegistration peer =
       ElastixRegistration::compute(cropVolume(ct, result.templateCropMm, low, high),
-        cropVolume(patient, around, low, high), vertices, elastix);
+        cropVolume(patient, around, low, high), points, elastix);
     TemplateWarpProtocolReport::Elastix e;
-    e.errors = summarizeErrors(peer.movingPoints, truth);
+    const std::vector<Point> movedVertices(
+      peer.movingPoints.begin(), peer.movingPoints.begin() + static_cast<long>(vertices.size()));
+    e.errors = summarizeErrors(scoredOnly(movedVertices), scoredTruth);
+    e.poseErrors =
+      summarizePoseErrors(carriedPoses(poses, peer.movingPoints, vertices.size()), truePoses);
     e.runtimeS = peer.registrationSeconds + peer.transformSeconds;
     e.runtimeRatio = e.runtimeS / r.runtimeS;
     e.parameterFiles = elastix.parameterFiles;

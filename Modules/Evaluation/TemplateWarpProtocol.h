@@ -1,7 +1,9 @@
 #ifndef vimlop_TemplateWarpProtocol_h
 #define vimlop_TemplateWarpProtocol_h
 
+#include <vimlop/Evaluation/AnatomyEdits.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Evaluation/PatientScan.h>
 #include <vimlop/Imaging/CTVolume.h>
 #include <vimlop/Imaging/TemplateRegistration.h>
 
@@ -26,6 +28,14 @@ struct TemplateWarpProtocolOptions
   double noiseHU = 20.0;
   /// Seed of the deformation; the noise uses seed + 1000 (default 1).
   unsigned seed = 1;
+  /// How the patient is scanned: its grid, blur and the head's position
+  /// (default: the template's grid, the head where it was).
+  PatientScanOptions scan;
+  /// Local edits of the patient's anatomy (default none); placed with `seed`
+  /// on the template's airway wall, applied before the deformation. Vertices
+  /// and canonical poses near an edit are left out of the errors: the known
+  /// map does not hold there.
+  AnatomyEditOptions edits;
   /// VIMLOP's registration (default: TemplateRegistration's defaults, which
   /// suit head CTs); its region is set to the bounds of the airway mesh.
   TemplateRegistrationOptions registration;
@@ -50,6 +60,18 @@ struct VertexErrorSummary
   double maxMm = 0.0;
 };
 
+/// @brief Errors of carried camera poses against the poses the known map carries.
+struct PoseErrorSummary
+{
+  std::size_t poses = 0;
+  /// Optical centre, mm.
+  double meanMm = 0.0;
+  double maxMm = 0.0;
+  /// Orientation: the angle of the relative rotation, degrees.
+  double meanDeg = 0.0;
+  double maxDeg = 0.0;
+};
+
 /// @brief The result of P4.
 struct TemplateWarpProtocolReport
 {
@@ -57,6 +79,13 @@ struct TemplateWarpProtocolReport
   double maxDisplacementMm = 0.0;
   double controlSpacingMm = 0.0;
   double noiseHU = 0.0;
+  PatientScanOptions scan;
+  AnatomyEditOptions editOptions;
+  std::vector<AnatomyEdit> edits;
+  /// Voxels the edits changed, and the vertices and poses left out near them.
+  std::size_t editedVoxels = 0;
+  std::size_t verticesNearEdits = 0;
+  std::size_t posesNearEdits = 0;
   /// Vertices of the template's airway mesh, and the airway's volume (cm³).
   std::size_t vertices = 0;
   double airwayVolumeCm3 = 0.0;
@@ -68,6 +97,9 @@ struct TemplateWarpProtocolReport
   std::array<double, 3> maxAtMm{ 0.0, 0.0, 0.0 };
   /// Wall-clock time of the registration and the warp of the mesh, s.
   double runtimeS = 0.0;
+  /// The template's canonical poses (makeCanonicalPoses() with its
+  /// defaults) carried by the registration as `vimlop warp` carries them.
+  PoseErrorSummary poseErrors;
   /// The errors with no registration, and with its affine part alone.
   VertexErrorSummary beforeRegistration;
   VertexErrorSummary affineOnly;
@@ -89,6 +121,9 @@ struct TemplateWarpProtocolReport
   struct Elastix
   {
     VertexErrorSummary errors;
+    /// The canonical poses carried by elastix's map (its Jacobian from
+    /// points 1 mm along each axis).
+    PoseErrorSummary poseErrors;
     /// Registration plus transformation, s, and that over VIMLOP's runtime.
     double runtimeS = 0.0;
     double runtimeRatio = 0.0;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 
 using namespace vimlop;
@@ -73,6 +74,48 @@ TEST(TemplateWarpProtocol, BringsThePhantomsAirwayOntoAKnownDeformationOfIt)
   EXPECT_TRUE(j["elastix"].is_null());
 }
 
+TEST(TemplateWarpProtocol, ScoresAScannedAndEditedPatientAndTheCarriedCanonicalPoses)
+{
+  // Thicker slices, the head moved in the scanner and two local edits: the
+  // truth includes the move, so "before" grows by it, the vertices near the
+  // edits are left out, and the registration still finds the rest.
+  TemplateWarpProtocolOptions o = phantomRun();
+  o.edits.count = 2;
+  o.edits.radiusMm = 4.0;
+  o.edits.depthMm = 1.0;
+  o.scan.sliceSpacingMm = 1.5;
+  o.scan.rotationDeg = 4.0;
+  o.scan.shiftMm = { 3.0, 0.0, -2.0 };
+  const TemplateWarpProtocolReport scanned =
+    runTemplateWarpProtocol(HeadPhantom::make(), o, nullptr);
+  const TemplateWarpProtocolReport plain =
+    runTemplateWarpProtocol(HeadPhantom::make(), phantomRun(), nullptr);
+  std::printf("phantom P4: plain %.2f mm (before %.2f), scanned %.2f mm (before %.2f); poses "
+              "%zu: %.2f mm, %.2f deg\n",
+    plain.errors.meanMm, plain.beforeRegistration.meanMm, scanned.errors.meanMm,
+    scanned.beforeRegistration.meanMm, scanned.poseErrors.poses, scanned.poseErrors.meanMm,
+    scanned.poseErrors.meanDeg);
+  EXPECT_GT(scanned.beforeRegistration.meanMm, plain.beforeRegistration.meanMm + 1.0);
+  EXPECT_LT(scanned.errors.meanMm, 0.6);
+  ASSERT_EQ(scanned.edits.size(), 2u);
+  EXPECT_GT(scanned.editedVoxels, 0u);
+  EXPECT_GT(scanned.verticesNearEdits, 0u);
+  EXPECT_LT(scanned.verticesNearEdits, scanned.vertices / 2);
+  EXPECT_EQ(plain.verticesNearEdits, 0u);
+  EXPECT_GT(scanned.poseErrors.poses, 0u);
+  EXPECT_EQ(scanned.poseErrors.poses + scanned.posesNearEdits, plain.poseErrors.poses);
+  EXPECT_LT(scanned.poseErrors.meanMm, 1.0);
+  // Less than the head's turn, which a pose carried without its rotation keeps.
+  EXPECT_LT(scanned.poseErrors.meanDeg, o.scan.rotationDeg);
+  EXPECT_LE(scanned.poseErrors.meanDeg, scanned.poseErrors.maxDeg);
+  const nlohmann::json j = scanned.toJson();
+  EXPECT_EQ(j["scan"]["slice_spacing_mm"].get<double>(), 1.5);
+  EXPECT_EQ(j["edits"]["placed"][1]["kind"].get<std::string>(), "shrink");
+  EXPECT_EQ(j["edits"]["vertices_left_out"].get<std::size_t>(), scanned.verticesNearEdits);
+  EXPECT_EQ(j["canonical_poses"]["poses"].get<std::size_t>(), scanned.poseErrors.poses);
+  EXPECT_NE(scanned.summaryText().find(" canonical poses: mean "), std::string::npos);
+}
+
 TEST(TemplateWarpProtocol, RefusesANonPositiveDisplacementNegativeNoiseOrNoElastixFolder)
 {
   TemplateWarpProtocolOptions o = phantomRun();
@@ -84,4 +127,10 @@ TEST(TemplateWarpProtocol, RefusesANonPositiveDisplacementNegativeNoiseOrNoElast
   o = phantomRun();
   o.runElastix = true;
   EXPECT_EQ(errorOf(o), "P4: elastix needs a work folder");
+  o = phantomRun();
+  o.scan.pixelSpacingMm = 9.0;
+  EXPECT_EQ(errorOf(o), "patient scan: pixel spacing (0 or 0.1-5 mm) 9 is out of range");
+  o = phantomRun();
+  o.edits.count = -1;
+  EXPECT_EQ(errorOf(o), "anatomy edits: count (0-20) -1 is out of range");
 }
