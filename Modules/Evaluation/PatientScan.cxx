@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 #include <vector>
 
 namespace vimlop
@@ -14,23 +13,6 @@ namespace vimlop
 
 namespace
 {
-
-/// Runs work(first, last) over [0, n) split into slabs, one per thread.
-template <class Work>
-void inSlabs(int n, Work&& work)
-{
-  const int threads =
-    static_cast<int>(std::max(1u, std::min(8u, std::thread::hardware_concurrency())));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-  {
-    pool.emplace_back(work, n * t / threads, n * (t + 1) / threads);
-  }
-  for (std::thread& thread : pool)
-  {
-    thread.join();
-  }
-}
 
 /// Convolves `volume` along `axis` with a normalised Gaussian of `sigmaVoxels`
 /// (edges clamped).
@@ -61,7 +43,7 @@ void blurAxis(CTVolume& volume, int axis, double sigmaVoxels)
   const int u = axis == 0 ? 1 : 0;
   const int v = axis == 2 ? 1 : 2;
   const std::vector<float> source = volume.intensities;
-  inSlabs(d[v],
+  inParallelSlabs(d[v],
     [&](int first, int last)
     {
       for (int b = first; b < last; ++b)
@@ -181,7 +163,7 @@ CTVolume PatientScan::scan(const CTVolume& deformed, double noiseHU, std::uint32
   }
   patient.intensities.assign(patient.numberOfVoxels(), -1000.0f);
   const std::array<int, 3> d = patient.dims;
-  inSlabs(d[2],
+  inParallelSlabs(d[2],
     [&](int first, int last)
     {
       for (int k = first; k < last; ++k)

@@ -63,6 +63,21 @@ double sampleTrilinear(const CTVolume& volume, const std::array<double, 3>& inde
   return value;
 }
 
+void inParallelSlabs(int count, const std::function<void(int, int)>& work)
+{
+  const int threads =
+    static_cast<int>(std::max(1u, std::min(8u, std::thread::hardware_concurrency())));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t)
+  {
+    pool.emplace_back(work, count * t / threads, count * (t + 1) / threads);
+  }
+  for (std::thread& thread : pool)
+  {
+    thread.join();
+  }
+}
+
 void addGaussianNoise(CTVolume& volume, double noiseHU, std::uint32_t seed)
 {
   if (!(noiseHU > 0.0))
@@ -253,16 +268,7 @@ CTVolume SyntheticDeformation::makePatient(
       }
     }
   };
-  const int threads = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-  {
-    pool.emplace_back(work, d[2] * t / threads, d[2] * (t + 1) / threads);
-  }
-  for (std::thread& thread : pool)
-  {
-    thread.join();
-  }
+  inParallelSlabs(d[2], work);
   // Noise after the (parallel) resampling, in voxel order: reproducible.
   addGaussianNoise(patient, noiseHU, noiseSeed);
   return patient;

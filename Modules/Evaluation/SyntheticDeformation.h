@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace vimlop
@@ -22,6 +23,13 @@ double sampleTrilinear(const CTVolume& volume, const std::array<double, 3>& inde
  * (Box-Muller): the same noise on every platform. Nothing for noiseHU <= 0.
  */
 void addGaussianNoise(CTVolume& volume, double noiseHU, std::uint32_t seed);
+
+/**
+ * @brief Runs work(first, last) over [0, count) cut into one contiguous slab
+ * per hardware thread (at most 8), in parallel: for volumes whose slices are
+ * computed independently.
+ */
+void inParallelSlabs(int count, const std::function<void(int, int)>& work);
 
 /// @brief Parameters of the deformation.
 struct SyntheticDeformationOptions

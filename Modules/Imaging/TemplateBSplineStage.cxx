@@ -43,6 +43,7 @@ BSpline::MeshSizeType meshSize(const Image* image, double gridMm)
   return cells;
 }
 
+/// `image` smoothed by a Gaussian of `sigmaMm` (recursive filter, physical units).
 Image::Pointer smoothed(const Image* image, double sigmaMm)
 {
   auto filter = itk::SmoothingRecursiveGaussianImageFilter<Image, Image>::New();

@@ -1,5 +1,6 @@
 // Local edits of the anatomy for P4's harder pairs, on a slab of air against
 // tissue made in memory.
+#include "ErrorMessage.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/AnatomyEdits.h>
 
@@ -39,19 +40,6 @@ float valueAt(const CTVolume& v, const std::array<double, 3>& pointMm)
   const std::array<double, 3> index = v.physicalToIndex(pointMm);
   return v.intensities[static_cast<std::size_t>(index[0]) +
     60 * (static_cast<std::size_t>(index[1]) + 60 * static_cast<std::size_t>(index[2]))];
-}
-
-std::string editError(const AnatomyEditOptions& o)
-{
-  try
-  {
-    o.validate();
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "no error";
 }
 
 } // namespace
@@ -133,11 +121,14 @@ TEST(AnatomyEdits, RefusesValuesOutOfRange)
 {
   AnatomyEditOptions o;
   o.count = 21;
-  EXPECT_EQ(editError(o), "anatomy edits: count (0-20) 21 is out of range");
+  EXPECT_EQ(fixtures::errorMessageOf([&] { o.validate(); }),
+    "anatomy edits: count (0-20) 21 is out of range");
   o = AnatomyEditOptions();
   o.radiusMm = 0.5;
-  EXPECT_EQ(editError(o), "anatomy edits: radius (1-20 mm) 0.5 is out of range");
+  EXPECT_EQ(fixtures::errorMessageOf([&] { o.validate(); }),
+    "anatomy edits: radius (1-20 mm) 0.5 is out of range");
   o = AnatomyEditOptions();
   o.depthMm = 6.0;
-  EXPECT_EQ(editError(o), "anatomy edits: depth (0.5-5 mm) 6 is out of range");
+  EXPECT_EQ(fixtures::errorMessageOf([&] { o.validate(); }),
+    "anatomy edits: depth (0.5-5 mm) 6 is out of range");
 }

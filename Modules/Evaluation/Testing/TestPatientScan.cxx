@@ -1,5 +1,6 @@
 // The scan of P4's synthetic patient: grids, blur, the head's position and
 // noise, on volumes made in memory whose values are linear in position.
+#include "ErrorMessage.h"
 #include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/PatientScan.h>
 
@@ -40,19 +41,6 @@ double valueAt(const CTVolume& v, int i, int j, int k)
 {
   return v.intensities[static_cast<std::size_t>(i) +
     static_cast<std::size_t>(v.dims[0]) * (j + static_cast<std::size_t>(v.dims[1]) * k)];
-}
-
-std::string scanError(const PatientScanOptions& o)
-{
-  try
-  {
-    o.validate();
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "no error";
 }
 
 } // namespace
@@ -140,27 +128,25 @@ TEST(PatientScan, RefusesValuesOutOfRangeAndAHeadOnAnotherGrid)
 {
   PatientScanOptions o;
   o.rotationDeg = 40.0;
-  EXPECT_EQ(scanError(o), "patient scan: rotation (-30 to 30 deg) 40 is out of range");
+  EXPECT_EQ(fixtures::errorMessageOf([&] { o.validate(); }),
+    "patient scan: rotation (-30 to 30 deg) 40 is out of range");
   o = PatientScanOptions();
   o.sliceSpacingMm = 0.05;
-  EXPECT_EQ(scanError(o), "patient scan: slice spacing (0 or 0.1-10 mm) 0.05 is out of range");
+  EXPECT_EQ(fixtures::errorMessageOf([&] { o.validate(); }),
+    "patient scan: slice spacing (0 or 0.1-10 mm) 0.05 is out of range");
   o = PatientScanOptions();
   o.shiftMm = { 0.0, 60.0, 0.0 };
-  EXPECT_EQ(scanError(o), "patient scan: shift (-50 to 50 mm per axis) 60 is out of range");
+  EXPECT_EQ(fixtures::errorMessageOf([&] { o.validate(); }),
+    "patient scan: shift (-50 to 50 mm per axis) 60 is out of range");
   o = PatientScanOptions();
   o.blurMm = -1.0;
-  EXPECT_EQ(scanError(o), "patient scan: blur (0-5 mm) -1 is out of range");
+  EXPECT_EQ(fixtures::errorMessageOf([&] { o.validate(); }),
+    "patient scan: blur (0-5 mm) -1 is out of range");
   const CTVolume head = rampVolume(0.0, { 1.0, 0.0, 0.0 });
   CTVolume other = head;
   other.dims[2] = 10;
   other.intensities.resize(other.numberOfVoxels());
-  try
-  {
-    PatientScan(head, PatientScanOptions()).scan(other, 0.0, 1u);
-    FAIL() << "no error";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_STREQ(e.what(), "the head to scan does not match the scan's template grid");
-  }
+  EXPECT_EQ(
+    fixtures::errorMessageOf([&] { PatientScan(head, PatientScanOptions()).scan(other, 0.0, 1u); }),
+    "the head to scan does not match the scan's template grid");
 }
