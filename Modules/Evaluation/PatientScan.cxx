@@ -1,6 +1,7 @@
 #include <vimlop/Evaluation/PatientScan.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TaskPool.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/SyntheticDeformation.h>
 
@@ -42,10 +43,11 @@ void blurAxis(CTVolume& volume, int axis, double sigmaVoxels)
   // The lines along `axis`, numbered by the other two indices.
   const int u = axis == 0 ? 1 : 0;
   const int v = axis == 2 ? 1 : 2;
-  const std::vector<float> source = volume.intensities;
-  inParallelSlabs(d[v],
+  // Each line is read into a buffer before it is overwritten.
+  TaskPool().forChunks(d[v], 4,
     [&](int first, int last)
     {
+      std::vector<float> line(static_cast<std::size_t>(length));
       for (int b = first; b < last; ++b)
       {
         for (int a = 0; a < d[u]; ++a)
@@ -57,12 +59,17 @@ void blurAxis(CTVolume& volume, int axis, double sigmaVoxels)
             index[0] + std::size_t(d[0]) * (index[1] + std::size_t(d[1]) * index[2]);
           for (int i = 0; i < length; ++i)
           {
+            line[static_cast<std::size_t>(i)] =
+              volume.intensities[start + stride * static_cast<std::size_t>(i)];
+          }
+          for (int i = 0; i < length; ++i)
+          {
             double value = 0.0;
             for (int t = -radius; t <= radius; ++t)
             {
               const int at = std::clamp(i + t, 0, length - 1);
-              value += kernel[static_cast<std::size_t>(t + radius)] *
-                source[start + stride * static_cast<std::size_t>(at)];
+              value +=
+                kernel[static_cast<std::size_t>(t + radius)] * line[static_cast<std::size_t>(at)];
             }
             volume.intensities[start + stride * static_cast<std::size_t>(i)] =
               static_cast<float>(value);
@@ -105,8 +112,7 @@ PatientScan::PatientScan(const CTVolume& templateGrid, const PatientScanOptions&
   : Options(options)
 {
   options.validate();
-  this->Grid = templateGrid;
-  this->Grid.intensities.clear();
+  this->Grid = gridOf(templateGrid);
   this->CentreMm = templateGrid.indexToPhysical({ 0.5 * (templateGrid.dims[0] - 1),
     0.5 * (templateGrid.dims[1] - 1), 0.5 * (templateGrid.dims[2] - 1) });
   const double a = options.rotationDeg * M_PI / 180.0;
@@ -128,7 +134,7 @@ std::array<double, 3> PatientScan::place(const std::array<double, 3>& x) const
   return y;
 }
 
-CTVolume PatientScan::scan(const CTVolume& deformed, double noiseHU, std::uint32_t noiseSeed) const
+CTVolume PatientScan::scan(CTVolume deformed, double noiseHU, std::uint32_t noiseSeed) const
 {
   if (deformed.dims != this->Grid.dims || deformed.intensities.size() != deformed.numberOfVoxels())
   {
@@ -136,7 +142,6 @@ CTVolume PatientScan::scan(const CTVolume& deformed, double noiseHU, std::uint32
   }
   CTVolume patient = this->Grid;
   patient.format = "synthetic patient";
-  patient.warnings.clear();
   const std::array<double, 3> spacing{
     this->Options.pixelSpacingMm > 0.0 ? this->Options.pixelSpacingMm : this->Grid.spacingMm[0],
     this->Options.pixelSpacingMm > 0.0 ? this->Options.pixelSpacingMm : this->Grid.spacingMm[1],
@@ -144,14 +149,14 @@ CTVolume PatientScan::scan(const CTVolume& deformed, double noiseHU, std::uint32
   };
 
   // The blur: a new voxel's profile beyond the old one's, and the kernel's.
-  CTVolume blurred = deformed;
+  // Blurred in place: `deformed` is this call's own copy.
   for (int a = 0; a < 3; ++a)
   {
     const double profile =
       std::max(0.0, spacing[a] * spacing[a] - this->Grid.spacingMm[a] * this->Grid.spacingMm[a]) /
       (2.355 * 2.355);
     const double sigmaMm = std::sqrt(this->Options.blurMm * this->Options.blurMm + profile);
-    blurAxis(blurred, a, sigmaMm / this->Grid.spacingMm[a]);
+    blurAxis(deformed, a, sigmaMm / this->Grid.spacingMm[a]);
   }
 
   // The new grid over the same extent.
@@ -163,7 +168,7 @@ CTVolume PatientScan::scan(const CTVolume& deformed, double noiseHU, std::uint32
   }
   patient.intensities.assign(patient.numberOfVoxels(), -1000.0f);
   const std::array<int, 3> d = patient.dims;
-  inParallelSlabs(d[2],
+  TaskPool().forChunks(d[2], 4,
     [&](int first, int last)
     {
       for (int k = first; k < last; ++k)
@@ -187,7 +192,7 @@ CTVolume PatientScan::scan(const CTVolume& deformed, double noiseHU, std::uint32
             }
             patient.intensities[static_cast<std::size_t>(i) +
               static_cast<std::size_t>(d[0]) * (j + static_cast<std::size_t>(d[1]) * k)] =
-              static_cast<float>(sampleTrilinear(blurred, blurred.physicalToIndex(x)));
+              static_cast<float>(sampleTrilinear(deformed, deformed.physicalToIndex(x)));
           }
         }
       }

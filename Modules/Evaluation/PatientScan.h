@@ -64,7 +64,7 @@ public:
    * M^-1(y) for each voxel y of the new grid (same origin, direction and
    * extent; -1000 HU outside), then given noise (addGaussianNoise).
    */
-  CTVolume scan(const CTVolume& deformed, double noiseHU, std::uint32_t noiseSeed) const;
+  CTVolume scan(CTVolume deformed, double noiseHU, std::uint32_t noiseSeed) const;
 
 private:
   CTVolume Grid; // geometry only

@@ -1,11 +1,11 @@
 #include <vimlop/Evaluation/SyntheticDeformation.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TaskPool.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
-#include <thread>
 
 namespace vimlop
 {
@@ -63,19 +63,14 @@ double sampleTrilinear(const CTVolume& volume, const std::array<double, 3>& inde
   return value;
 }
 
-void inParallelSlabs(int count, const std::function<void(int, int)>& work)
+CTVolume gridOf(const CTVolume& volume)
 {
-  const int threads =
-    static_cast<int>(std::max(1u, std::min(8u, std::thread::hardware_concurrency())));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-  {
-    pool.emplace_back(work, count * t / threads, count * (t + 1) / threads);
-  }
-  for (std::thread& thread : pool)
-  {
-    thread.join();
-  }
+  CTVolume grid;
+  grid.dims = volume.dims;
+  grid.spacingMm = volume.spacingMm;
+  grid.originMm = volume.originMm;
+  grid.direction = volume.direction;
+  return grid;
 }
 
 void addGaussianNoise(CTVolume& volume, double noiseHU, std::uint32_t seed)
@@ -110,8 +105,7 @@ SyntheticDeformation::SyntheticDeformation(
   {
     throw Error("the maximum displacement must be a non-negative number of mm");
   }
-  this->Grid = grid;
-  this->Grid.intensities.clear();
+  this->Grid = gridOf(grid);
   for (int a = 0; a < 3; ++a)
   {
     this->ControlStepVoxels[a] =
@@ -248,27 +242,27 @@ CTVolume SyntheticDeformation::makePatient(
   patient.format = "synthetic patient";
   const std::array<int, 3> d = templateCT.dims;
   // Slabs of slices in parallel: each voxel is independent.
-  auto work = [&](int kBegin, int kEnd)
-  {
-    for (int k = kBegin; k < kEnd; ++k)
+  TaskPool().forChunks(d[2], 4,
+    [&](int kBegin, int kEnd)
     {
-      for (int j = 0; j < d[1]; ++j)
+      for (int k = kBegin; k < kEnd; ++k)
       {
-        for (int i = 0; i < d[0]; ++i)
+        for (int j = 0; j < d[1]; ++j)
         {
-          const std::array<double, 3> b =
-            this->displacementAtIndex({ double(i), double(j), double(k) });
-          const std::array<double, 3> y =
-            templateCT.indexToPhysical({ double(i), double(j), double(k) });
-          const std::array<double, 3> x{ y[0] + b[0], y[1] + b[1], y[2] + b[2] };
-          patient.intensities[static_cast<std::size_t>(i) +
-            static_cast<std::size_t>(d[0]) * (j + static_cast<std::size_t>(d[1]) * k)] =
-            static_cast<float>(sampleTrilinear(templateCT, templateCT.physicalToIndex(x)));
+          for (int i = 0; i < d[0]; ++i)
+          {
+            const std::array<double, 3> b =
+              this->displacementAtIndex({ double(i), double(j), double(k) });
+            const std::array<double, 3> y =
+              templateCT.indexToPhysical({ double(i), double(j), double(k) });
+            const std::array<double, 3> x{ y[0] + b[0], y[1] + b[1], y[2] + b[2] };
+            patient.intensities[static_cast<std::size_t>(i) +
+              static_cast<std::size_t>(d[0]) * (j + static_cast<std::size_t>(d[1]) * k)] =
+              static_cast<float>(sampleTrilinear(templateCT, templateCT.physicalToIndex(x)));
+          }
         }
       }
-    }
-  };
-  inParallelSlabs(d[2], work);
+    });
   // Noise after the (parallel) resampling, in voxel order: reproducible.
   addGaussianNoise(patient, noiseHU, noiseSeed);
   return patient;

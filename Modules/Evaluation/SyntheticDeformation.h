@@ -5,7 +5,6 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 namespace vimlop
@@ -24,12 +23,8 @@ double sampleTrilinear(const CTVolume& volume, const std::array<double, 3>& inde
  */
 void addGaussianNoise(CTVolume& volume, double noiseHU, std::uint32_t seed);
 
-/**
- * @brief Runs work(first, last) over [0, count) cut into one contiguous slab
- * per hardware thread (at most 8), in parallel: for volumes whose slices are
- * computed independently.
- */
-void inParallelSlabs(int count, const std::function<void(int, int)>& work);
+/// @brief The grid of `volume` (dims, spacing, origin, direction) without its intensities.
+CTVolume gridOf(const CTVolume& volume);
 
 /// @brief Parameters of the deformation.
 struct SyntheticDeformationOptions

@@ -3,7 +3,6 @@
 #include <vimlop/Imaging/BSplineMutualInformationCost.h>
 
 #include <itkBSplineInterpolationWeightFunction.h>
-#include <itkMultiThreaderBase.h>
 
 #include <algorithm>
 #include <cmath>
@@ -171,7 +170,6 @@ BSplineMutualInformationCost::BSplineMutualInformationCost(std::vector<BSplineSa
   , grid_(grid)
   , bins_(bins)
   , bendingWeightMm2_(bendingWeightMm2)
-  , chunks_(std::max<long>(1, itk::MultiThreaderBase::GetGlobalDefaultNumberOfThreads()))
 {
   std::copy(&affine[0][0], &affine[0][0] + 12, &affine_[0][0]);
   double fixedMin = samples_.empty() ? 0.0 : samples_[0].fixedValue;
@@ -214,21 +212,20 @@ void BSplineMutualInformationCost::forEachNode(const BSplineSample& sample, F&& 
   }
 }
 
-/// Runs f(chunk, first, last) over `chunks_` contiguous ranges of the samples
-/// in parallel; each chunk accumulates into its own buffers, summed in chunk
-/// order, so the result does not depend on the scheduling.
+/// Runs f(chunk, first, last) over kChunks contiguous ranges of the samples
+/// on the pool; each chunk accumulates into its own buffers, summed in chunk
+/// order, so the result depends neither on the scheduling nor on the number
+/// of threads.
 template <class F>
-void BSplineMutualInformationCost::parallel(F&& f) const
+void BSplineMutualInformationCost::parallel(F&& f)
 {
   const long n = static_cast<long>(samples_.size());
-  itk::MultiThreaderBase::New()->ParallelizeArray(
-    0, static_cast<itk::SizeValueType>(chunks_),
-    [&](itk::SizeValueType chunk)
+  pool_.run(static_cast<int>(kChunks),
+    [&](int chunk)
     {
-      const long c = static_cast<long>(chunk);
-      f(c, n * c / chunks_, n * (c + 1) / chunks_);
-    },
-    nullptr);
+      const long c = chunk;
+      f(c, n * c / kChunks, n * (c + 1) / kChunks);
+    });
 }
 
 void BSplineMutualInformationCost::compute(
@@ -237,7 +234,7 @@ void BSplineMutualInformationCost::compute(
   const std::size_t cells = static_cast<std::size_t>(bins_) * bins_;
   const long nodes = grid_.nodes();
   std::vector<std::vector<double>> histograms(
-    static_cast<std::size_t>(chunks_), std::vector<double>(cells, 0.0));
+    static_cast<std::size_t>(kChunks), std::vector<double>(cells, 0.0));
   const LinearSampler sampler(moving_);
 
   // Pass 1: the moving intensity at each sample, and the joint histogram.
@@ -356,7 +353,7 @@ void BSplineMutualInformationCost::compute(
   // eta_s) logRatio(i_s, j) / total and d(eta_s)/dc_kd = w_k h_d / bin width.
   const std::size_t parameters = static_cast<std::size_t>(get_number_of_unknowns());
   std::vector<std::vector<double>> partial(
-    static_cast<std::size_t>(chunks_), std::vector<double>(parameters, 0.0));
+    static_cast<std::size_t>(kChunks), std::vector<double>(parameters, 0.0));
   parallel(
     [&](long chunk, long first, long last)
     {

@@ -5,6 +5,7 @@
 // Exported for its tests only.
 
 #include "VIMLOPImagingModule.h"
+#include <vimlop/Core/TaskPool.h>
 #include <vimlop/Imaging/TemplateRegistrationITK.h>
 
 #include <itkImageBase.h>
@@ -90,7 +91,10 @@ private:
   template <class F>
   void forEachNode(const BSplineSample& sample, F&& f) const;
   template <class F>
-  void parallel(F&& f) const;
+  void parallel(F&& f);
+
+  /// Chunks of the samples, each with its own histogram and gradient.
+  static constexpr long kChunks = 16;
 
   std::vector<BSplineSample> samples_;
   const Image* moving_;
@@ -98,7 +102,7 @@ private:
   BSplineGrid grid_;
   int bins_;
   double bendingWeightMm2_;
-  long chunks_;
+  TaskPool pool_;
   double fixedMin_ = 0.0;
   double fixedBin_ = 1.0;
   double movingMin_ = 0.0;

@@ -74,6 +74,15 @@ TemplateBSplineStage TemplateBSplineStage::compute(const CTVolume& fixedVolume, 
     bspline->SetTransformDomainMeshSize(meshSize(fixed, options.bsplineGridMm[0]));
     bspline->SetIdentity();
   }
+  double affineRows[3][4];
+  for (unsigned r = 0; r < 3; ++r)
+  {
+    for (unsigned c = 0; c < 3; ++c)
+    {
+      affineRows[r][c] = affine->GetMatrix()[r][c];
+    }
+    affineRows[r][3] = affine->GetOffset()[r];
+  }
   double metricValue = 0.0;
   try
   {
@@ -113,15 +122,6 @@ TemplateBSplineStage TemplateBSplineStage::compute(const CTVolume& fixedVolume, 
           grid.size[a] = static_cast<long>(coefficients->GetLargestPossibleRegion().GetSize()[a]);
           grid.spacingMm[a] = coefficients->GetSpacing()[a];
         }
-      }
-      double affineRows[3][4];
-      for (unsigned r = 0; r < 3; ++r)
-      {
-        for (unsigned c = 0; c < 3; ++c)
-        {
-          affineRows[r][c] = affine->GetMatrix()[r][c];
-        }
-        affineRows[r][3] = affine->GetOffset()[r];
       }
       BSplineMutualInformationCost cost(
         drawBSplineSamples(fixedLevel, bspline->GetCoefficientImages()[0],
