@@ -48,6 +48,30 @@ std::array<double, 3> tissueCentroid(const CTVolume& v)
   return v.indexToPhysical({ sum[0] / count, sum[1] / count, sum[2] / count });
 }
 
+/**
+ * Mattes mutual information computed in one work unit. With more, ITK 5.2's
+ * metric adds each work unit's derivative buffer into the shared one in the
+ * order the threads win a lock, so its float sums, and after them the whole
+ * warp, differed from run to run of one pair (P4's largest pose error moved
+ * by 0.1 degree). The metric's SetMaximumNumberOfWorkUnits() limits threads,
+ * not work units, so the work units are set on its threaders here.
+ */
+class RepeatableMattesMetric : public itk::MattesMutualInformationImageToImageMetricv4<Image, Image>
+{
+public:
+  using Self = RepeatableMattesMetric;
+  using Superclass = itk::MattesMutualInformationImageToImageMetricv4<Image, Image>;
+  using Pointer = itk::SmartPointer<Self>;
+  itkNewMacro(Self);
+
+protected:
+  RepeatableMattesMetric()
+  {
+    this->m_DenseGetValueAndDerivativeThreader->SetNumberOfWorkUnits(1);
+    this->m_SparseGetValueAndDerivativeThreader->SetNumberOfWorkUnits(1);
+  }
+};
+
 } // namespace
 
 TemplateAffineStage TemplateAffineStage::compute(const CTVolume& templateCT,
@@ -74,7 +98,7 @@ TemplateAffineStage TemplateAffineStage::compute(const CTVolume& templateCT,
   stage.initialCorrelation =
     correlation(fixedVolume, moving, [&](const Point& x) { return affine->TransformPoint(x); });
 
-  using MIMetric = itk::MattesMutualInformationImageToImageMetricv4<Image, Image>;
+  using MIMetric = RepeatableMattesMetric;
   using AffineMethod = itk::ImageRegistrationMethodv4<Image, Image, AffineTransform>;
   const std::size_t affineLevels = options.affineLevelSpacingMm.size();
   auto metric = MIMetric::New();

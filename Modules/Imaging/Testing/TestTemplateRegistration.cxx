@@ -117,3 +117,31 @@ TEST(TemplateRegistration, NamesEachSyNMetricAndRefusesUnknownNames)
     EXPECT_STREQ(e.what(), "unknown SyN metric 'ncc' (mi, ms or cc)");
   }
 }
+
+TEST(TemplateRegistration, GivesTheSameMapOnEveryRunOfTheSamePair)
+{
+  // A lab that registers a patient twice must get the same model twice. The
+  // patient is the phantom moved by one voxel and a half, so the affine
+  // stage has work to do on every thread.
+  const CTVolume ct = HeadPhantom::make();
+  CTVolume patient = ct;
+  patient.originMm[0] += 1.5;
+  patient.originMm[2] -= 1.5;
+  TemplateRegistrationOptions options;
+  const auto& box = HeadPhantom::kAirwayBox;
+  options.regionMm = { double(box[0]), double(box[1]), double(box[2]), double(box[3]),
+    double(box[4]), double(box[5]) };
+  options.affineLevelSpacingMm = { 2.0, 1.0 };
+  options.affineSamplingFraction = 1.0;
+  options.bsplineGridMm = { 10.0 };
+  options.bsplineLevelSpacingMm = { 1.0 };
+  options.bsplineIterations = { 5 };
+  const TemplateRegistration first = TemplateRegistration::compute(ct, patient, options);
+  for (int run = 0; run < 3; ++run)
+  {
+    const TemplateRegistration again = TemplateRegistration::compute(ct, patient, options);
+    EXPECT_EQ(again.affine, first.affine) << "run " << run;
+    EXPECT_EQ(again.templateToPatient.displacements, first.templateToPatient.displacements)
+      << "run " << run;
+  }
+}
