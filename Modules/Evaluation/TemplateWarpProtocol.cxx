@@ -3,6 +3,7 @@
 #include <vimlop/Core/CanonicalPoses.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
 #include <vimlop/Evaluation/Peers/ElastixRegistration.h>
@@ -65,8 +66,10 @@ nlohmann::json errorsJson(const VertexErrorSummary& s)
 
 nlohmann::json poseErrorsJson(const PoseErrorSummary& s)
 {
-  return { { "poses", s.poses }, { "mean_mm", s.meanMm }, { "max_mm", s.maxMm },
-    { "mean_deg", s.meanDeg }, { "max_deg", s.maxDeg } };
+  return { { "poses", s.poses }, { "mean_mm", s.meanMm }, { "p95_mm", s.p95Mm },
+    { "max_mm", s.maxMm }, { "mean_deg", s.meanDeg }, { "p95_deg", s.p95Deg },
+    { "max_deg", s.maxDeg }, { "max_deg_at_mm", s.maxDegAtMm },
+    { "max_deg_wall_distance_mm", s.maxDegWallDistanceMm } };
 }
 
 /// Step (mm) of the frame points that carry a pose's orientation through a
@@ -119,22 +122,38 @@ std::vector<CameraPose> carriedPoses(
   return carried;
 }
 
-PoseErrorSummary summarizePoseErrors(
-  const std::vector<CameraPose>& estimate, const std::vector<CameraPose>& truth)
+PoseErrorSummary summarizePoseErrors(const std::vector<CameraPose>& estimate,
+  const std::vector<CameraPose>& truth, const std::vector<CameraPose>& templatePoses,
+  const RegistrationModel& templateModel)
 {
   PoseErrorSummary s;
   s.poses = truth.size();
+  if (truth.empty())
+  {
+    return s;
+  }
+  std::vector<double> mm(truth.size());
+  std::vector<double> deg(truth.size());
   for (std::size_t i = 0; i < truth.size(); ++i)
   {
-    const double mm = (estimate[i].centre - truth[i].centre).norm();
+    mm[i] = (estimate[i].centre - truth[i].centre).norm();
     const double cosine = std::clamp(
       0.5 * ((estimate[i].rotation.transpose() * truth[i].rotation).trace() - 1.0), -1.0, 1.0);
-    const double deg = std::acos(cosine) * 180.0 / M_PI;
-    s.meanMm += mm / static_cast<double>(truth.size());
-    s.meanDeg += deg / static_cast<double>(truth.size());
-    s.maxMm = std::max(s.maxMm, mm);
-    s.maxDeg = std::max(s.maxDeg, deg);
+    deg[i] = std::acos(cosine) * 180.0 / M_PI;
   }
+  const std::size_t worst =
+    static_cast<std::size_t>(std::max_element(deg.begin(), deg.end()) - deg.begin());
+  const Eigen::Vector3d at = templatePoses[worst].centre;
+  s.maxDegAtMm = { at.x(), at.y(), at.z() };
+  s.maxDegWallDistanceMm = templateModel.locator().closestPoint(at).distanceMm;
+  const Summary position = summarize(mm);
+  const Summary orientation = summarize(deg);
+  s.meanMm = position.mean;
+  s.p95Mm = position.p95;
+  s.maxMm = position.max;
+  s.meanDeg = orientation.mean;
+  s.p95Deg = orientation.p95;
+  s.maxDeg = orientation.max;
   return s;
 }
 
@@ -182,9 +201,11 @@ std::string TemplateWarpProtocolReport::summaryText() const
   }
   if (this->poseErrors.poses > 0)
   {
-    text += formatText("; %zu canonical poses: mean %.2f mm, %.2f deg, max %.2f mm, %.2f deg",
+    text += formatText(
+      "; %zu canonical poses: mean %.2f mm, %.2f deg, p95 %.2f mm, %.2f deg, max %.2f mm, %.2f deg",
       this->poseErrors.poses, this->poseErrors.meanMm, this->poseErrors.meanDeg,
-      this->poseErrors.maxMm, this->poseErrors.maxDeg);
+      this->poseErrors.p95Mm, this->poseErrors.p95Deg, this->poseErrors.maxMm,
+      this->poseErrors.maxDeg);
     if (this->elastix)
     {
       text += formatText(" (elastix %.2f mm, %.2f deg)", this->elastix->poseErrors.meanMm,
@@ -369,8 +390,8 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
   report(0.045, "canonical poses");
   std::vector<CameraPose> poses;
   std::size_t posesNearEdits = 0;
-  for (const CameraPose& pose :
-    makeCanonicalPoses(makeEmbreeRegistrationModel(toTriangleMesh(surface.surface)), {}))
+  const auto templateModel = makeEmbreeRegistrationModel(toTriangleMesh(surface.surface));
+  for (const CameraPose& pose : makeCanonicalPoses(templateModel, {}))
   {
     if (nearAnatomyEdit({ pose.centre.x(), pose.centre.y(), pose.centre.z() }, edits, editOptions))
     {
@@ -426,7 +447,7 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
   {
     warpedPoses.push_back(warpCameraPose(pose, result.templateToPatient));
   }
-  r.poseErrors = summarizePoseErrors(warpedPoses, truePoses);
+  r.poseErrors = summarizePoseErrors(warpedPoses, truePoses, poses, templateModel);
   std::size_t worst = 0;
   r.errors = summarizeErrors(scoredOnly(warped), scoredTruth, &worst);
   r.maxAtMm = vertices[scored[worst]];
@@ -479,8 +500,8 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
     const std::vector<Point> movedVertices(
       peer.movingPoints.begin(), peer.movingPoints.begin() + static_cast<long>(vertices.size()));
     e.errors = summarizeErrors(scoredOnly(movedVertices), scoredTruth);
-    e.poseErrors =
-      summarizePoseErrors(carriedPoses(poses, peer.movingPoints, vertices.size()), truePoses);
+    e.poseErrors = summarizePoseErrors(
+      carriedPoses(poses, peer.movingPoints, vertices.size()), truePoses, poses, templateModel);
     e.runtimeS = peer.registrationSeconds + peer.transformSeconds;
     e.runtimeRatio = e.runtimeS / r.runtimeS;
     e.parameterFiles = elastix.parameterFiles;

@@ -66,10 +66,18 @@ struct PoseErrorSummary
   std::size_t poses = 0;
   /// Optical centre, mm.
   double meanMm = 0.0;
+  double p95Mm = 0.0;
   double maxMm = 0.0;
   /// Orientation: the angle of the relative rotation, degrees.
   double meanDeg = 0.0;
+  double p95Deg = 0.0;
   double maxDeg = 0.0;
+  /// Where (template frame, mm) the pose with the largest orientation error
+  /// sits, and the distance (mm) from there to the nearest template wall:
+  /// a pose far from every wall is turned by a map that no image feature
+  /// fixes there.
+  std::array<double, 3> maxDegAtMm{ 0.0, 0.0, 0.0 };
+  double maxDegWallDistanceMm = 0.0;
 };
 
 /// @brief The result of P4.

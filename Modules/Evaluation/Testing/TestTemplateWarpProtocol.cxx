@@ -108,11 +108,28 @@ TEST(TemplateWarpProtocol, ScoresAScannedAndEditedPatientAndTheCarriedCanonicalP
   // Less than the head's turn, which a pose carried without its rotation keeps.
   EXPECT_LT(scanned.poseErrors.meanDeg, o.scan.rotationDeg);
   EXPECT_LE(scanned.poseErrors.meanDeg, scanned.poseErrors.maxDeg);
+  EXPECT_LE(scanned.poseErrors.p95Deg, scanned.poseErrors.maxDeg);
+  EXPECT_LE(scanned.poseErrors.p95Mm, scanned.poseErrors.maxMm);
+  // The worst pose is a canonical pose of the template: within the bounds
+  // of its air spaces (the passage, the nostril, the sinus; 1 mm voxels from
+  // the origin), off the walls, and no farther from them than half the
+  // widest space.
+  const std::array<int, 6> air{ 28, 43, 38, 50, 0, 24 };
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_GE(scanned.poseErrors.maxDegAtMm[a], air[2 * a]) << a;
+    EXPECT_LE(scanned.poseErrors.maxDegAtMm[a], air[2 * a + 1] + 1) << a;
+  }
+  EXPECT_GT(scanned.poseErrors.maxDegWallDistanceMm, 0.0);
+  EXPECT_LT(scanned.poseErrors.maxDegWallDistanceMm, 7.0);
   const nlohmann::json j = scanned.toJson();
   EXPECT_EQ(j["scan"]["slice_spacing_mm"].get<double>(), 1.5);
   EXPECT_EQ(j["edits"]["placed"][1]["kind"].get<std::string>(), "shrink");
   EXPECT_EQ(j["edits"]["vertices_left_out"].get<std::size_t>(), scanned.verticesNearEdits);
   EXPECT_EQ(j["canonical_poses"]["poses"].get<std::size_t>(), scanned.poseErrors.poses);
+  EXPECT_EQ(j["canonical_poses"]["p95_deg"].get<double>(), scanned.poseErrors.p95Deg);
+  EXPECT_EQ(j["canonical_poses"]["max_deg_wall_distance_mm"].get<double>(),
+    scanned.poseErrors.maxDegWallDistanceMm);
   EXPECT_NE(scanned.summaryText().find(" canonical poses: mean "), std::string::npos);
 }
 
