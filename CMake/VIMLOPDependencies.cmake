@@ -66,7 +66,7 @@ find_package(ITK 5.2 REQUIRED COMPONENTS
   ITKTransform)
 
 # aruco (OpenCV's contributed modules, libopencv-contrib-dev): ChArUco boards for calibration.
-find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio features2d calib3d aruco)
+find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio video features2d calib3d aruco)
 
 # Python wrapping (VIMLOP_WRAP_PYTHON) uses VTK's own wrapping tools and
 # extends VTK's Python package, so it needs the interpreter that package

@@ -1,8 +1,7 @@
 #include <vimlop/Video/SfmReconstructor.h>
 
+#include <vimlop/Video/CameraResection.h>
 #include <vimlop/Video/SfmGeometry.h>
-
-#include <opencv2/calib3d.hpp>
 
 namespace vimlop::detail
 {
@@ -27,7 +26,6 @@ void SfmReconstructor::addObservations(int frame)
 
 void SfmReconstructor::registerRemaining()
 {
-  const cv::Mat k = cameraMatrix(this->K);
   std::vector<bool> failed(this->Frames.size(), false);
   while (true)
   {
@@ -56,56 +54,34 @@ void SfmReconstructor::registerRemaining()
     {
       break;
     }
-    std::vector<cv::Point3d> object;
-    std::vector<cv::Point2d> image;
+    std::vector<Eigen::Vector3d> object;
+    std::vector<Eigen::Vector2d> image;
     for (const auto& [keypoint, trackIndex] : this->TrackOf[next])
     {
       const int p = this->Tracks[trackIndex].point;
       if (p >= 0 && this->Observations[p].size() >= 2)
       {
-        object.emplace_back(this->Points[p].x(), this->Points[p].y(), this->Points[p].z());
-        image.push_back(this->Features[next].keypoints[keypoint].pt);
+        object.push_back(this->Points[p]);
+        image.push_back(pixelOf(this->Features[next].keypoints[keypoint]));
       }
     }
-    cv::Mat rvec;
-    cv::Mat tvec;
-    std::vector<int> inliers;
-    const bool found = cv::solvePnPRansac(object, image, k, cv::noArray(), rvec, tvec, false, 500,
-      static_cast<float>(this->O.pnpThresholdPx), 0.999, inliers, cv::SOLVEPNP_EPNP);
-    if (!found || static_cast<int>(inliers.size()) < this->O.minRegistrationPoints)
+    CameraResectionOptions pnp;
+    pnp.thresholdPx = this->O.pnpThresholdPx;
+    const std::optional<CameraResection> resection = resectCamera(object, image, this->K, pnp);
+    const std::size_t inliers = resection ? resection->inliers.size() : 0;
+    if (static_cast<int>(inliers) < this->O.minRegistrationPoints)
     {
       failed[next] = true;
-      this->say("frame " + std::to_string(next) + ": only " + std::to_string(inliers.size()) +
+      this->say("frame " + std::to_string(next) + ": only " + std::to_string(inliers) +
         " PnP inliers; not registered");
       continue;
     }
-    std::vector<cv::Point3d> objectInliers;
-    std::vector<cv::Point2d> imageInliers;
-    for (int i : inliers)
-    {
-      objectInliers.push_back(object[i]);
-      imageInliers.push_back(image[i]);
-    }
-    cv::solvePnPRefineLM(objectInliers, imageInliers, k, cv::noArray(), rvec, tvec);
-    cv::Mat r;
-    cv::Rodrigues(rvec, r);
-    Eigen::Matrix3d rotation;
-    Eigen::Vector3d translation;
-    for (int row = 0; row < 3; ++row)
-    {
-      translation[row] = tvec.at<double>(row);
-      for (int col = 0; col < 3; ++col)
-      {
-        rotation(row, col) = r.at<double>(row, col);
-      }
-    }
-    this->Poses[next].rotation = rotation.transpose();
-    this->Poses[next].centre = -rotation.transpose() * translation;
+    this->Poses[next] = resection->cameraToWorld;
     this->Registered[next] = true;
     this->addObservations(next);
     this->triangulateTracks();
     this->adjust(10);
-    this->say("frame " + std::to_string(next) + " registered (" + std::to_string(inliers.size()) +
+    this->say("frame " + std::to_string(next) + " registered (" + std::to_string(inliers) +
       " PnP inliers), " + std::to_string(this->Points.size()) + " points");
   }
   this->adjust(100);

@@ -1,0 +1,286 @@
+#include <vimlop/Pipeline/EndoscopeTracker.h>
+
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
+#include <vimlop/Raycast/EmbreeScene.h>
+#include <vimlop/Video/CameraResection.h>
+
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+namespace vimlop
+{
+
+const char* toString(TrackingState state)
+{
+  switch (state)
+  {
+    case TrackingState::Degraded:
+      return "degraded";
+    case TrackingState::Lost:
+      return "lost";
+    case TrackingState::Tracking:
+      break;
+  }
+  return "tracking";
+}
+
+void EndoscopeTrackerOptions::validate() const
+{
+  auto refuse = [](const char* what, double value)
+  { throw Error(formatText("endoscope tracker: %s, not %g", what, value)); };
+  if (this->maxFeatures < 10)
+  {
+    refuse("at least 10 features are needed", this->maxFeatures);
+  }
+  if (this->redetectBelow < 0 || this->redetectBelow > this->maxFeatures)
+  {
+    refuse(
+      "new corners must be sought below a count in [0, the most features]", this->redetectBelow);
+  }
+  if (!(this->inlierThresholdPx > 0.0))
+  {
+    refuse("the inlier threshold must be positive (px)", this->inlierThresholdPx);
+  }
+  if (this->minInliers < 6)
+  {
+    refuse("a pose needs at least 6 inliers", this->minInliers);
+  }
+  if (!(this->degradedInlierFraction >= 0.0 && this->degradedInlierFraction <= 1.0))
+  {
+    refuse("the degraded inlier fraction must lie in [0, 1]", this->degradedInlierFraction);
+  }
+  if (!(this->maxJumpMm > 0.0))
+  {
+    refuse("the largest jump must be positive (mm)", this->maxJumpMm);
+  }
+  if (!(this->maxDepthMm > 0.0))
+  {
+    refuse("the largest depth must be positive (mm)", this->maxDepthMm);
+  }
+  if (!(this->minIncidenceCosine >= 0.0 && this->minIncidenceCosine < 1.0))
+  {
+    refuse("the least incidence cosine must lie in [0, 1)", this->minIncidenceCosine);
+  }
+  this->features.validate();
+}
+
+/// A tracked feature: where it is in the current frame and the model point it stands for.
+struct TrackedFeature
+{
+  Eigen::Vector2d pixel;
+  Eigen::Vector3d pointCT;
+};
+
+struct EndoscopeTracker::Internals
+{
+  EndoscopeTrackerOptions Options;
+  PinholeCamera Intrinsics;
+  EmbreeScene Scene;
+  KltFeatureTracker Klt;
+  std::vector<TrackedFeature> Features;
+  /// The last two poses reported (the last one first), for the prediction.
+  CameraPose Last;
+  CameraPose BeforeLast;
+  int Frame = -1;
+
+  Internals(const TriangleMesh& mesh, const PinholeCamera& k, const EndoscopeTrackerOptions& o)
+    : Options(o)
+    , Intrinsics(k)
+    , Scene(mesh)
+    , Klt(o.features)
+  {
+  }
+
+  void checkSize(const cv::Mat& frame) const
+  {
+    if (frame.cols != this->Intrinsics.widthPx || frame.rows != this->Intrinsics.heightPx)
+    {
+      throw Error(formatText("endoscope tracker: a frame of %d x %d pixels, but the intrinsics "
+                             "are for %d x %d",
+        frame.cols, frame.rows, this->Intrinsics.widthPx, this->Intrinsics.heightPx));
+    }
+  }
+
+  /// The next pose at constant velocity: the last motion, in the camera's
+  /// own frame, applied once more.
+  CameraPose predict() const
+  {
+    const Eigen::Matrix3d turn = this->BeforeLast.rotation.transpose() * this->Last.rotation;
+    const Eigen::Vector3d step =
+      this->BeforeLast.rotation.transpose() * (this->Last.centre - this->BeforeLast.centre);
+    CameraPose next;
+    next.rotation = this->Last.rotation * turn;
+    next.centre = this->Last.centre + this->Last.rotation * step;
+    return next;
+  }
+
+  /// Detects corners where no feature is and adds those whose ray from
+  /// `pose` meets the model squarely enough; returns how many were added.
+  int addFeatures(const CameraPose& pose)
+  {
+    const int wanted = this->Options.maxFeatures - static_cast<int>(this->Features.size());
+    std::vector<Eigen::Vector2d> existing;
+    existing.reserve(this->Features.size());
+    for (const TrackedFeature& f : this->Features)
+    {
+      existing.push_back(f.pixel);
+    }
+    int added = 0;
+    for (const Eigen::Vector2d& pixel : this->Klt.detect(wanted, existing))
+    {
+      const Eigen::Vector3d ray = pose.rotation * this->Intrinsics.rayDirection(pixel);
+      const std::optional<SurfacePoint> hit =
+        this->Scene.castRay(pose.centre, ray, this->Options.maxDepthMm);
+      if (!hit)
+      {
+        continue;
+      }
+      const Eigen::Vector3d& normal =
+        this->Scene.mesh().faceNormals()[static_cast<std::size_t>(hit->face)];
+      if (std::abs(normal.dot(ray)) < this->Options.minIncidenceCosine)
+      {
+        continue;
+      }
+      this->Features.push_back({ pixel, hit->point });
+      ++added;
+    }
+    return added;
+  }
+};
+
+EndoscopeTracker::EndoscopeTracker(const TriangleMesh& modelCT, const PinholeCamera& intrinsics,
+  const EndoscopeTrackerOptions& options)
+{
+  options.validate();
+  intrinsics.validate();
+  this->d = std::make_unique<Internals>(modelCT, intrinsics, options);
+}
+
+EndoscopeTracker::~EndoscopeTracker() = default;
+
+const EndoscopeTrackerOptions& EndoscopeTracker::options() const
+{
+  return this->d->Options;
+}
+
+TrackedFrame EndoscopeTracker::start(const cv::Mat& frame, const CameraPose& cameraToCT)
+{
+  const auto began = std::chrono::steady_clock::now();
+  Internals& s = *this->d;
+  s.checkSize(frame);
+  s.Klt.reset(frame);
+  s.Features.clear();
+  s.Frame = -1;
+  const int added = s.addFeatures(cameraToCT);
+  if (added < s.Options.minInliers)
+  {
+    throw Error(formatText("endoscope tracker: only %d corners of the first frame stand for a "
+                           "point of the model (at least %d needed): is the camera inside the "
+                           "airway, and the frame textured?",
+      added, s.Options.minInliers));
+  }
+  s.Frame = 0;
+  s.Last = cameraToCT;
+  s.BeforeLast = cameraToCT;
+  TrackedFrame r;
+  r.cameraToCT = cameraToCT;
+  r.newFeatures = added;
+  r.trackedFeatures = added;
+  r.inliers = added;
+  r.latencyMs =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+  return r;
+}
+
+TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
+{
+  const auto began = std::chrono::steady_clock::now();
+  Internals& s = *this->d;
+  if (s.Frame < 0)
+  {
+    throw Error("endoscope tracker: start() on a registered frame first");
+  }
+  s.checkSize(frame);
+  const CameraPose predicted = s.predict();
+  TrackedFrame r;
+  r.frame = ++s.Frame;
+  r.cameraToCT = predicted;
+  r.state = TrackingState::Lost;
+  if (static_cast<int>(s.Features.size()) < s.Options.minInliers)
+  {
+    // Too few features to find a pose (after a blank or blurred frame): this
+    // frame is lost, and its corners, cast into the model from the
+    // prediction, are the next frames' features. When the scope moved as
+    // predicted, they stand for the right points and tracking resumes.
+    s.Klt.reset(frame);
+    s.Features.clear();
+    r.newFeatures = s.addFeatures(predicted);
+    s.BeforeLast = s.Last;
+    s.Last = predicted;
+    r.latencyMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+    return r;
+  }
+
+  std::vector<Eigen::Vector2d> pixels;
+  pixels.reserve(s.Features.size());
+  for (const TrackedFeature& f : s.Features)
+  {
+    pixels.push_back(f.pixel);
+  }
+  const std::vector<char> kept = s.Klt.track(frame, pixels);
+  std::vector<TrackedFeature> followed;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> seen;
+  for (std::size_t i = 0; i < kept.size(); ++i)
+  {
+    if (kept[i])
+    {
+      followed.push_back({ pixels[i], s.Features[i].pointCT });
+      points.push_back(s.Features[i].pointCT);
+      seen.push_back(pixels[i]);
+    }
+  }
+
+  r.trackedFeatures = static_cast<int>(followed.size());
+  CameraResectionOptions pnp;
+  pnp.thresholdPx = s.Options.inlierThresholdPx;
+  pnp.iterations = 100;
+  pnp.solver = ResectionSolver::IterativeFromGuess;
+  const std::optional<CameraResection> pose =
+    resectCamera(points, seen, s.Intrinsics, pnp, &predicted);
+  if (pose && static_cast<int>(pose->inliers.size()) >= s.Options.minInliers &&
+    (pose->cameraToWorld.centre - predicted.centre).norm() <= s.Options.maxJumpMm)
+  {
+    r.cameraToCT = pose->cameraToWorld;
+    r.inliers = static_cast<int>(pose->inliers.size());
+    r.reprojectionErrorPx = pose->rmsErrorPx;
+    r.state = r.inliers >= s.Options.degradedInlierFraction * r.trackedFeatures
+      ? TrackingState::Tracking
+      : TrackingState::Degraded;
+    // Only the features that agree with the pose are worth following.
+    std::vector<TrackedFeature> agreeing;
+    agreeing.reserve(pose->inliers.size());
+    for (int i : pose->inliers)
+    {
+      agreeing.push_back(followed[static_cast<std::size_t>(i)]);
+    }
+    followed = std::move(agreeing);
+  }
+  s.Features = std::move(followed);
+  if (static_cast<int>(s.Features.size()) < s.Options.redetectBelow)
+  {
+    // Lost, these stand for the model seen from the prediction: they let the
+    // next frames recover when the prediction was close.
+    r.newFeatures = s.addFeatures(r.cameraToCT);
+  }
+  s.BeforeLast = s.Last;
+  s.Last = r.cameraToCT;
+  r.latencyMs =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+  return r;
+}
+
+} // namespace vimlop

@@ -1,0 +1,144 @@
+#ifndef vimlop_EndoscopeTracker_h
+#define vimlop_EndoscopeTracker_h
+
+#include <vimlop/Core/CameraPose.h>
+#include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Video/KltFeatureTracker.h>
+
+#include <opencv2/core/mat.hpp>
+
+#include <memory>
+#include <string>
+
+namespace vimlop
+{
+
+/// @brief How far a tracked pose can be trusted.
+enum class TrackingState
+{
+  Tracking, ///< enough features agree with the pose
+  Degraded, ///< a pose was found, but many tracked features disagree with it
+  Lost      ///< no pose from this frame: the pose reported is the prediction
+};
+
+/// @brief "tracking", "degraded" or "lost".
+const char* toString(TrackingState state);
+
+/// @brief Settings of EndoscopeTracker (issue 16), each with its reason.
+struct EndoscopeTrackerOptions
+{
+  /// Features tracked at most (default 300): PnP's accuracy grows slowly
+  /// past a few hundred points, its cost linearly.
+  int maxFeatures = 300;
+  /// New corners are detected when fewer features than this are left
+  /// (default 150), up to maxFeatures.
+  int redetectBelow = 150;
+  /// A feature agrees with a pose when it projects within this distance of
+  /// where it was tracked, px (default 2: KLT's error on endoscope texture is
+  /// well under a pixel, the model's error near a pixel).
+  double inlierThresholdPx = 2.0;
+  /// Fewer agreeing features than this and the frame is Lost (default 25).
+  int minInliers = 25;
+  /// A pose whose agreeing features are fewer than this fraction of those
+  /// tracked is Degraded (default 0.6).
+  double degradedInlierFraction = 0.6;
+  /// A pose farther than this from the prediction is not believed (Lost),
+  /// mm (default 5: the scope moves at most a few mm between frames at 30 Hz).
+  double maxJumpMm = 5.0;
+  /// New features stand for the model surface point their ray hits, at
+  /// most this far from the camera, mm (default 60).
+  double maxDepthMm = 60.0;
+  /// New features whose ray meets the wall at a grazing angle (the cosine
+  /// between the ray and the wall's normal below this, default 0.2) are
+  /// dropped: near an occluding contour the point a pixel stands for jumps
+  /// between the near and the far wall.
+  double minIncidenceCosine = 0.2;
+  /// Frame-to-frame tracking and corner detection.
+  KltFeatureTrackerOptions features;
+
+  /// @throws vimlop::Error naming the first value out of range.
+  void validate() const;
+};
+
+/// @brief What the tracker reports for one frame.
+struct TrackedFrame
+{
+  int frame = 0; ///< index of the frame since start(), which is frame 0
+  CameraPose cameraToCT;
+  TrackingState state = TrackingState::Tracking;
+  int trackedFeatures = 0; ///< features followed into this frame
+  int inliers = 0;         ///< of those, the ones that agree with the pose
+  /// Root mean square reprojection error of the inliers, px.
+  double reprojectionErrorPx = 0.0;
+  int newFeatures = 0; ///< corners added after the pose was found
+  /// Wall-clock time of track(), from the frame to the pose and the new features, ms.
+  double latencyMs = 0.0;
+};
+
+/**
+ * @brief Follows the endoscope from frame to frame after a registration:
+ * the live camera pose in the CT for navigation (issue 16).
+ *
+ * It starts from a registered frame and its camera pose in the CT. Each
+ * feature stands for the point of the registered model surface that its
+ * ray hits when it is detected, so the map it tracks against is the CT
+ * model itself, seen through the registration. For every new frame it
+ *   1. predicts the pose at constant velocity from the last two poses,
+ *   2. tracks the features into the frame (KltFeatureTracker),
+ *   3. finds the pose from them (resectCamera(): RANSAC from the
+ *      prediction, then Levenberg-Marquardt on the inliers),
+ *   4. judges it (TrackingState: inliers, their fraction, the jump from
+ *      the prediction),
+ *   5. drops the outliers and, when few features are left, detects new
+ *      corners and casts their rays into the model from the new pose.
+ *
+ * A frame where the pose cannot be found is Lost and reported at the
+ * prediction. When fewer than `minInliers` features are left (after a blank
+ * or blurred frame), the next frame is Lost too and its corners are cast
+ * from the prediction, so tracking resumes by itself when the scope moved as
+ * predicted. Relocalisation against the CT when it did not (a multi-start
+ * near the last good pose) is not part of this tracker yet.
+ *
+ * Frames must be undistorted (the ideal pinhole of the intrinsics) and of
+ * the intrinsics' size. Not thread-safe: one tracker per video stream.
+ */
+class EndoscopeTracker
+{
+public:
+  /**
+   * @param modelCT the registered model (CT frame, mm; normals into the air)
+   * @param intrinsics the undistorted frames' pinhole camera
+   * @throws vimlop::Error for invalid options or intrinsics, or a mesh without faces.
+   */
+  EndoscopeTracker(const TriangleMesh& modelCT, const PinholeCamera& intrinsics,
+    const EndoscopeTrackerOptions& options = {});
+  ~EndoscopeTracker();
+  EndoscopeTracker(const EndoscopeTracker&) = delete;
+  EndoscopeTracker& operator=(const EndoscopeTracker&) = delete;
+
+  /**
+   * @brief Starts (or restarts) on `frame`, whose camera is at `cameraToCT`
+   * (a registration's pose of that frame): detects its features and
+   * the model points they stand for.
+   * @throws vimlop::Error for a frame of another size than the intrinsics,
+   * or when no feature's ray hits the model (a camera outside the airway).
+   */
+  TrackedFrame start(const cv::Mat& frame, const CameraPose& cameraToCT);
+
+  /**
+   * @brief The pose of the next frame.
+   * @throws vimlop::Error before start(), or for a frame of another size.
+   */
+  TrackedFrame track(const cv::Mat& frame);
+
+  const EndoscopeTrackerOptions& options() const;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> d;
+};
+
+} // namespace vimlop
+
+#endif

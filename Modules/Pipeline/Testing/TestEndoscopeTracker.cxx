@@ -1,0 +1,81 @@
+#include <vimlop/Pipeline/EndoscopeTracker.h>
+
+#include "ErrorMessage.h"
+#include "TestMeshes.h"
+
+#include <gtest/gtest.h>
+
+namespace vimlop
+{
+namespace
+{
+
+PinholeCamera camera()
+{
+  PinholeCamera k;
+  k.fx = k.fy = 200.0;
+  k.cx = 159.5;
+  k.cy = 119.5;
+  k.widthPx = 320;
+  k.heightPx = 240;
+  return k;
+}
+
+/// A camera on the axis of the tube (radius 4 mm, along z), looking down it.
+CameraPose onTheAxis()
+{
+  return CameraPose::lookAt(
+    Eigen::Vector3d(0.0, 0.0, 10.0), Eigen::Vector3d(0.0, 0.0, 30.0), Eigen::Vector3d::UnitY());
+}
+
+TEST(EndoscopeTracker, RefusesFramesOfAnotherSizeAndTrackingBeforeItStarted)
+{
+  EndoscopeTracker tracker(fixtures::makeTube(4.0, 60.0, 0.35), camera());
+  const cv::Mat frame(240, 320, CV_8UC3, cv::Scalar(90, 90, 160));
+  EXPECT_EQ(fixtures::errorMessageOf([&] { tracker.track(frame); }),
+    "endoscope tracker: start() on a registered frame first");
+  EXPECT_EQ(
+    fixtures::errorMessageOf([&] { tracker.start(cv::Mat(480, 640, CV_8UC3), onTheAxis()); }),
+    "endoscope tracker: a frame of 640 x 480 pixels, but the intrinsics are for 320 x 240");
+}
+
+TEST(EndoscopeTracker, RefusesToStartOnAFrameWithoutTexture)
+{
+  // A flat frame has no corners: there is nothing to follow.
+  EndoscopeTracker tracker(fixtures::makeTube(4.0, 60.0, 0.35), camera());
+  const cv::Mat flat(240, 320, CV_8UC3, cv::Scalar(90, 90, 160));
+  EXPECT_EQ(fixtures::errorMessageOf([&] { tracker.start(flat, onTheAxis()); }),
+    "endoscope tracker: only 0 corners of the first frame stand for a point of the model (at "
+    "least 25 needed): is the camera inside the airway, and the frame textured?");
+}
+
+TEST(EndoscopeTracker, NamesEachStateAndRefusesOptionsOutOfRange)
+{
+  EXPECT_STREQ(toString(TrackingState::Tracking), "tracking");
+  EXPECT_STREQ(toString(TrackingState::Degraded), "degraded");
+  EXPECT_STREQ(toString(TrackingState::Lost), "lost");
+  const TriangleMesh tube = fixtures::makeTube(4.0, 60.0, 0.35);
+  auto refusal = [&](const EndoscopeTrackerOptions& o)
+  { return fixtures::errorMessageOf([&] { EndoscopeTracker t(tube, camera(), o); }); };
+  EndoscopeTrackerOptions o;
+  o.redetectBelow = 400;
+  EXPECT_EQ(refusal(o),
+    "endoscope tracker: new corners must be sought below a count in [0, the most features], not "
+    "400");
+  o = {};
+  o.minInliers = 3;
+  EXPECT_EQ(refusal(o), "endoscope tracker: a pose needs at least 6 inliers, not 3");
+  o = {};
+  o.minIncidenceCosine = 1.0;
+  EXPECT_EQ(refusal(o), "endoscope tracker: the least incidence cosine must lie in [0, 1), not 1");
+  o = {};
+  o.features.windowPx = 4;
+  EXPECT_EQ(
+    refusal(o), "feature tracking: the window must be an odd number of pixels, at least 5, not 4");
+  PinholeCamera noSize = camera();
+  noSize.widthPx = 0;
+  EXPECT_NE(fixtures::errorMessageOf([&] { EndoscopeTracker t(tube, noSize); }), "no error");
+}
+
+} // namespace
+} // namespace vimlop
