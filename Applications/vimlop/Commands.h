@@ -65,6 +65,8 @@ void addServeCommand(CLI::App& app);
 void addSfmCommand(CLI::App& app);
 /// @brief Adds `vimlop simulate`: a virtual endoscope sequence in the airway of a CT.
 void addSimulateCommand(CLI::App& app);
+/// @brief Adds `vimlop track`: the pose of every frame after a registration (EndoscopeTracker).
+void addTrackCommand(CLI::App& app);
 /// @brief Adds `vimlop warp`: template CT to patient CT, with meshes and poses carried over.
 void addWarpCommand(CLI::App& app);
 

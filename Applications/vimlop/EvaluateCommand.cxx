@@ -7,6 +7,7 @@
 #include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Evaluation/SyntheticDataSurface.h>
 #include <vimlop/Evaluation/SyntheticProtocol.h>
+#include <vimlop/Evaluation/TrackingProtocol.h>
 #include <vimlop/Evaluation/VideoProtocol.h>
 #include <vimlop/Evaluation/WorldPreset.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
@@ -120,6 +121,50 @@ void runVideo(VideoCommand c)
     ? makeSimulatedWorld(loadAirwayMesh(c.mesh), c.world.model)
     : makeSimulatedWorld(readCTVolume(c.ct), c.world.model, terminalEvaluationProgress());
   const VideoProtocolReport report = runVideoProtocol(world, options, terminalEvaluationProgress());
+  writeJsonFile(report.toJson(), c.out);
+  printSummary({ report.summaryLines(), report.toJson() }, c.json);
+}
+
+struct TrackingCommand
+{
+  std::string mesh, ct, out;
+  TrackingProtocolOptions protocol;
+  /// The world; its video settings (600 frames along a 48-pose path by
+  /// default) become the protocol's sequence.
+  WorldSettings world = []
+  {
+    WorldSettings w;
+    w.video = TrackingProtocolOptions::defaultSimulation();
+    return w;
+  }();
+  bool json = false;
+};
+
+void runTracking(TrackingCommand c)
+{
+  TrackingProtocolOptions& options = c.protocol;
+  options.simulation = c.world.video;
+  options.simulation.replay.leadFrames = options.registrationFrames;
+  if (options.registration.workFolder.empty())
+  {
+    options.registration.workFolder = c.out + ".work";
+  }
+  options.validate();
+  c.world.model.validate();
+  if (c.mesh.empty() == c.ct.empty())
+  {
+    throw Error("give exactly one of --mesh and --ct");
+  }
+  if (c.ct.empty())
+  {
+    c.world.model.requireMeshWorld();
+  }
+  requireOffscreenRendering("vimlop evaluate tracking");
+  const SimulatedWorld world = c.ct.empty()
+    ? makeSimulatedWorld(loadAirwayMesh(c.mesh), c.world.model)
+    : makeSimulatedWorld(readCTVolume(c.ct), c.world.model, terminalEvaluationProgress());
+  const TrackingProtocolReport report =
+    runTrackingProtocol(world, options, terminalEvaluationProgress());
   writeJsonFile(report.toJson(), c.out);
   printSummary({ report.summaryLines(), report.toJson() }, c.json);
 }
@@ -262,6 +307,43 @@ CLI::App* addEvaluateCommand(CLI::App& app)
   addPipelineOptions(*p2, p2Options.pipeline);
   addJsonFlag(*p2, video->json);
   p2->callback([video] { runVideo(*video); });
+
+  auto tracking = std::make_shared<TrackingCommand>();
+  TrackingProtocolOptions& trackingOptions = tracking->protocol;
+  CLI::App* track = evaluate->add_subcommand("tracking",
+    "Tracking (issue 16): a long simulated sequence (forward and back, pauses, fast moves), its "
+    "first frames registered by the main job, the rest tracked frame by frame; camera errors, "
+    "drift, latency, frames tracked");
+  addModelOptions(*track, tracking->mesh, tracking->ct);
+  track->add_option("--out", tracking->out, "result JSON file")->required();
+  track->add_option("--frames", tracking->world.video.frames, "frames of the sequence")
+    ->capture_default_str()
+    ->check(CLI::Range(4, 100000));
+  track
+    ->add_option("--path-frames", tracking->world.video.replay.pathFrames,
+      "poses of the path the sequence plays along (forward and back)")
+    ->capture_default_str()
+    ->check(CLI::Range(2, 10000));
+  track
+    ->add_option("--seed", tracking->world.video.seed, "random seed (path, texture, noise, start)")
+    ->capture_default_str();
+  track
+    ->add_option("--registration-frames", trackingOptions.registrationFrames,
+      "frames registered by the main job before tracking")
+    ->capture_default_str();
+  track
+    ->add_option("--max-features", trackingOptions.tracker.maxFeatures, "features tracked at most")
+    ->capture_default_str();
+  track
+    ->add_option("--inlier-px", trackingOptions.tracker.inlierThresholdPx,
+      "a feature agrees with a pose within this reprojection error, px")
+    ->capture_default_str();
+  addWorldPresetOption(*track, tracking->world);
+  addSimulationOptions(*track, tracking->world.video);
+  addWorldOptions(*track, tracking->world.model);
+  addPipelineOptions(*track, trackingOptions.registration.pipeline);
+  addJsonFlag(*track, tracking->json);
+  track->callback([tracking] { runTracking(*tracking); });
 
   auto perturbation = std::make_shared<PerturbationCommand>();
   PerturbationProtocolOptions& p3Options = perturbation->protocol;

@@ -47,6 +47,7 @@ int main(int argc, char** argv)
   vimlop::addSfmCommand(app);
   vimlop::addReportCommand(app);
   vimlop::addRegisterCommand(app);
+  vimlop::addTrackCommand(app);
   vimlop::addCanonicalCommand(app);
   vimlop::addCalibrateCommand(app);
   vimlop::addCohortCommand(app);

@@ -32,6 +32,7 @@ Summary summarize(std::vector<double> values)
   s.mean = std::accumulate(values.begin(), values.end(), 0.0) / values.size();
   s.median = quantile(values, 0.5);
   s.p95 = quantile(values, 0.95);
+  s.p99 = quantile(values, 0.99);
   s.max = values.back();
   return s;
 }

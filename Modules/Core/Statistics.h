@@ -12,10 +12,11 @@ struct Summary
   double mean = 0.0;
   double median = 0.0;
   double p95 = 0.0;
+  double p99 = 0.0;
   double max = 0.0;
 };
 
-/// @brief Mean, median, 95th percentile (linear interpolation) and maximum.
+/// @brief Mean, median, 95th and 99th percentiles (linear interpolation) and maximum.
 Summary summarize(std::vector<double> values);
 
 /**

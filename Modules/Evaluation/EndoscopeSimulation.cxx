@@ -66,6 +66,7 @@ void EndoscopeSimulationOptions::validate() const
   this->fieldStop.validate();
   this->artifacts.validate();
   this->trajectory.validate();
+  this->replay.validate();
   const Eigen::Index coefficients = this->intrinsics.distortion.size();
   // PinholeCamera::validate() above refuses a fisheye without its 4 and
   // counts OpenCV does not know; the simulated lens implements fewer.
@@ -134,12 +135,16 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
 {
   o.validate();
   EndoscopeTrajectoryOptions path = o.trajectory;
-  path.frames = o.frames;
+  path.frames = o.replay.isOff() ? o.frames : o.replay.pathFrames;
   path.intrinsics = o.intrinsics;
   SimulatedVideo video;
   video.intrinsics = o.intrinsics;
   video.calibratedIntrinsics = calibratedIntrinsics(o);
   video.camerasCT = makeEndoscopeTrajectory(model, path, o.seed);
+  if (!o.replay.isOff())
+  {
+    video.camerasCT = replayPath(video.camerasCT, o.frames, o.replay, o.seed);
+  }
 
   // The lens, the field stop and the artifacts of the light act on the
   // picture the optics form, before the sensor adds its noise; without them

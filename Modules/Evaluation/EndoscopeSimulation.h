@@ -3,6 +3,7 @@
 
 #include <vimlop/Core/CameraPose.h>
 #include <vimlop/Core/DepthMap.h>
+#include <vimlop/Core/PathReplay.h>
 #include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Core/RegistrationModel.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
@@ -67,6 +68,11 @@ struct EndoscopeSimulationOptions
   Eigen::Vector2d calibrationPrincipalPointErrorPx = Eigen::Vector2d::Zero();
   /// The endoscope's image circle and vignetting (default none).
   FieldStopOptions fieldStop;
+  /// Long sequences (issue 16): with `replay.pathFrames` > 0, a path of that
+  /// many poses is made and the `frames` frames are played along it forward
+  /// and back, with pauses and fast moves (PathReplay.h; drawn from `seed`).
+  /// Default off: the path has one pose per frame.
+  PathReplayOptions replay;
   /// The path: frames, step, clearance, sway, tremor, turn (frames and
   /// intrinsics are set from above).
   EndoscopeTrajectoryOptions trajectory;

@@ -5,6 +5,8 @@
 #include <vimlop/Raycast/EmbreeScene.h>
 #include <vimlop/Video/CameraResection.h>
 
+#include <Eigen/Geometry>
+
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -54,6 +56,10 @@ void EndoscopeTrackerOptions::validate() const
   if (!(this->maxJumpMm > 0.0))
   {
     refuse("the largest jump must be positive (mm)", this->maxJumpMm);
+  }
+  if (!(this->maxTurnDeg > 0.0))
+  {
+    refuse("the largest turn must be positive (degrees)", this->maxTurnDeg);
   }
   if (!(this->maxDepthMm > 0.0))
   {
@@ -206,8 +212,17 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
   const CameraPose predicted = s.predict();
   TrackedFrame r;
   r.frame = ++s.Frame;
+  // Until a pose is found: lost, at the prediction.
   r.cameraToCT = predicted;
   r.state = TrackingState::Lost;
+  auto finish = [&]
+  {
+    s.BeforeLast = s.Last;
+    s.Last = r.cameraToCT;
+    r.latencyMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+    return r;
+  };
   if (static_cast<int>(s.Features.size()) < s.Options.minInliers)
   {
     // Too few features to find a pose (after a blank or blurred frame): this
@@ -216,12 +231,8 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     // predicted, they stand for the right points and tracking resumes.
     s.Klt.reset(frame);
     s.Features.clear();
-    r.newFeatures = s.addFeatures(predicted);
-    s.BeforeLast = s.Last;
-    s.Last = predicted;
-    r.latencyMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
-    return r;
+    r.newFeatures = s.addFeatures(r.cameraToCT);
+    return finish();
   }
 
   std::vector<Eigen::Vector2d> pixels;
@@ -251,8 +262,12 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
   pnp.solver = ResectionSolver::IterativeFromGuess;
   const std::optional<CameraResection> pose =
     resectCamera(points, seen, s.Intrinsics, pnp, &predicted);
-  if (pose && static_cast<int>(pose->inliers.size()) >= s.Options.minInliers &&
-    (pose->cameraToWorld.centre - predicted.centre).norm() <= s.Options.maxJumpMm)
+  const bool believable = pose && static_cast<int>(pose->inliers.size()) >= s.Options.minInliers &&
+    pose->rmsErrorPx <= s.Options.inlierThresholdPx &&
+    (pose->cameraToWorld.centre - predicted.centre).norm() <= s.Options.maxJumpMm &&
+    Eigen::AngleAxisd(predicted.rotation.transpose() * pose->cameraToWorld.rotation).angle() <=
+      s.Options.maxTurnDeg * M_PI / 180.0;
+  if (believable)
   {
     r.cameraToCT = pose->cameraToWorld;
     r.inliers = static_cast<int>(pose->inliers.size());
@@ -269,18 +284,19 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     }
     followed = std::move(agreeing);
   }
+  if (r.state == TrackingState::Lost)
+  {
+    // Their model points were right for the last pose found; the next
+    // frame sees whether they agree again.
+    s.Features = std::move(followed);
+    return finish();
+  }
   s.Features = std::move(followed);
   if (static_cast<int>(s.Features.size()) < s.Options.redetectBelow)
   {
-    // Lost, these stand for the model seen from the prediction: they let the
-    // next frames recover when the prediction was close.
     r.newFeatures = s.addFeatures(r.cameraToCT);
   }
-  s.BeforeLast = s.Last;
-  s.Last = r.cameraToCT;
-  r.latencyMs =
-    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
-  return r;
+  return finish();
 }
 
 } // namespace vimlop

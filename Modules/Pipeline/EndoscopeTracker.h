@@ -46,6 +46,9 @@ struct EndoscopeTrackerOptions
   /// A pose farther than this from the prediction is not believed (Lost),
   /// mm (default 5: the scope moves at most a few mm between frames at 30 Hz).
   double maxJumpMm = 5.0;
+  /// Nor one turned by more than this from the prediction, degrees (default
+  /// 10: a hand turns a scope by a few degrees between frames at 30 Hz).
+  double maxTurnDeg = 10.0;
   /// New features stand for the model surface point their ray hits, at
   /// most this far from the camera, mm (default 60).
   double maxDepthMm = 60.0;
@@ -93,12 +96,14 @@ struct TrackedFrame
  *   5. drops the outliers and, when few features are left, detects new
  *      corners and casts their rays into the model from the new pose.
  *
- * A frame where the pose cannot be found is Lost and reported at the
+ * A frame where no pose is found, or none that agrees with enough features
+ * after the refinement, or one too far from the prediction (a jump or a
+ * turn no hand makes between frames), is Lost and reported at the
  * prediction. When fewer than `minInliers` features are left (after a blank
  * or blurred frame), the next frame is Lost too and its corners are cast
- * from the prediction, so tracking resumes by itself when the scope moved as
- * predicted. Relocalisation against the CT when it did not (a multi-start
- * near the last good pose) is not part of this tracker yet.
+ * from the prediction, so tracking resumes by itself when the scope moved
+ * as predicted. Relocalisation against the CT when it did not
+ * (a multi-start near the last good pose) is not part of this tracker yet.
  *
  * Frames must be undistorted (the ideal pinhole of the intrinsics) and of
  * the intrinsics' size. Not thread-safe: one tracker per video stream.

@@ -12,6 +12,9 @@ TEST(Statistics, SummaryOfASample)
   EXPECT_DOUBLE_EQ(s.mean, 2.5);
   EXPECT_DOUBLE_EQ(s.median, 2.5);
   EXPECT_DOUBLE_EQ(s.max, 4.0);
+  // Linear interpolation between ranks: 3 + 0.85 and 3 + 0.97 of the last step.
+  EXPECT_DOUBLE_EQ(s.p95, 3.85);
+  EXPECT_DOUBLE_EQ(s.p99, 3.97);
   EXPECT_DOUBLE_EQ(summarize({}).mean, 0.0);
 }
 

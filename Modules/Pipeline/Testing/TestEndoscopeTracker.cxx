@@ -10,17 +10,6 @@ namespace vimlop
 namespace
 {
 
-PinholeCamera camera()
-{
-  PinholeCamera k;
-  k.fx = k.fy = 200.0;
-  k.cx = 159.5;
-  k.cy = 119.5;
-  k.widthPx = 320;
-  k.heightPx = 240;
-  return k;
-}
-
 /// A camera on the axis of the tube (radius 4 mm, along z), looking down it.
 CameraPose onTheAxis()
 {
@@ -30,7 +19,8 @@ CameraPose onTheAxis()
 
 TEST(EndoscopeTracker, RefusesFramesOfAnotherSizeAndTrackingBeforeItStarted)
 {
-  EndoscopeTracker tracker(fixtures::makeTube(4.0, 60.0, 0.35), camera());
+  EndoscopeTracker tracker(
+    fixtures::makeTube(4.0, 60.0, 0.35), PinholeCamera::simulatedEndoscope());
   const cv::Mat frame(240, 320, CV_8UC3, cv::Scalar(90, 90, 160));
   EXPECT_EQ(fixtures::errorMessageOf([&] { tracker.track(frame); }),
     "endoscope tracker: start() on a registered frame first");
@@ -42,7 +32,8 @@ TEST(EndoscopeTracker, RefusesFramesOfAnotherSizeAndTrackingBeforeItStarted)
 TEST(EndoscopeTracker, RefusesToStartOnAFrameWithoutTexture)
 {
   // A flat frame has no corners: there is nothing to follow.
-  EndoscopeTracker tracker(fixtures::makeTube(4.0, 60.0, 0.35), camera());
+  EndoscopeTracker tracker(
+    fixtures::makeTube(4.0, 60.0, 0.35), PinholeCamera::simulatedEndoscope());
   const cv::Mat flat(240, 320, CV_8UC3, cv::Scalar(90, 90, 160));
   EXPECT_EQ(fixtures::errorMessageOf([&] { tracker.start(flat, onTheAxis()); }),
     "endoscope tracker: only 0 corners of the first frame stand for a point of the model (at "
@@ -56,7 +47,10 @@ TEST(EndoscopeTracker, NamesEachStateAndRefusesOptionsOutOfRange)
   EXPECT_STREQ(toString(TrackingState::Lost), "lost");
   const TriangleMesh tube = fixtures::makeTube(4.0, 60.0, 0.35);
   auto refusal = [&](const EndoscopeTrackerOptions& o)
-  { return fixtures::errorMessageOf([&] { EndoscopeTracker t(tube, camera(), o); }); };
+  {
+    return fixtures::errorMessageOf(
+      [&] { EndoscopeTracker t(tube, PinholeCamera::simulatedEndoscope(), o); });
+  };
   EndoscopeTrackerOptions o;
   o.redetectBelow = 400;
   EXPECT_EQ(refusal(o),
@@ -72,7 +66,7 @@ TEST(EndoscopeTracker, NamesEachStateAndRefusesOptionsOutOfRange)
   o.features.windowPx = 4;
   EXPECT_EQ(
     refusal(o), "feature tracking: the window must be an odd number of pixels, at least 5, not 4");
-  PinholeCamera noSize = camera();
+  PinholeCamera noSize = PinholeCamera::simulatedEndoscope();
   noSize.widthPx = 0;
   EXPECT_NE(fixtures::errorMessageOf([&] { EndoscopeTracker t(tube, noSize); }), "no error");
 }

@@ -77,5 +77,27 @@ TEST(EndoscopeTracker, IsLostOnABlankFrameAndRecoversByItself)
   }
 }
 
+TEST(EndoscopeTracker, DoesNotBelieveAPoseThatJumpsOrTurnsMoreThanAllowed)
+{
+  // The scope moves 0.5 mm a frame and turns by a fraction of a degree:
+  // with limits far below that, no pose is believed, and every frame is
+  // lost, reported at the prediction.
+  const fixtures::Sequence& s = fixtures::sequence();
+  for (int limit = 0; limit < 2; ++limit)
+  {
+    EndoscopeTrackerOptions o;
+    (limit == 0 ? o.maxJumpMm : o.maxTurnDeg) = 1e-3;
+    EndoscopeTracker tracker(s.mesh, s.intrinsics, o);
+    tracker.start(s.frames[0], s.poses[0]);
+    for (std::size_t f = 1; f < 4; ++f)
+    {
+      const TrackedFrame r = tracker.track(s.frames[f]);
+      EXPECT_EQ(r.state, TrackingState::Lost) << limit << " " << f;
+      EXPECT_EQ(r.inliers, 0) << limit << " " << f;
+      EXPECT_GT(r.trackedFeatures, o.minInliers) << limit << " " << f;
+    }
+  }
+}
+
 } // namespace
 } // namespace vimlop

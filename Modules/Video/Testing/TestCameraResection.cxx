@@ -14,17 +14,6 @@ using namespace vimlop;
 namespace
 {
 
-PinholeCamera camera()
-{
-  PinholeCamera k;
-  k.fx = k.fy = 200.0;
-  k.cx = 159.5;
-  k.cy = 119.5;
-  k.widthPx = 320;
-  k.heightPx = 240;
-  return k;
-}
-
 /// A camera looking into a folded wall of points 10-30 mm ahead, and where
 /// they project; every fifth correspondence is moved by 15 px (an outlier).
 struct Scene
@@ -51,7 +40,8 @@ Scene scene()
   {
     const Eigen::Vector2d pixel(10.0 + 300.0 * uniform(), 10.0 + 220.0 * uniform());
     const double depth = 10.0 + 20.0 * uniform();
-    s.points.push_back(s.truth.cameraToWorld(camera().backProject(pixel, depth)));
+    s.points.push_back(
+      s.truth.cameraToWorld(PinholeCamera::simulatedEndoscope().backProject(pixel, depth)));
     s.outlier.push_back(i % 5 == 0);
     s.pixels.push_back(
       pixel + (s.outlier.back() ? Eigen::Vector2d(15.0, -9.0) : Eigen::Vector2d::Zero()));
@@ -73,7 +63,8 @@ TEST(CameraResection, FindsThePoseFromPointsWithAFifthOfOutliers)
     guess.centre += Eigen::Vector3d(1.2, -1.0, 1.2);
     guess.rotation =
       guess.rotation * Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX()).toRotationMatrix();
-    const auto r = resectCamera(s.points, s.pixels, camera(), options, &guess);
+    const auto r =
+      resectCamera(s.points, s.pixels, PinholeCamera::simulatedEndoscope(), options, &guess);
     ASSERT_TRUE(r);
     EXPECT_LT(cameraPositionError(r->cameraToWorld, s.truth), 1e-6);
     EXPECT_LT(cameraAngleErrorDeg(r->cameraToWorld, s.truth), 1e-6);
@@ -91,17 +82,20 @@ TEST(CameraResection, FindsNoPoseFromTooFewPointsAndRefusesBadInput)
   const Scene s = scene();
   const std::vector<Eigen::Vector3d> five(s.points.begin() + 1, s.points.begin() + 6);
   const std::vector<Eigen::Vector2d> fivePixels(s.pixels.begin() + 1, s.pixels.begin() + 6);
-  EXPECT_FALSE(resectCamera(five, fivePixels, camera(), {}));
-  EXPECT_EQ(fixtures::errorMessageOf([&] { resectCamera(five, s.pixels, camera(), {}); }),
+  EXPECT_FALSE(resectCamera(five, fivePixels, PinholeCamera::simulatedEndoscope(), {}));
+  EXPECT_EQ(fixtures::errorMessageOf(
+              [&] { resectCamera(five, s.pixels, PinholeCamera::simulatedEndoscope(), {}); }),
     "camera resection: 5 points but 120 pixels");
   CameraResectionOptions fromGuess;
   fromGuess.solver = ResectionSolver::IterativeFromGuess;
   EXPECT_EQ(
-    fixtures::errorMessageOf([&] { resectCamera(s.points, s.pixels, camera(), fromGuess); }),
+    fixtures::errorMessageOf(
+      [&] { resectCamera(s.points, s.pixels, PinholeCamera::simulatedEndoscope(), fromGuess); }),
     "camera resection: the iterative solver needs a starting pose");
   CameraResectionOptions threshold;
   threshold.thresholdPx = 0.0;
   EXPECT_EQ(
-    fixtures::errorMessageOf([&] { resectCamera(s.points, s.pixels, camera(), threshold); }),
+    fixtures::errorMessageOf(
+      [&] { resectCamera(s.points, s.pixels, PinholeCamera::simulatedEndoscope(), threshold); }),
     "camera resection: the inlier threshold must be positive, not 0 px");
 }

@@ -1,0 +1,212 @@
+#include <vimlop/Evaluation/TrackingProtocol.h>
+
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/Registration.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Core/TextFormat.h>
+#include <vimlop/Evaluation/SimulatedVideoCase.h>
+#include <vimlop/Evaluation/SimulatedWorld.h>
+#include <vimlop/Pipeline/VideoRegistrationPipeline.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
+
+#include <algorithm>
+#include <chrono>
+#include <random>
+
+namespace vimlop
+{
+
+namespace
+{
+
+nlohmann::json summaryJson(const Summary& s)
+{
+  return { { "mean", s.mean }, { "median", s.median }, { "p95", s.p95 }, { "p99", s.p99 },
+    { "max", s.max } };
+}
+
+double meanOf(
+  const std::vector<TrackingProtocolFrame>& frames, std::size_t first, std::size_t count)
+{
+  double sum = 0.0;
+  for (std::size_t i = first; i < first + count; ++i)
+  {
+    sum += frames[i].positionErrorMm;
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+} // namespace
+
+EndoscopeSimulationOptions TrackingProtocolOptions::defaultSimulation()
+{
+  EndoscopeSimulationOptions s;
+  s.frames = 600;
+  s.replay.pathFrames = 48;
+  s.replay.leadFrames = 30;
+  return s;
+}
+
+void TrackingProtocolOptions::validate() const
+{
+  this->simulation.validate();
+  if (this->simulation.intrinsics.hasDistortion())
+  {
+    throw Error("evaluate tracking: the tracker takes undistorted frames, and undistorting a "
+                "simulated lens is not supported yet: leave out the lens distortion");
+  }
+  if (this->registrationFrames < 3 || this->registrationFrames >= this->simulation.frames)
+  {
+    throw Error(formatText("evaluate tracking: %d frames registered of %d: at least 3, and fewer "
+                           "than the sequence has",
+      this->registrationFrames, this->simulation.frames));
+  }
+  if (this->simulation.replay.leadFrames < this->registrationFrames)
+  {
+    throw Error(formatText("evaluate tracking: the sequence must lead straight in over the %d "
+                           "frames registered (SfM needs their parallax), not %d",
+      this->registrationFrames, this->simulation.replay.leadFrames));
+  }
+  VideoProtocolOptions registration = this->registration;
+  registration.simulation = this->simulation;
+  registration.simulation.frames = this->registrationFrames;
+  registration.validate();
+  this->tracker.validate();
+  if (!(this->flagErrorMm > 0.0))
+  {
+    throw Error(formatText(
+      "evaluate tracking: the error to flag must be positive, not %g mm", this->flagErrorMm));
+  }
+  if (this->driftFrames < 1)
+  {
+    throw Error(
+      formatText("evaluate tracking: the drift needs at least 1 frame at each end, not %d",
+        this->driftFrames));
+  }
+}
+
+nlohmann::json TrackingProtocolReport::toJson() const
+{
+  nlohmann::json frames = nlohmann::json::array();
+  for (const TrackingProtocolFrame& f : this->perFrame)
+  {
+    frames.push_back({ { "frame", f.frame }, { "state", f.state },
+      { "camera_position_mm", f.positionErrorMm }, { "camera_angle_deg", f.angleErrorDeg },
+      { "tracked_features", f.trackedFeatures }, { "inliers", f.inliers },
+      { "reprojection_error_px", f.reprojectionErrorPx }, { "latency_ms", f.latencyMs } });
+  }
+  return { { "protocol", "tracking" }, { "frames", this->frames }, { "seed", this->seed },
+    { "registration",
+      { { "frames", this->registrationFrames }, { "camera_position_mm", this->registrationErrorMm },
+        { "runtime_s", this->registrationSeconds } } },
+    { "start_frame", this->startFrame }, { "latency_ms", summaryJson(this->latencyMs) },
+    { "camera_position_mm", summaryJson(this->positionErrorMm) },
+    { "camera_angle_deg", summaryJson(this->angleErrorDeg) }, { "drift_mm", this->driftMm },
+    { "tracked_fraction", this->trackedFraction }, { "degraded_frames", this->degradedFrames },
+    { "lost_frames", this->lostFrames },
+    { "unflagged_frames_over_2mm", this->unflaggedFramesOverLimit },
+    { "flag_error_mm", this->flagErrorMm }, { "per_frame", frames } };
+}
+
+std::vector<std::string> TrackingProtocolReport::summaryLines() const
+{
+  return {
+    formatText("tracking: %d frames, registered on the first %d (camera %.3f mm, %.1f s), "
+               "tracked from frame %d",
+      this->frames, this->registrationFrames, this->registrationErrorMm, this->registrationSeconds,
+      this->startFrame),
+    formatText("tracking: camera %.3f mm mean (p95 %.3f, max %.3f), %.3f deg mean; drift %.3f mm",
+      this->positionErrorMm.mean, this->positionErrorMm.p95, this->positionErrorMm.max,
+      this->angleErrorDeg.mean, this->driftMm),
+    formatText("tracking: latency %.1f ms median, %.1f ms p99; %.1f %% of frames tracked (%d "
+               "degraded, %d lost); %d frames over %.1f mm not flagged",
+      this->latencyMs.median, this->latencyMs.p99, 100.0 * this->trackedFraction,
+      this->degradedFrames, this->lostFrames, this->unflaggedFramesOverLimit, this->flagErrorMm),
+  };
+}
+
+TrackingProtocolReport runTrackingProtocol(
+  const SimulatedWorld& world, const TrackingProtocolOptions& o, const EvaluationProgress& progress)
+{
+  o.validate();
+  auto say = [&](const std::string& text) { reportEvaluationNote(progress, "tracking: " + text); };
+
+  // The registration of the first frames, as P2 does it. The shorter
+  // sequence is the long one's beginning: the same path, replayed from the
+  // same seed, rendered with the same per-frame noise.
+  VideoProtocolOptions registration = o.registration;
+  registration.simulation = o.simulation;
+  registration.simulation.frames = o.registrationFrames;
+  const auto began = std::chrono::steady_clock::now();
+  const SimulatedVideoCase c = prepareSimulatedVideoCase(world, registration, progress);
+  const RegistrationModel& model = c.pipeline->model();
+  std::mt19937_64 rng(o.simulation.seed * 2654435761ull + 99ull);
+  const SimilarityTransform start = perturbedStart(c, model, rng, registration.perturbMinMm,
+    registration.perturbMaxMm, registration.perturbMinDeg, registration.perturbMaxDeg);
+  const RegistrationResult registered =
+    registerVideo(model, c.data, start, registration.pipeline.registrationOptions(c.initialScale));
+  TrackingProtocolReport report;
+  report.frames = o.simulation.frames;
+  report.seed = o.simulation.seed;
+  report.registrationFrames = o.registrationFrames;
+  report.registrationErrorMm = cameraErrors(c, registered.sfmToCT, 0.0).positionMeanMm;
+  report.registrationSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  report.flagErrorMm = o.flagErrorMm;
+  // Tracking starts on the last frame SfM registered.
+  const auto last = std::max_element(c.frameOf.begin(), c.frameOf.end());
+  const std::size_t lastData = static_cast<std::size_t>(last - c.frameOf.begin());
+  report.startFrame = *last;
+  const CameraPose startPose = registered.sfmToCT.apply(c.data.frames[lastData].cameraToSfm);
+  say(formatText("registered %d frames: camera %.3f mm; tracking from frame %d",
+    o.registrationFrames, report.registrationErrorMm, report.startFrame));
+
+  // The whole sequence, from the same truth.
+  const RegistrationModel truth = makeEmbreeRegistrationModel(world.truth);
+  const SimulatedVideo video = simulateEndoscopeVideo(truth, o.simulation, progress);
+  EndoscopeTracker tracker(world.model, video.calibratedIntrinsics, o.tracker);
+  tracker.start(video.frames[static_cast<std::size_t>(report.startFrame)], startPose);
+  std::vector<double> latency, position, angle;
+  for (int f = report.startFrame + 1; f < o.simulation.frames; ++f)
+  {
+    const TrackedFrame t = tracker.track(video.frames[static_cast<std::size_t>(f)]);
+    TrackingProtocolFrame r;
+    r.frame = f;
+    r.state = toString(t.state);
+    r.positionErrorMm =
+      cameraPositionError(t.cameraToCT, video.camerasCT[static_cast<std::size_t>(f)]);
+    r.angleErrorDeg =
+      cameraAngleErrorDeg(t.cameraToCT, video.camerasCT[static_cast<std::size_t>(f)]);
+    r.trackedFeatures = t.trackedFeatures;
+    r.inliers = t.inliers;
+    r.reprojectionErrorPx = t.reprojectionErrorPx;
+    r.latencyMs = t.latencyMs;
+    report.degradedFrames += t.state == TrackingState::Degraded;
+    report.lostFrames += t.state == TrackingState::Lost;
+    report.unflaggedFramesOverLimit +=
+      t.state == TrackingState::Tracking && r.positionErrorMm > o.flagErrorMm;
+    if (t.state != TrackingState::Lost)
+    {
+      position.push_back(r.positionErrorMm);
+      angle.push_back(r.angleErrorDeg);
+    }
+    latency.push_back(r.latencyMs);
+    report.perFrame.push_back(r);
+    reportEvaluationCount(progress, "tracking: frame", f - report.startFrame,
+      o.simulation.frames - 1 - report.startFrame);
+  }
+  const std::size_t tracked = report.perFrame.size();
+  report.latencyMs = summarize(latency);
+  report.positionErrorMm = summarize(position);
+  report.angleErrorDeg = summarize(angle);
+  report.trackedFraction = tracked > 0
+    ? static_cast<double>(tracked - static_cast<std::size_t>(report.lostFrames)) /
+      static_cast<double>(tracked)
+    : 0.0;
+  const std::size_t ends =
+    std::min<std::size_t>(static_cast<std::size_t>(o.driftFrames), tracked / 2);
+  report.driftMm = meanOf(report.perFrame, tracked - ends, ends) - meanOf(report.perFrame, 0, ends);
+  return report;
+}
+
+} // namespace vimlop

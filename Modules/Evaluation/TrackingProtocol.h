@@ -1,0 +1,112 @@
+#ifndef vimlop_TrackingProtocol_h
+#define vimlop_TrackingProtocol_h
+
+#include <vimlop/Core/Statistics.h>
+#include <vimlop/Evaluation/EvaluationProgress.h>
+#include <vimlop/Evaluation/VideoProtocol.h>
+#include <vimlop/Pipeline/EndoscopeTracker.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vimlop
+{
+
+struct SimulatedWorld;
+
+/// @brief Settings of the tracking protocol (issue 16).
+struct TrackingProtocolOptions
+{
+  /// The sequence: 600 frames by default, played forward and back along a
+  /// path of 48 poses (24 mm at the path's 0.5 mm step: about the longest
+  /// straight stretch of the bundled CT's airway with room to look ahead),
+  /// with pauses and fast moves after a straight lead-in over the frames
+  /// registered (EndoscopeSimulationOptions::replay); seed, camera, the
+  /// world's error sources.
+  EndoscopeSimulationOptions simulation = defaultSimulation();
+  /// Frames registered by the main job before tracking starts (default 30,
+  /// the paper's sequence), from P2's start; their settings and start are
+  /// `registration`'s (its own `simulation` is ignored).
+  int registrationFrames = 30;
+  VideoProtocolOptions registration;
+  /// The tracker.
+  EndoscopeTrackerOptions tracker;
+  /// A frame farther than this from the truth is a failure the tracker must
+  /// flag (degraded or lost), mm (default 2, issue 16).
+  double flagErrorMm = 2.0;
+  /// Frames at each end of the tracked stretch whose mean errors give the
+  /// drift (default 60).
+  int driftFrames = 60;
+
+  /// @brief The default sequence (see `simulation`).
+  static EndoscopeSimulationOptions defaultSimulation();
+
+  /// @throws vimlop::Error naming the first invalid setting.
+  void validate() const;
+};
+
+/// @brief One tracked frame of the protocol, against the truth.
+struct TrackingProtocolFrame
+{
+  int frame = 0; ///< index in the sequence
+  std::string state;
+  double positionErrorMm = 0.0;
+  double angleErrorDeg = 0.0;
+  int trackedFeatures = 0;
+  int inliers = 0;
+  double reprojectionErrorPx = 0.0;
+  double latencyMs = 0.0;
+};
+
+/// @brief The result of the tracking protocol.
+struct TrackingProtocolReport
+{
+  int frames = 0;
+  std::uint64_t seed = 0;
+  /// The registration the tracker starts from: frames, camera position error
+  /// (mean, mm) over them, and the frame tracking starts on.
+  int registrationFrames = 0;
+  double registrationErrorMm = 0.0;
+  double registrationSeconds = 0.0;
+  int startFrame = 0;
+  /// Over the tracked frames (all after the start frame).
+  Summary latencyMs;
+  Summary positionErrorMm;
+  Summary angleErrorDeg;
+  /// Mean position error of the last `driftFrames` tracked frames minus that
+  /// of the first, mm.
+  double driftMm = 0.0;
+  /// Frames not lost, over the tracked frames.
+  double trackedFraction = 0.0;
+  int degradedFrames = 0;
+  int lostFrames = 0;
+  /// Frames farther than flagErrorMm from the truth and reported tracking.
+  int unflaggedFramesOverLimit = 0;
+  double flagErrorMm = 0.0;
+  std::vector<TrackingProtocolFrame> perFrame;
+
+  /// @brief The report as `vimlop evaluate tracking` writes it.
+  nlohmann::json toJson() const;
+  /// @brief The lines `vimlop evaluate tracking` prints.
+  std::vector<std::string> summaryLines() const;
+};
+
+/**
+ * @brief Runs the tracking protocol in `world`: simulates the long sequence
+ * from the world's truth, registers its first `registrationFrames` frames with
+ * the main job (as P2 does, on the sequence's user files), starts the tracker
+ * on the last registered frame at its registered pose, tracks every later
+ * frame against the world's model and scores each against the truth. Needs
+ * an X display.
+ * @throws vimlop::Error for invalid options, a sequence with lens distortion
+ * (the tracker takes undistorted frames; not supported yet), or when a stage fails.
+ */
+TrackingProtocolReport runTrackingProtocol(const SimulatedWorld& world,
+  const TrackingProtocolOptions& options, const EvaluationProgress& progress);
+
+} // namespace vimlop
+
+#endif

@@ -1,0 +1,48 @@
+#include <vimlop/Pipeline/TrackingStart.h>
+
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
+#include <vimlop/Results/RegistrationRecordIO.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <filesystem>
+
+namespace vimlop
+{
+
+TrackingStart TrackingStart::fromResult(const std::string& folder)
+{
+  const RegistrationRecord record = readRegistrationRecord(folder);
+  const std::vector<VideoFrame>& frames = record.data.frames;
+  if (frames.empty())
+  {
+    throwFileError(folder, "the result registered no frame to start tracking from");
+  }
+  // The last frame of the video that was registered: tracking goes on from it.
+  const auto last = std::max_element(frames.begin(), frames.end(),
+    [](const VideoFrame& a, const VideoFrame& b) { return a.frameId < b.frameId; });
+  const std::size_t j = static_cast<std::size_t>(last - frames.begin());
+  if (j >= record.frameImages.size() || record.frameImages[j].empty())
+  {
+    throwFileError(folder,
+      "the result holds no picture of its last registered frame (" + std::to_string(last->frameId) +
+        "), which tracking starts on");
+  }
+  const std::string picture = (std::filesystem::path(folder) / record.frameImages[j]).string();
+  TrackingStart start;
+  start.frame = cv::imread(picture, cv::IMREAD_COLOR);
+  if (start.frame.empty())
+  {
+    throwFileError(picture, "cannot read the picture of the last registered frame");
+  }
+  start.modelCT = record.model;
+  start.intrinsics = last->intrinsics;
+  start.cameraToCT = record.result.sfmToCT.apply(last->cameraToSfm);
+  start.frameId = last->frameId;
+  start.frameSource = j < record.frameSources.size() ? record.frameSources[j] : std::string();
+  return start;
+}
+
+} // namespace vimlop
