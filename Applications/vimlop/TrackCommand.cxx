@@ -38,17 +38,6 @@ struct TrackOptions
   bool json = false;
 };
 
-nlohmann::json matrixJson(const CameraPose& pose)
-{
-  const Eigen::Matrix4d m = pose.matrix();
-  nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < 4; ++r)
-  {
-    rows.push_back({ m(r, 0), m(r, 1), m(r, 2), m(r, 3) });
-  }
-  return rows;
-}
-
 void runTrack(const TrackOptions& o)
 {
   namespace fs = std::filesystem;
@@ -106,10 +95,9 @@ void runTrack(const TrackOptions& o)
     ++counts[static_cast<int>(t.state)];
     latency.push_back(t.latencyMs);
     nlohmann::json record = { { "frame_id", id }, { "source", sequence.name(i) },
-      { "state", toString(t.state) }, { "camera_to_ct", matrixJson(t.cameraToCT) },
-      { "tracked_features", t.trackedFeatures }, { "inliers", t.inliers },
-      { "reprojection_error_px", t.reprojectionErrorPx }, { "new_features", t.newFeatures },
-      { "latency_ms", t.latencyMs } };
+      { "state", toString(t.state) }, { "tracked_features", t.trackedFeatures },
+      { "inliers", t.inliers }, { "reprojection_error_px", t.reprojectionErrorPx },
+      { "new_features", t.newFeatures }, { "latency_ms", t.latencyMs } };
     const auto known = truth.find(id);
     if (known != truth.end())
     {

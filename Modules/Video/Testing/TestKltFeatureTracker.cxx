@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 
 using namespace vimlop;
 
@@ -67,6 +68,52 @@ TEST(KltFeatureTracker, FollowsCornersOfATextureMovedByASubpixelShift)
   std::nth_element(errors.begin(), errors.begin() + followed / 2, errors.end());
   EXPECT_LT(errors[static_cast<std::size_t>(followed / 2)], 0.1); // measured 0.06
   EXPECT_GE(followed, static_cast<int>(0.8 * pixels.size()));
+}
+
+TEST(KltFeatureTracker, FollowsTextureWhoseLightingChangesAsTheScopeMoves)
+{
+  // The second frame is the texture moved and lit by a headlight that
+  // came nearer: brighter, more on the left than on the right. Dividing
+  // the illumination out keeps the features on the texture; following raw
+  // brightness makes them slide.
+  auto lit = [](const cv::Mat& grey)
+  {
+    cv::Mat value;
+    grey.convertTo(value, CV_32F);
+    for (int u = 0; u < value.cols; ++u)
+    {
+      value.col(u) *= 1.4 - 0.5 * u / value.cols;
+    }
+    cv::Mat out;
+    value.convertTo(out, CV_8U);
+    return out;
+  };
+  auto medianError = [&](double illuminationSigmaPx)
+  {
+    KltFeatureTrackerOptions options;
+    options.illuminationSigmaPx = illuminationSigmaPx;
+    KltFeatureTracker tracker(options);
+    tracker.reset(texture(0.0, 0.0));
+    std::vector<Eigen::Vector2d> pixels = tracker.detect(50, {});
+    const std::vector<Eigen::Vector2d> before = pixels;
+    const std::vector<char> kept = tracker.track(lit(texture(1.5, 0.5)), pixels);
+    std::vector<double> errors;
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+    {
+      // A lost feature counts as far off.
+      errors.push_back(
+        kept[i] ? (pixels[i] - before[i] - Eigen::Vector2d(1.5, 0.5)).norm() : 100.0);
+    }
+    std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+    return errors[errors.size() / 2];
+  };
+  const double normalised = medianError(8.0);
+  const double raw = medianError(0.0);
+  std::printf(
+    "median error: %.3f px with the illumination divided out, %.3f px without\n", normalised, raw);
+  // Measured when written: 0.011 px and 0.113 px.
+  EXPECT_LT(normalised, 0.05);
+  EXPECT_GT(raw, 3.0 * normalised);
 }
 
 TEST(KltFeatureTracker, DropsFeaturesWhoseTextureIsGone)
