@@ -9,6 +9,7 @@
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Pipeline/EndoscopeTracker.h>
 #include <vimlop/Pipeline/TrackingStart.h>
+#include <vimlop/Video/FieldOfView.h>
 #include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Video/IntrinsicsIO.h>
 #include <vimlop/Video/VideoInput.h>
@@ -82,8 +83,15 @@ void runTrack(const TrackOptions& o)
     }
   }
 
+  // The field stop, found on the frames to track as register finds it by default.
+  std::vector<cv::Mat> pictures;
+  for (int i = first; i < sequence.size(); ++i)
+  {
+    pictures.push_back(frame(i));
+  }
+  const FieldOfView view = FieldOfView::ofSequence(pictures, FieldOfViewOptions());
   EndoscopeTracker tracker(start.modelCT, start.intrinsics, o.tracker);
-  tracker.start(start.frame, start.cameraToCT);
+  tracker.start(start.frame, start.cameraToCT, view.mask());
   std::vector<FramePose> poses;
   nlohmann::json records = nlohmann::json::array();
   std::vector<double> latency, errorMm;

@@ -50,11 +50,6 @@ EndoscopeSimulationOptions TrackingProtocolOptions::defaultSimulation()
 void TrackingProtocolOptions::validate() const
 {
   this->simulation.validate();
-  if (this->simulation.intrinsics.hasDistortion())
-  {
-    throw Error("evaluate tracking: the tracker takes undistorted frames, and undistorting a "
-                "simulated lens is not supported yet: leave out the lens distortion");
-  }
   if (this->registrationFrames < 3 || this->registrationFrames >= this->simulation.frames)
   {
     throw Error(formatText("evaluate tracking: %d frames registered of %d: at least 3, and fewer "
@@ -165,7 +160,8 @@ TrackingProtocolReport runTrackingProtocol(
   const RegistrationModel truth = makeEmbreeRegistrationModel(world.truth);
   const SimulatedVideo video = simulateEndoscopeVideo(truth, o.simulation, progress);
   EndoscopeTracker tracker(world.model, video.calibratedIntrinsics, o.tracker);
-  tracker.start(video.frames[static_cast<std::size_t>(report.startFrame)], startPose);
+  tracker.start(video.frames[static_cast<std::size_t>(report.startFrame)], startPose,
+    c.pipeline->fieldOfViewMask());
   std::vector<double> latency, position, angle;
   for (int f = report.startFrame + 1; f < o.simulation.frames; ++f)
   {

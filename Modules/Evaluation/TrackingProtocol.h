@@ -101,8 +101,10 @@ struct TrackingProtocolReport
  * on the last registered frame at its registered pose, tracks every later
  * frame against the world's model and scores each against the truth. Needs
  * an X display.
- * @throws vimlop::Error for invalid options, a sequence with lens distortion
- * (the tracker takes undistorted frames; not supported yet), or when a stage fails.
+ * The tracker is given the intrinsics a user has (calibratedIntrinsics, with
+ * the lens and the calibration error of the world) and undistorts the frames
+ * with them, as the registration does.
+ * @throws vimlop::Error for invalid options or when a stage fails.
  */
 TrackingProtocolReport runTrackingProtocol(const SimulatedWorld& world,
   const TrackingProtocolOptions& options, const EvaluationProgress& progress);

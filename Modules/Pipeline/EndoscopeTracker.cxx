@@ -4,8 +4,11 @@
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Raycast/EmbreeScene.h>
 #include <vimlop/Video/CameraResection.h>
+#include <vimlop/Video/FrameUndistorter.h>
 
 #include <Eigen/Geometry>
+
+#include <opencv2/imgproc.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -82,10 +85,14 @@ struct TrackedFeature
 struct EndoscopeTracker::Internals
 {
   EndoscopeTrackerOptions Options;
+  /// The lens of the frames given, and the pinhole camera of the frames once undistorted.
+  FrameUndistorter Undistorter;
   PinholeCamera Intrinsics;
   EmbreeScene Scene;
   KltFeatureTracker Klt;
   std::vector<TrackedFeature> Features;
+  /// Where corners may be detected (empty: everywhere).
+  cv::Mat Mask;
   /// The last two poses reported (the last one first), for the prediction.
   CameraPose Last;
   CameraPose BeforeLast;
@@ -93,7 +100,8 @@ struct EndoscopeTracker::Internals
 
   Internals(const TriangleMesh& mesh, const PinholeCamera& k, const EndoscopeTrackerOptions& o)
     : Options(o)
-    , Intrinsics(k)
+    , Undistorter(k)
+    , Intrinsics(Undistorter.pinhole())
     , Scene(mesh)
     , Klt(o.features)
   {
@@ -134,7 +142,7 @@ struct EndoscopeTracker::Internals
       existing.push_back(f.pixel);
     }
     int added = 0;
-    for (const Eigen::Vector2d& pixel : this->Klt.detect(wanted, existing))
+    for (const Eigen::Vector2d& pixel : this->Klt.detect(wanted, existing, this->Mask))
     {
       const Eigen::Vector3d ray = pose.rotation * this->Intrinsics.rayDirection(pixel);
       const std::optional<SurfacePoint> hit =
@@ -171,12 +179,27 @@ const EndoscopeTrackerOptions& EndoscopeTracker::options() const
   return this->d->Options;
 }
 
-TrackedFrame EndoscopeTracker::start(const cv::Mat& frame, const CameraPose& cameraToCT)
+TrackedFrame EndoscopeTracker::start(
+  const cv::Mat& frame, const CameraPose& cameraToCT, const cv::Mat& fieldOfViewMask)
 {
   const auto began = std::chrono::steady_clock::now();
   Internals& s = *this->d;
   s.checkSize(frame);
-  s.Klt.reset(frame);
+  s.Mask = cv::Mat();
+  if (!fieldOfViewMask.empty())
+  {
+    if (fieldOfViewMask.size() != frame.size())
+    {
+      throw Error(formatText("endoscope tracker: a field-of-view mask of %d x %d pixels for "
+                             "frames of %d x %d",
+        fieldOfViewMask.cols, fieldOfViewMask.rows, frame.cols, frame.rows));
+    }
+    const int halfWindow = s.Options.features.windowPx / 2;
+    cv::erode(fieldOfViewMask != 0, s.Mask,
+      cv::getStructuringElement(
+        cv::MORPH_ELLIPSE, cv::Size(2 * halfWindow + 1, 2 * halfWindow + 1)));
+  }
+  s.Klt.reset(s.Undistorter.undistort(frame));
   s.Features.clear();
   s.Frame = -1;
   const int added = s.addFeatures(cameraToCT);
@@ -209,6 +232,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     throw Error("endoscope tracker: start() on a registered frame first");
   }
   s.checkSize(frame);
+  const cv::Mat ideal = s.Undistorter.undistort(frame);
   const CameraPose predicted = s.predict();
   TrackedFrame r;
   r.frame = ++s.Frame;
@@ -229,7 +253,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     // frame is lost, and its corners, cast into the model from the
     // prediction, are the next frames' features. When the scope moved as
     // predicted, they stand for the right points and tracking resumes.
-    s.Klt.reset(frame);
+    s.Klt.reset(ideal);
     s.Features.clear();
     r.newFeatures = s.addFeatures(r.cameraToCT);
     return finish();
@@ -241,7 +265,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
   {
     pixels.push_back(f.pixel);
   }
-  const std::vector<char> kept = s.Klt.track(frame, pixels);
+  const std::vector<char> kept = s.Klt.track(ideal, pixels);
   std::vector<TrackedFeature> followed;
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> seen;

@@ -105,15 +105,17 @@ struct TrackedFrame
  * as predicted. Relocalisation against the CT when it did not
  * (a multi-start near the last good pose) is not part of this tracker yet.
  *
- * Frames must be undistorted (the ideal pinhole of the intrinsics) and of
- * the intrinsics' size. Not thread-safe: one tracker per video stream.
+ * Frames are of the intrinsics' size; when the intrinsics carry a lens,
+ * each frame is undistorted with it first (FrameUndistorter), and poses are
+ * those of the pinhole camera with the same fx, fy, cx, cy. Not
+ * thread-safe: one tracker per video stream.
  */
 class EndoscopeTracker
 {
 public:
   /**
    * @param modelCT the registered model (CT frame, mm; normals into the air)
-   * @param intrinsics the undistorted frames' pinhole camera
+   * @param intrinsics the frames' camera, with its lens when they are distorted
    * @throws vimlop::Error for invalid options or intrinsics, or a mesh without faces.
    */
   EndoscopeTracker(const TriangleMesh& modelCT, const PinholeCamera& intrinsics,
@@ -126,10 +128,17 @@ public:
    * @brief Starts (or restarts) on `frame`, whose camera is at `cameraToCT`
    * (a registration's pose of that frame): detects its features and
    * the model points they stand for.
-   * @throws vimlop::Error for a frame of another size than the intrinsics,
-   * or when no feature's ray hits the model (a camera outside the airway).
+   * @param fieldOfViewMask where corners may be detected in the undistorted
+   * frames (CV_8U, non-zero inside the field stop, e.g.
+   * VideoRegistrationPipeline::fieldOfViewMask()); empty: everywhere. It is
+   * shrunk by half a KLT window, so that no feature's window sees the
+   * stop's edge, which stays still while the anatomy moves.
+   * @throws vimlop::Error for a frame or mask of another size than the
+   * intrinsics, or when too few corners stand for a point of the model (a
+   * camera outside the airway, a frame without texture).
    */
-  TrackedFrame start(const cv::Mat& frame, const CameraPose& cameraToCT);
+  TrackedFrame start(
+    const cv::Mat& frame, const CameraPose& cameraToCT, const cv::Mat& fieldOfViewMask = cv::Mat());
 
   /**
    * @brief The pose of the next frame.

@@ -26,6 +26,11 @@
 #include <string>
 #include <vector>
 
+namespace cv
+{
+class Mat;
+}
+
 namespace vimlop
 {
 
@@ -198,6 +203,9 @@ public:
   const RegistrationModel& model() const;
   const PinholeCamera& intrinsics() const; ///< as loaded, with its distortion
   int numberOfFrames() const;
+  /// The frames' field of view as the stages use it: CV_8U, 255 where
+  /// contours and features are taken (inside the field stop, its margin off).
+  const cv::Mat& fieldOfViewMask() const;
   const std::vector<std::string>& frameNames() const;
   /// The loaded frames' ids (FrameSequence::ids(): their file numbers).
   const std::vector<int>& frameIds() const;

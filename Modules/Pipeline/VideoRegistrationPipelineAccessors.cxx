@@ -68,6 +68,11 @@ int VideoRegistrationPipeline::numberOfFrames() const
   return static_cast<int>(this->Impl->Frames.size());
 }
 
+const cv::Mat& VideoRegistrationPipeline::fieldOfViewMask() const
+{
+  return this->Impl->need(this->Impl->View, "load the frames").mask();
+}
+
 const std::vector<std::string>& VideoRegistrationPipeline::frameNames() const
 {
   return this->Impl->Names;

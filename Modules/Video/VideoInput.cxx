@@ -3,10 +3,8 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Video/ColmapImport.h>
+#include <vimlop/Video/FrameUndistorter.h>
 #include <vimlop/Video/StructureFromMotion.h>
-
-#include <opencv2/calib3d.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <cmath>
 #include <limits>
@@ -27,53 +25,16 @@ std::vector<cv::Mat> idealFrames(const FrameSequence& sequence, const PinholeCam
         "x" + std::to_string(sequence.heightPx()));
   }
   // SfM and contours work on ideal pinhole frames: lens distortion is removed first.
-  const bool distorted = k.hasDistortion();
-  const bool fisheye = distorted && k.lensModel == LensModel::Fisheye;
-  cv::Mat matrix;
-  cv::Mat coefficients;
-  cv::Mat fisheyeMapU;
-  cv::Mat fisheyeMapV;
-  if (distorted)
+  const FrameUndistorter undistorter(k);
+  if (undistorter.distorts() && log)
   {
-    if (log)
-    {
-      *log << "vimlop: note: undistorting the frames with the intrinsics' "
-           << (fisheye ? "fisheye " : "") << "distortion coefficients\n";
-    }
-    matrix = (cv::Mat_<double>(3, 3) << k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0);
-    coefficients = cv::Mat(1, static_cast<int>(k.distortion.size()), CV_64F);
-    for (int i = 0; i < coefficients.cols; ++i)
-    {
-      coefficients.at<double>(i) = k.distortion[i];
-    }
-    if (fisheye)
-    {
-      // The undistorted frames keep K (as cv::undistort does for the other
-      // model), so that the pinhole intrinsics downstream are the file's.
-      // One map for the whole sequence.
-      cv::fisheye::initUndistortRectifyMap(matrix, coefficients, cv::Matx33d::eye(), matrix,
-        cv::Size(k.widthPx, k.heightPx), CV_32FC1, fisheyeMapU, fisheyeMapV);
-    }
+    *log << "vimlop: note: undistorting the frames with the intrinsics' "
+         << (k.lensModel == LensModel::Fisheye ? "fisheye " : "") << "distortion coefficients\n";
   }
   std::vector<cv::Mat> frames;
   for (int f = 0; f < sequence.size(); ++f)
   {
-    cv::Mat frame = sequence.frame(f);
-    if (distorted)
-    {
-      cv::Mat undistorted;
-      if (fisheye)
-      {
-        cv::remap(frame, undistorted, fisheyeMapU, fisheyeMapV, cv::INTER_LINEAR,
-          cv::BORDER_CONSTANT, cv::Scalar::all(0));
-      }
-      else
-      {
-        cv::undistort(frame, undistorted, matrix, coefficients);
-      }
-      frame = undistorted;
-    }
-    frames.push_back(frame);
+    frames.push_back(undistorter.undistort(sequence.frame(f)));
   }
   return frames;
 }

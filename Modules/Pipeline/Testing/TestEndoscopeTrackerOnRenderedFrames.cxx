@@ -1,5 +1,6 @@
 #include <vimlop/Pipeline/EndoscopeTracker.h>
 
+#include "ErrorMessage.h"
 #include "RenderedSequence.h"
 #include <vimlop/Core/RegistrationMetrics.h>
 
@@ -74,6 +75,30 @@ TEST(EndoscopeTracker, IsLostOnABlankFrameAndRecoversByItself)
     }
     // The prediction carries the lost frames: the path is smooth.
     EXPECT_LT(mm, 0.5) << f;
+  }
+}
+
+TEST(EndoscopeTracker, DetectsCornersOnlyInsideTheFieldOfView)
+{
+  // A field of view of nothing leaves no corner to start from; the right
+  // half of the frame is enough to follow the scope.
+  const fixtures::Sequence& s = fixtures::sequence();
+  EndoscopeTracker tracker(s.mesh, s.intrinsics);
+  const cv::Mat none = cv::Mat::zeros(s.frames[0].size(), CV_8U);
+  EXPECT_EQ(fixtures::errorMessageOf([&] { tracker.start(s.frames[0], s.poses[0], none); }),
+    "endoscope tracker: only 0 corners of the first frame stand for a point of the model (at "
+    "least 25 needed): is the camera inside the airway, and the frame textured?");
+  EXPECT_EQ(fixtures::errorMessageOf(
+              [&] { tracker.start(s.frames[0], s.poses[0], cv::Mat::zeros(10, 10, CV_8U)); }),
+    "endoscope tracker: a field-of-view mask of 10 x 10 pixels for frames of 320 x 240");
+  cv::Mat right = none.clone();
+  right.colRange(right.cols / 2, right.cols).setTo(255);
+  tracker.start(s.frames[0], s.poses[0], right);
+  for (std::size_t f = 1; f < 6; ++f)
+  {
+    const TrackedFrame r = tracker.track(s.frames[f]);
+    EXPECT_NE(r.state, TrackingState::Lost) << f;
+    EXPECT_LT(cameraPositionError(r.cameraToCT, s.poses[f]), 0.3) << f;
   }
 }
 
