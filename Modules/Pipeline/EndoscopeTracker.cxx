@@ -1,6 +1,7 @@
 #include <vimlop/Pipeline/EndoscopeTracker.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Raycast/EmbreeScene.h>
 #include <vimlop/Video/CameraResection.h>
@@ -60,6 +61,10 @@ void EndoscopeTrackerOptions::validate() const
   {
     refuse("the largest jump must be positive (mm)", this->maxJumpMm);
   }
+  if (this->maxCoastFrames < 0)
+  {
+    refuse("the frames coasted must not be negative", this->maxCoastFrames);
+  }
   if (!(this->maxTurnDeg > 0.0))
   {
     refuse("the largest turn must be positive (degrees)", this->maxTurnDeg);
@@ -97,6 +102,8 @@ struct EndoscopeTracker::Internals
   CameraPose Last;
   CameraPose BeforeLast;
   int Frame = -1;
+  /// Frames lost since the last pose found.
+  int LostInARow = 0;
 
   Internals(const TriangleMesh& mesh, const PinholeCamera& k, const EndoscopeTrackerOptions& o)
     : Options(o)
@@ -118,14 +125,22 @@ struct EndoscopeTracker::Internals
   }
 
   /// The next pose at constant velocity: the last motion, in the camera's
-  /// own frame, applied once more.
+  /// own frame, applied once more; the last pose itself once the scope has
+  /// been lost for maxCoastFrames frames in a row.
   CameraPose predict() const
   {
+    if (this->LostInARow >= this->Options.maxCoastFrames)
+    {
+      return this->Last;
+    }
     const Eigen::Matrix3d turn = this->BeforeLast.rotation.transpose() * this->Last.rotation;
     const Eigen::Vector3d step =
       this->BeforeLast.rotation.transpose() * (this->Last.centre - this->BeforeLast.centre);
     CameraPose next;
-    next.rotation = this->Last.rotation * turn;
+    // Back onto the rotations: each prediction multiplies the last two, and
+    // over a lost stretch their rounding errors grew until the rotation
+    // was infinite (a 600-frame run stopped on a ray cast from NaN).
+    next.rotation = nearestRotation(this->Last.rotation * turn);
     next.centre = this->Last.centre + this->Last.rotation * step;
     return next;
   }
@@ -211,6 +226,7 @@ TrackedFrame EndoscopeTracker::start(
       added, s.Options.minInliers));
   }
   s.Frame = 0;
+  s.LostInARow = 0;
   s.Last = cameraToCT;
   s.BeforeLast = cameraToCT;
   TrackedFrame r;
@@ -241,6 +257,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
   r.state = TrackingState::Lost;
   auto finish = [&]
   {
+    s.LostInARow = r.state == TrackingState::Lost ? s.LostInARow + 1 : 0;
     s.BeforeLast = s.Last;
     s.Last = r.cameraToCT;
     r.latencyMs =

@@ -49,6 +49,11 @@ struct EndoscopeTrackerOptions
   /// Nor one turned by more than this from the prediction, degrees (default
   /// 10: a hand turns a scope by a few degrees between frames at 30 Hz).
   double maxTurnDeg = 10.0;
+  /// Frames lost in a row over which the prediction goes on at the last
+  /// speed (default 5, a sixth of a second at 30 Hz); after them it holds
+  /// the last pose: a scope lost for longer has more likely stopped or
+  /// turned than kept its speed.
+  int maxCoastFrames = 5;
   /// New features stand for the model surface point their ray hits, at
   /// most this far from the camera, mm (default 60).
   double maxDepthMm = 60.0;
@@ -99,11 +104,11 @@ struct TrackedFrame
  * A frame where no pose is found, or none that agrees with enough features
  * after the refinement, or one too far from the prediction (a jump or a
  * turn no hand makes between frames), is Lost and reported at the
- * prediction. When fewer than `minInliers` features are left (after a blank
- * or blurred frame), the next frame is Lost too and its corners are cast
- * from the prediction, so tracking resumes by itself when the scope moved
- * as predicted. Relocalisation against the CT when it did not
- * (a multi-start near the last good pose) is not part of this tracker yet.
+ * prediction, which holds still after `maxCoastFrames` lost frames. When fewer than `minInliers`
+ * features are left (after a blank or blurred frame), the next frame is Lost too and its corners
+ * are cast from the prediction, so tracking resumes by itself when the scope moved as predicted.
+ * Relocalisation against the CT when it did not (a multi-start near the last good pose) is not part
+ * of this tracker yet.
  *
  * Frames are of the intrinsics' size; when the intrinsics carry a lens,
  * each frame is undistorted with it first (FrameUndistorter), and poses are

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/ClosestPointOnTriangle.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/TextFormat.h>
 
 #include <embree3/rtcore.h>
 
@@ -240,6 +241,15 @@ void EmbreeScene::areSegmentsOccluded(const Eigen::Vector3d& from,
 std::optional<SurfacePoint> EmbreeScene::castRay(
   const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double maxDistanceMm) const
 {
+  // Embree asserts (and aborts) on a ray it cannot trace; say what was wrong instead.
+  if (!origin.allFinite() || !direction.allFinite() || direction.isZero(0.0) ||
+    !(maxDistanceMm >= 0.0))
+  {
+    throw Error(formatText("ray casting: a ray from (%g, %g, %g) along (%g, %g, %g) up to %g mm "
+                           "cannot be traced",
+      origin.x(), origin.y(), origin.z(), direction.x(), direction.y(), direction.z(),
+      maxDistanceMm));
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit hit;

@@ -74,6 +74,8 @@ public:
   /**
    * @brief First surface point hit by the ray `origin + t * direction`,
    * `t` in (0, maxDistanceMm] for a unit `direction`.
+   * @throws vimlop::Error for a non-finite origin or direction, a zero
+   * direction or a negative distance (Embree would abort on them).
    */
   std::optional<SurfacePoint> castRay(const Eigen::Vector3d& origin,
     const Eigen::Vector3d& direction,

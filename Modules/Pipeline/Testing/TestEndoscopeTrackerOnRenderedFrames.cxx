@@ -78,6 +78,40 @@ TEST(EndoscopeTracker, IsLostOnABlankFrameAndRecoversByItself)
   }
 }
 
+TEST(EndoscopeTracker, HoldsAFiniteRotationThroughALongLostStretch)
+{
+  // After a few tracked frames the picture goes black for 200 frames. The
+  // prediction coasts on for maxCoastFrames, then holds: every pose stays a
+  // rotation (each prediction multiplied the last two, and without
+  // re-orthonormalising their rounding grew to infinity within 100 frames)
+  // and near where the scope was lost.
+  const fixtures::Sequence& s = fixtures::sequence();
+  EndoscopeTracker tracker(s.mesh, s.intrinsics);
+  tracker.start(s.frames[0], s.poses[0]);
+  TrackedFrame last;
+  for (std::size_t f = 1; f < 6; ++f)
+  {
+    last = tracker.track(s.frames[f]);
+  }
+  ASSERT_EQ(last.state, TrackingState::Tracking);
+  const cv::Mat black = cv::Mat::zeros(s.frames[0].size(), s.frames[0].type());
+  const double stepMm = (s.poses[5].centre - s.poses[4].centre).norm();
+  for (int f = 0; f < 200; ++f)
+  {
+    const TrackedFrame r = tracker.track(black);
+    ASSERT_EQ(r.state, TrackingState::Lost) << f;
+    ASSERT_TRUE(r.cameraToCT.rotation.allFinite()) << f;
+    ASSERT_LT(
+      (r.cameraToCT.rotation.transpose() * r.cameraToCT.rotation - Eigen::Matrix3d::Identity())
+        .norm(),
+      1e-9)
+      << f;
+    ASSERT_LT((r.cameraToCT.centre - last.cameraToCT.centre).norm(),
+      (tracker.options().maxCoastFrames + 1) * stepMm + 0.5)
+      << f;
+  }
+}
+
 TEST(EndoscopeTracker, DetectsCornersOnlyInsideTheFieldOfView)
 {
   // A field of view of nothing leaves no corner to start from; the right

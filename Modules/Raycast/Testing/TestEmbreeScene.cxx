@@ -1,3 +1,4 @@
+#include "ErrorMessage.h"
 #include "TestMeshes.h"
 #include <vimlop/Core/ClosestPointOnTriangle.h>
 #include <vimlop/Core/Error.h>
@@ -7,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 using namespace vimlop;
@@ -158,6 +160,28 @@ TEST(EmbreeScene, CastRayFindsTheFirstHit)
   // The face hit is the +x wall, whose normal points back into the box.
   EXPECT_LT((box.faceNormals()[hit->face] + Eigen::Vector3d::UnitX()).norm(), 1e-12);
   EXPECT_FALSE(scene.castRay({ 1, 2, 0 }, Eigen::Vector3d::UnitX(), 3.0).has_value());
+}
+
+TEST(EmbreeScene, RefusesARayItCannotTraceWithAClearMessage)
+{
+  // Embree itself would abort on these.
+  const EmbreeScene scene(fixtures::makeBox({ -5, -5, -5 }, { 5, 5, 5 }));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(fixtures::errorMessageOf(
+              [&] {
+                scene.castRay({ nan, 0, 0 }, Eigen::Vector3d::UnitX());
+              }),
+    "ray casting: a ray from (nan, 0, 0) along (1, 0, 0) up to inf mm cannot be traced");
+  EXPECT_EQ(fixtures::errorMessageOf(
+              [&] {
+                scene.castRay({ 0, 0, 0 }, Eigen::Vector3d::Zero(), 3.0);
+              }),
+    "ray casting: a ray from (0, 0, 0) along (0, 0, 0) up to 3 mm cannot be traced");
+  EXPECT_EQ(fixtures::errorMessageOf(
+              [&] {
+                scene.castRay({ 0, 0, 0 }, Eigen::Vector3d::UnitX(), -1.0);
+              }),
+    "ray casting: a ray from (0, 0, 0) along (1, 0, 0) up to -1 mm cannot be traced");
 }
 
 TEST(EmbreeScene, RejectsAnEmptyMesh)
