@@ -35,6 +35,7 @@ struct TrackOptions
   std::string truth;
   std::string out;
   int from = -1;
+  bool allowFlagged = false;
   EndoscopeTrackerOptions tracker;
   bool json = false;
 };
@@ -44,6 +45,13 @@ void runTrack(const TrackOptions& o)
   namespace fs = std::filesystem;
   o.tracker.validate();
   const TrackingStart start = TrackingStart::fromResult(o.result);
+  // Tracking carries the registration's error to every frame: a result the
+  // registration itself flagged is no start for navigation.
+  if (!start.failureReason.empty() && !o.allowFlagged)
+  {
+    throw Error("refusing to track from a result flagged as a failure (" + start.failureReason +
+      "): every tracked pose would carry its error; pass --allow-flagged to track anyway");
+  }
   const FrameSequence sequence = FrameSequence::load(o.frames);
   // The frames as the registration saw them: undistorted with the lens of
   // the intrinsics file (the one given to `register`), or as they are.
@@ -175,6 +183,8 @@ void addTrackCommand(CLI::App& app)
      "of the same name, else 0)")
     ->check(CLI::NonNegativeNumber);
   c->add_option("--truth", o->truth, "true camera poses (FramePose JSON): errors are reported");
+  c->add_flag("--allow-flagged", o->allowFlagged,
+    "track from a result the registration flagged as a failure (refused without it)");
   c->add_option("--out", o->out, "output folder")->required();
   c->add_option("--max-features", o->tracker.maxFeatures, "features tracked at most")
     ->capture_default_str();

@@ -1,6 +1,7 @@
 #include <vimlop/Evaluation/TrackingProtocol.h>
 
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/MultiStartRegistration.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/TextFormat.h>
@@ -93,7 +94,9 @@ nlohmann::json TrackingProtocolReport::toJson() const
   return { { "protocol", "tracking" }, { "frames", this->frames }, { "seed", this->seed },
     { "registration",
       { { "frames", this->registrationFrames }, { "camera_position_mm", this->registrationErrorMm },
-        { "runtime_s", this->registrationSeconds } } },
+        { "runtime_s", this->registrationSeconds },
+        { "flagged", !this->registrationFailure.empty() },
+        { "failure_reason", this->registrationFailure } } },
     { "start_frame", this->startFrame }, { "latency_ms", summaryJson(this->latencyMs) },
     { "camera_position_mm", summaryJson(this->positionErrorMm) },
     { "camera_angle_deg", summaryJson(this->angleErrorDeg) }, { "drift_mm", this->driftMm },
@@ -106,9 +109,10 @@ nlohmann::json TrackingProtocolReport::toJson() const
 std::vector<std::string> TrackingProtocolReport::summaryLines() const
 {
   return {
-    formatText("tracking: %d frames, registered on the first %d (camera %.3f mm, %.1f s), "
+    formatText("tracking: %d frames, registered on the first %d (camera %.3f mm, %.1f s%s), "
                "tracked from frame %d",
       this->frames, this->registrationFrames, this->registrationErrorMm, this->registrationSeconds,
+      this->registrationFailure.empty() ? "" : ("; flagged: " + this->registrationFailure).c_str(),
       this->startFrame),
     formatText("tracking: camera %.3f mm mean (p95 %.3f, max %.3f), %.3f deg mean; drift %.3f mm",
       this->positionErrorMm.mean, this->positionErrorMm.p95, this->positionErrorMm.max,
@@ -148,6 +152,7 @@ TrackingProtocolReport runTrackingProtocol(
   report.registrationSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   report.flagErrorMm = o.flagErrorMm;
+  report.registrationFailure = failureReason(registered, registration.pipeline.multiStart);
   // Tracking starts on the last frame SfM registered.
   const auto last = std::max_element(c.frameOf.begin(), c.frameOf.end());
   const std::size_t lastData = static_cast<std::size_t>(last - c.frameOf.begin());

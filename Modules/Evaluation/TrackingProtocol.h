@@ -71,6 +71,9 @@ struct TrackingProtocolReport
   int registrationFrames = 0;
   double registrationErrorMm = 0.0;
   double registrationSeconds = 0.0;
+  /// Why the main job's failure flag (V13) would flag that registration;
+  /// empty when it would not. The tracker starts from it either way.
+  std::string registrationFailure;
   int startFrame = 0;
   /// Over the tracked frames (all after the start frame).
   Summary latencyMs;

@@ -104,6 +104,9 @@ struct EndoscopeTracker::Internals
   int Frame = -1;
   /// Frames lost since the last pose found.
   int LostInARow = 0;
+  /// False once features were cast from a prediction (after a loss): the
+  /// poses found from them are then not anchored to the registration.
+  bool Anchored = true;
 
   Internals(const TriangleMesh& mesh, const PinholeCamera& k, const EndoscopeTrackerOptions& o)
     : Options(o)
@@ -227,6 +230,7 @@ TrackedFrame EndoscopeTracker::start(
   }
   s.Frame = 0;
   s.LostInARow = 0;
+  s.Anchored = true;
   s.Last = cameraToCT;
   s.BeforeLast = cameraToCT;
   TrackedFrame r;
@@ -273,6 +277,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     s.Klt.reset(ideal);
     s.Features.clear();
     r.newFeatures = s.addFeatures(r.cameraToCT);
+    s.Anchored = false;
     return finish();
   }
 
@@ -313,7 +318,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     r.cameraToCT = pose->cameraToWorld;
     r.inliers = static_cast<int>(pose->inliers.size());
     r.reprojectionErrorPx = pose->rmsErrorPx;
-    r.state = r.inliers >= s.Options.degradedInlierFraction * r.trackedFeatures
+    r.state = s.Anchored && r.inliers >= s.Options.degradedInlierFraction * r.trackedFeatures
       ? TrackingState::Tracking
       : TrackingState::Degraded;
     // Only the features that agree with the pose are worth following.

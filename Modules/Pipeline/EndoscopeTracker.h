@@ -18,8 +18,12 @@ namespace vimlop
 enum class TrackingState
 {
   Tracking, ///< enough features agree with the pose
-  Degraded, ///< a pose was found, but many tracked features disagree with it
-  Lost      ///< no pose from this frame: the pose reported is the prediction
+  /// A pose was found, but many tracked features disagree with it, or its
+  /// features were cast from a prediction after the tracker was lost:
+  /// nothing has checked them against the CT since, and a wrong prediction
+  /// makes a wrong world that agrees with itself.
+  Degraded,
+  Lost ///< no pose from this frame: the pose reported is the prediction
 };
 
 /// @brief "tracking", "degraded" or "lost".
@@ -104,11 +108,14 @@ struct TrackedFrame
  * A frame where no pose is found, or none that agrees with enough features
  * after the refinement, or one too far from the prediction (a jump or a
  * turn no hand makes between frames), is Lost and reported at the
- * prediction, which holds still after `maxCoastFrames` lost frames. When fewer than `minInliers`
- * features are left (after a blank or blurred frame), the next frame is Lost too and its corners
- * are cast from the prediction, so tracking resumes by itself when the scope moved as predicted.
- * Relocalisation against the CT when it did not (a multi-start near the last good pose) is not part
- * of this tracker yet.
+ * prediction, which holds still after `maxCoastFrames` lost frames. When
+ * fewer than `minInliers` features are left (after a blank or blurred
+ * frame), the next frame is Lost too and its corners are cast from the
+ * prediction, so tracking resumes by itself when the scope moved as
+ * predicted. Whether it did, nothing here can tell: from then on frames are
+ * at best Degraded, until the tracker is started again (on a new
+ * registration). Relocalisation against the CT (a multi-start near the last
+ * good pose) is not part of this tracker yet.
  *
  * Frames are of the intrinsics' size; when the intrinsics carry a lens,
  * each frame is undistorted with it first (FrameUndistorter), and poses are

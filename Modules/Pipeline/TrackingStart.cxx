@@ -42,6 +42,11 @@ TrackingStart TrackingStart::fromResult(const std::string& folder)
   start.cameraToCT = record.result.sfmToCT.apply(last->cameraToSfm);
   start.frameId = last->frameId;
   start.frameSource = j < record.frameSources.size() ? record.frameSources[j] : std::string();
+  if (record.confidence && record.confidence->failure)
+  {
+    start.failureReason =
+      record.confidence->reason.empty() ? "flagged as a failure" : record.confidence->reason;
+  }
   return start;
 }
 

@@ -26,6 +26,8 @@ struct TrackingStart
   int frameId = 0;
   /// The file (or video frame) the picture came from, when the result says.
   std::string frameSource;
+  /// Why the registration flagged its result as a failure; empty when it did not.
+  std::string failureReason;
 
   /**
    * @brief The start from the result folder `folder` (vimlop register's).

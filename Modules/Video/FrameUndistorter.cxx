@@ -18,8 +18,8 @@ FrameUndistorter::FrameUndistorter(const PinholeCamera& camera)
   {
     return;
   }
-  this->Matrix = (cv::Mat_<double>(3, 3) << camera.fx, 0.0, camera.cx, 0.0, camera.fy, camera.cy,
-    0.0, 0.0, 1.0);
+  this->Matrix =
+    (cv::Mat_<double>(3, 3) << camera.fx, 0.0, camera.cx, 0.0, camera.fy, camera.cy, 0.0, 0.0, 1.0);
   this->Coefficients = cv::Mat(1, static_cast<int>(camera.distortion.size()), CV_64F);
   for (int i = 0; i < this->Coefficients.cols; ++i)
   {
