@@ -28,6 +28,7 @@ struct PinholeCamera;
 struct PoseServingOptions;
 struct RegistrationRecord;
 struct ServedPoses;
+struct SimulatedWorld;
 struct SimulatedWorldOptions;
 struct TemplateRegistrationOptions;
 struct WorldSettings;
@@ -86,6 +87,17 @@ void addTemplateRegistrationOptions(CLI::App& command, TemplateRegistrationOptio
  * `options`. All off by default.
  */
 void addWorldOptions(CLI::App& command, SimulatedWorldOptions& options);
+
+/**
+ * @brief The simulated world of `model` on the airway of exactly one of
+ * `mesh` and `ct` (a command's --mesh and --ct). Everything is checked
+ * before anything is read: `model`, one of the two inputs, a model error
+ * that needs the CT, then the display `command` (e.g. "vimlop simulate")
+ * renders with (requireOffscreenRendering).
+ * @throws vimlop::Error naming the first problem.
+ */
+SimulatedWorld loadSimulatedWorld(const std::string& mesh, const std::string& ct,
+  const SimulatedWorldOptions& model, const std::string& command);
 
 /**
  * @brief Adds --world ideal|clinical to `command`: every error source of

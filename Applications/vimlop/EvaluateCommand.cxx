@@ -107,19 +107,8 @@ void runVideo(VideoCommand c)
   options.simulation = c.world.video;
   options.validate();
   options.simulation.validate();
-  c.world.model.validate();
-  if (c.mesh.empty() == c.ct.empty())
-  {
-    throw Error("give exactly one of --mesh and --ct");
-  }
-  if (c.ct.empty())
-  {
-    c.world.model.requireMeshWorld();
-  }
-  requireOffscreenRendering("vimlop evaluate video");
-  const SimulatedWorld world = c.ct.empty()
-    ? makeSimulatedWorld(loadAirwayMesh(c.mesh), c.world.model)
-    : makeSimulatedWorld(readCTVolume(c.ct), c.world.model, terminalEvaluationProgress());
+  const SimulatedWorld world =
+    loadSimulatedWorld(c.mesh, c.ct, c.world.model, "vimlop evaluate video");
   const VideoProtocolReport report = runVideoProtocol(world, options, terminalEvaluationProgress());
   writeJsonFile(report.toJson(), c.out);
   printSummary({ report.summaryLines(), report.toJson() }, c.json);
@@ -150,19 +139,8 @@ void runTracking(TrackingCommand c)
     options.registration.workFolder = c.out + ".work";
   }
   options.validate();
-  c.world.model.validate();
-  if (c.mesh.empty() == c.ct.empty())
-  {
-    throw Error("give exactly one of --mesh and --ct");
-  }
-  if (c.ct.empty())
-  {
-    c.world.model.requireMeshWorld();
-  }
-  requireOffscreenRendering("vimlop evaluate tracking");
-  const SimulatedWorld world = c.ct.empty()
-    ? makeSimulatedWorld(loadAirwayMesh(c.mesh), c.world.model)
-    : makeSimulatedWorld(readCTVolume(c.ct), c.world.model, terminalEvaluationProgress());
+  const SimulatedWorld world =
+    loadSimulatedWorld(c.mesh, c.ct, c.world.model, "vimlop evaluate tracking");
   const TrackingProtocolReport report =
     runTrackingProtocol(world, options, terminalEvaluationProgress());
   writeJsonFile(report.toJson(), c.out);

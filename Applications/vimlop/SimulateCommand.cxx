@@ -7,10 +7,7 @@
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Evaluation/WorldPreset.h>
-#include <vimlop/Imaging/CTVolumeIO.h>
-#include <vimlop/Imaging/ModelLoading.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
-#include <vimlop/Rendering/OffscreenRendering.h>
 
 #include <CLI/CLI.hpp>
 
@@ -44,21 +41,10 @@ void runSimulate(SimulateOptions o)
   k.cy = 0.5 * (k.heightPx - 1);
   // Before the display check: a wrong setting is reported wherever it runs.
   o.settings.video.validate();
-  o.settings.model.validate();
-  if (o.mesh.empty() == o.ct.empty())
-  {
-    throw Error("give exactly one of --mesh and --ct");
-  }
-  if (o.ct.empty())
-  {
-    o.settings.model.requireMeshWorld();
-  }
-  requireOffscreenRendering("vimlop simulate");
   // The truth is what the endoscope sees and where its path runs; a user
   // gets the model (model.vtp), never the truth.
-  const SimulatedWorld world = o.ct.empty()
-    ? makeSimulatedWorld(loadAirwayMesh(o.mesh), o.settings.model)
-    : makeSimulatedWorld(readCTVolume(o.ct), o.settings.model, terminalEvaluationProgress());
+  const SimulatedWorld world =
+    loadSimulatedWorld(o.mesh, o.ct, o.settings.model, "vimlop simulate");
   const RegistrationModel model = makeEmbreeRegistrationModel(world.truth);
   const SimulatedVideo video =
     simulateEndoscopeVideo(model, o.settings.video, terminalEvaluationProgress());

@@ -1,7 +1,12 @@
 #include "CommandLine.h"
+#include "TerminalEvaluationProgress.h"
+#include <vimlop/Core/Error.h>
 #include <vimlop/Evaluation/EndoscopeSimulation.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Evaluation/WorldPreset.h>
+#include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Imaging/ModelLoading.h>
+#include <vimlop/Rendering/OffscreenRendering.h>
 
 #include <CLI/CLI.hpp>
 
@@ -206,6 +211,23 @@ void addWorldPresetOption(CLI::App& c, WorldSettings& settings)
      "(all at their realistic values, Documentation/Simulation.md); the flags of single sources "
      "change it")
     ->trigger_on_parse();
+}
+
+SimulatedWorld loadSimulatedWorld(const std::string& mesh, const std::string& ct,
+  const SimulatedWorldOptions& model, const std::string& command)
+{
+  model.validate();
+  if (mesh.empty() == ct.empty())
+  {
+    throw Error("give exactly one of --mesh and --ct");
+  }
+  if (ct.empty())
+  {
+    model.requireMeshWorld();
+  }
+  requireOffscreenRendering(command);
+  return ct.empty() ? makeSimulatedWorld(loadAirwayMesh(mesh), model)
+                    : makeSimulatedWorld(readCTVolume(ct), model, terminalEvaluationProgress());
 }
 
 } // namespace vimlop

@@ -117,11 +117,12 @@ void runTrack(const TrackOptions& o)
     const auto known = truth.find(id);
     if (known != truth.end())
     {
-      record["camera_position_error_mm"] = cameraPositionError(t.cameraToCT, known->second);
+      const double mm = cameraPositionError(t.cameraToCT, known->second);
+      record["camera_position_error_mm"] = mm;
       record["camera_angle_error_deg"] = cameraAngleErrorDeg(t.cameraToCT, known->second);
       if (t.state != TrackingState::Lost)
       {
-        errorMm.push_back(record["camera_position_error_mm"].get<double>());
+        errorMm.push_back(mm);
       }
     }
     records.push_back(record);

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/CanonicalPoses.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TextFormat.h>
@@ -136,10 +137,8 @@ PoseErrorSummary summarizePoseErrors(const std::vector<CameraPose>& estimate,
   std::vector<double> deg(truth.size());
   for (std::size_t i = 0; i < truth.size(); ++i)
   {
-    mm[i] = (estimate[i].centre - truth[i].centre).norm();
-    const double cosine = std::clamp(
-      0.5 * ((estimate[i].rotation.transpose() * truth[i].rotation).trace() - 1.0), -1.0, 1.0);
-    deg[i] = std::acos(cosine) * 180.0 / M_PI;
+    mm[i] = cameraPositionError(estimate[i], truth[i]);
+    deg[i] = cameraAngleErrorDeg(estimate[i], truth[i]);
   }
   const std::size_t worst =
     static_cast<std::size_t>(std::max_element(deg.begin(), deg.end()) - deg.begin());

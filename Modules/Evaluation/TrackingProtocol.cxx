@@ -37,6 +37,15 @@ double meanOf(
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
 
+/// The registration of the first frames: P2's, on the sequence's beginning.
+VideoProtocolOptions registrationOf(const TrackingProtocolOptions& o)
+{
+  VideoProtocolOptions registration = o.registration;
+  registration.simulation = o.simulation;
+  registration.simulation.frames = o.registrationFrames;
+  return registration;
+}
+
 } // namespace
 
 EndoscopeSimulationOptions TrackingProtocolOptions::defaultSimulation()
@@ -63,10 +72,7 @@ void TrackingProtocolOptions::validate() const
                            "frames registered (SfM needs their parallax), not %d",
       this->registrationFrames, this->simulation.replay.leadFrames));
   }
-  VideoProtocolOptions registration = this->registration;
-  registration.simulation = this->simulation;
-  registration.simulation.frames = this->registrationFrames;
-  registration.validate();
+  registrationOf(*this).validate();
   this->tracker.validate();
   if (!(this->flagErrorMm > 0.0))
   {
@@ -133,9 +139,7 @@ TrackingProtocolReport runTrackingProtocol(
   // The registration of the first frames, as P2 does it. The shorter
   // sequence is the long one's beginning: the same path, replayed from the
   // same seed, rendered with the same per-frame noise.
-  VideoProtocolOptions registration = o.registration;
-  registration.simulation = o.simulation;
-  registration.simulation.frames = o.registrationFrames;
+  const VideoProtocolOptions registration = registrationOf(o);
   const auto began = std::chrono::steady_clock::now();
   const SimulatedVideoCase c = prepareSimulatedVideoCase(world, registration, progress);
   const RegistrationModel& model = c.pipeline->model();

@@ -7,8 +7,6 @@
 #include <vimlop/Video/CameraResection.h>
 #include <vimlop/Video/FrameUndistorter.h>
 
-#include <Eigen/Geometry>
-
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
@@ -311,7 +309,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
   const bool believable = pose && static_cast<int>(pose->inliers.size()) >= s.Options.minInliers &&
     pose->rmsErrorPx <= s.Options.inlierThresholdPx &&
     (pose->cameraToWorld.centre - predicted.centre).norm() <= s.Options.maxJumpMm &&
-    Eigen::AngleAxisd(predicted.rotation.transpose() * pose->cameraToWorld.rotation).angle() <=
+    rotationAngleBetween(predicted.rotation, pose->cameraToWorld.rotation) <=
       s.Options.maxTurnDeg * M_PI / 180.0;
   if (believable)
   {
