@@ -26,6 +26,7 @@ struct CTReadOptions;
 struct EndoscopeSimulationOptions;
 struct PinholeCamera;
 struct PoseServingOptions;
+struct PoseStreamServerOptions;
 struct RegistrationRecord;
 struct ServedPoses;
 struct SimulatedWorld;
@@ -107,10 +108,17 @@ SimulatedWorld loadSimulatedWorld(const std::string& mesh, const std::string& ct
 void addWorldPresetOption(CLI::App& command, WorldSettings& settings);
 
 /**
- * @brief Adds --host, --port, --allow-remote, --max-clients, --max-clients-per-address,
- * --allow-client, --duration-s, --camera-name, --per-frame-names and --allow-flagged
- * to `command`, stored into `options` (which must outlive the parse): the
- * flags of every subcommand that serves poses (VIMLOP::Server's servePoses).
+ * @brief Adds --host, --port, --allow-remote, --max-clients,
+ * --max-clients-per-address, --allow-client, --camera-name and
+ * --per-frame-names to `command`, stored into `options` (which must outlive
+ * the parse): where and how a pose server listens and names its devices.
+ */
+void addPoseServerOptions(CLI::App& command, PoseStreamServerOptions& options);
+
+/**
+ * @brief addPoseServerOptions(), plus --duration-s and --allow-flagged: the
+ * flags of every subcommand that serves a registration's poses
+ * (VIMLOP::Server's servePoses).
  */
 void addPoseServingOptions(CLI::App& command, PoseServingOptions& options);
 

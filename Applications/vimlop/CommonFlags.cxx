@@ -74,33 +74,37 @@ void addCTReadOptions(CLI::App& command, CTReadOptions& options)
     "regular grid (with a warning) instead of refusing it");
 }
 
-void addPoseServingOptions(CLI::App& command, PoseServingOptions& options)
+void addPoseServerOptions(CLI::App& command, PoseStreamServerOptions& options)
 {
-  command.add_option("--host", options.server.host, "address to listen on")->capture_default_str();
-  command.add_option("--port", options.server.port, "TCP port (0: any free one)")
-    ->capture_default_str();
-  command.add_flag("--allow-remote", options.server.allowRemote, "allow a non-loopback address");
-  command.add_option("--max-clients", options.server.maxClients, "clients served at once")
+  command.add_option("--host", options.host, "address to listen on")->capture_default_str();
+  command.add_option("--port", options.port, "TCP port (0: any free one)")->capture_default_str();
+  command.add_flag("--allow-remote", options.allowRemote, "allow a non-loopback address");
+  command.add_option("--max-clients", options.maxClients, "clients served at once")
     ->capture_default_str();
   command
-    .add_option("--max-clients-per-address", options.server.maxClientsPerAddress,
+    .add_option("--max-clients-per-address", options.maxClientsPerAddress,
       "connections kept from one address; a new one beyond it replaces that address's most idle")
     ->capture_default_str();
-  command.add_option("--allow-client", options.server.allowedClients,
+  command.add_option("--allow-client", options.allowedClients,
     "only this address or CIDR block may connect (repeat for more; default: any; add "
     "127.0.0.1 to keep local programs)");
   command
-    .add_option("--duration-s", options.durationS, "stop after this many seconds (0: until Ctrl-C)")
-    ->capture_default_str();
-  command
-    .add_option("--camera-name", options.server.cameraName,
+    .add_option("--camera-name", options.cameraName,
       "device name of the moving camera, one transform updated frame after frame (1-20 "
       "characters); also the STATUS messages' device")
     ->capture_default_str();
   command.add_flag(
     "--per-frame-names",
-    [&options](std::int64_t) { options.server.cameraNames = CameraDeviceNames::OnePerFrame; },
+    [&options](std::int64_t) { options.cameraNames = CameraDeviceNames::OnePerFrame; },
     "name each frame's pose VideoCamera_<frame id> instead (one transform per frame)");
+}
+
+void addPoseServingOptions(CLI::App& command, PoseServingOptions& options)
+{
+  addPoseServerOptions(command, options.server);
+  command
+    .add_option("--duration-s", options.durationS, "stop after this many seconds (0: until Ctrl-C)")
+    ->capture_default_str();
   command.add_flag("--allow-flagged", options.allowFlagged,
     "serve a result flagged as a failure too (its STATUS message says so); refused by default");
 }

@@ -9,6 +9,7 @@
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Pipeline/EndoscopeTracker.h>
 #include <vimlop/Pipeline/TrackingStart.h>
+#include <vimlop/Server/LivePoseStream.h>
 #include <vimlop/Video/FieldOfView.h>
 #include <vimlop/Video/FrameSequence.h>
 #include <vimlop/Video/IntrinsicsIO.h>
@@ -36,6 +37,9 @@ struct TrackOptions
   std::string out;
   int from = -1;
   bool allowFlagged = false;
+  bool serve = false;
+  double waitForClientS = 0.0;
+  PoseStreamServerOptions server;
   EndoscopeTrackerOptions tracker;
   bool json = false;
 };
@@ -100,6 +104,17 @@ void runTrack(const TrackOptions& o)
   const FieldOfView view = FieldOfView::ofSequence(pictures, FieldOfViewOptions());
   EndoscopeTracker tracker(start.modelCT, start.intrinsics, o.tracker);
   tracker.start(start.frame, start.cameraToCT, view.mask());
+  std::unique_ptr<LivePoseStream> stream;
+  if (o.serve)
+  {
+    stream = std::make_unique<LivePoseStream>(o.server, "vimlop track");
+    if (o.waitForClientS > 0.0 && !stream->waitForClient(o.waitForClientS))
+    {
+      std::cerr << formatText("vimlop: warning: no client connected within %g s "
+                              "(--wait-for-client-s); tracking starts anyway\n",
+        o.waitForClientS);
+    }
+  }
   std::vector<FramePose> poses;
   nlohmann::json records = nlohmann::json::array();
   std::vector<double> latency, errorMm;
@@ -125,11 +140,27 @@ void runTrack(const TrackOptions& o)
         errorMm.push_back(mm);
       }
     }
+    if (!t.reason.empty())
+    {
+      record["reason"] = t.reason;
+    }
     records.push_back(record);
     if (t.state != TrackingState::Lost)
     {
       poses.push_back({ id, t.cameraToCT });
     }
+    if (stream && t.state == TrackingState::Lost)
+    {
+      stream->sendLost(id, t.reason);
+    }
+    else if (stream)
+    {
+      stream->sendPose(poses.back(), t.reason);
+    }
+  }
+  if (stream && !stream->finish(5.0))
+  {
+    std::cerr << "vimlop: warning: a client had not taken every pose 5 s after the last frame\n";
   }
 
   fs::create_directories(o.out);
@@ -187,6 +218,16 @@ void addTrackCommand(CLI::App& app)
   c->add_flag("--allow-flagged", o->allowFlagged,
     "track from a result the registration flagged as a failure (refused without it)");
   c->add_option("--out", o->out, "output folder")->required();
+  c->add_flag("--serve", o->serve,
+    "stream each pose over OpenIGTLink as it is computed: a TRANSFORM of the moving camera (RAS "
+    "mm) stamped when it is sent, followed by a STATUS TrackingDegraded for a degraded frame; a "
+    "STATUS TrackingLost for a lost one");
+  c->add_option("--wait-for-client-s", o->waitForClientS,
+     "with --serve: wait up to this long for a first client before tracking (default 0: start at "
+     "once)")
+    ->check(CLI::NonNegativeNumber)
+    ->needs("--serve");
+  addPoseServerOptions(*c, o->server);
   c->add_option("--max-features", o->tracker.maxFeatures, "features tracked at most")
     ->capture_default_str();
   c->add_option("--inlier-px", o->tracker.inlierThresholdPx,

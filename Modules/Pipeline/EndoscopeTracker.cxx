@@ -272,6 +272,9 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     // frame is lost, and its corners, cast into the model from the
     // prediction, are the next frames' features. When the scope moved as
     // predicted, they stand for the right points and tracking resumes.
+    r.reason = formatText("%zu features left, fewer than %d: new ones are cast from the "
+                          "prediction",
+      s.Features.size(), s.Options.minInliers);
     s.Klt.reset(ideal);
     s.Features.clear();
     r.newFeatures = s.addFeatures(r.cameraToCT);
@@ -306,12 +309,33 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
   pnp.solver = ResectionSolver::IterativeFromGuess;
   const std::optional<CameraResection> pose =
     resectCamera(points, seen, s.Intrinsics, pnp, &predicted);
-  const bool believable = pose && static_cast<int>(pose->inliers.size()) >= s.Options.minInliers &&
-    pose->rmsErrorPx <= s.Options.inlierThresholdPx &&
-    (pose->cameraToWorld.centre - predicted.centre).norm() <= s.Options.maxJumpMm &&
-    rotationAngleBetween(predicted.rotation, pose->cameraToWorld.rotation) <=
-      s.Options.maxTurnDeg * M_PI / 180.0;
-  if (believable)
+  // Why the pose is not believed; empty when it is.
+  if (!pose)
+  {
+    r.reason = formatText("no pose agrees with %d tracked features", r.trackedFeatures);
+  }
+  else if (static_cast<int>(pose->inliers.size()) < s.Options.minInliers)
+  {
+    r.reason = formatText("%zu features agree with the pose, fewer than %d", pose->inliers.size(),
+      s.Options.minInliers);
+  }
+  else if (pose->rmsErrorPx > s.Options.inlierThresholdPx)
+  {
+    r.reason = formatText("the features' reprojection error %.2f px is above %.2f px",
+      pose->rmsErrorPx, s.Options.inlierThresholdPx);
+  }
+  else if ((pose->cameraToWorld.centre - predicted.centre).norm() > s.Options.maxJumpMm)
+  {
+    r.reason = formatText("the pose is %.1f mm from the prediction",
+      (pose->cameraToWorld.centre - predicted.centre).norm());
+  }
+  else if (rotationAngleBetween(predicted.rotation, pose->cameraToWorld.rotation) >
+    s.Options.maxTurnDeg * M_PI / 180.0)
+  {
+    r.reason = formatText("the pose is turned %.1f degrees from the prediction",
+      rotationAngleBetween(predicted.rotation, pose->cameraToWorld.rotation) * 180.0 / M_PI);
+  }
+  if (r.reason.empty())
   {
     r.cameraToCT = pose->cameraToWorld;
     r.inliers = static_cast<int>(pose->inliers.size());
@@ -319,6 +343,12 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     r.state = s.Anchored && r.inliers >= s.Options.degradedInlierFraction * r.trackedFeatures
       ? TrackingState::Tracking
       : TrackingState::Degraded;
+    if (r.state == TrackingState::Degraded)
+    {
+      r.reason = s.Anchored
+        ? formatText("%d of %d tracked features agree with the pose", r.inliers, r.trackedFeatures)
+        : std::string("its features were cast from a prediction after the tracker was lost");
+    }
     // Only the features that agree with the pose are worth following.
     std::vector<TrackedFeature> agreeing;
     agreeing.reserve(pose->inliers.size());

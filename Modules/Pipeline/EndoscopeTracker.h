@@ -86,6 +86,8 @@ struct TrackedFrame
   int newFeatures = 0; ///< corners added after the pose was found
   /// Wall-clock time of track(), from the frame to the pose and the new features, ms.
   double latencyMs = 0.0;
+  /// Why the frame is Degraded or Lost, for people; empty when Tracking.
+  std::string reason;
 };
 
 /**

@@ -72,6 +72,20 @@ std::string packTrackingLost(const std::string& device, const FrameWithoutPose& 
   return packed(*message, timeS);
 }
 
+std::string packTrackingDegraded(const std::string& device, const DegradedPose& frame, double timeS)
+{
+  igtl::StatusMessage::Pointer message = igtl::StatusMessage::New();
+  message->SetDeviceName(device.c_str());
+  // An error, like a flagged registration's: do not navigate with the pose as it is.
+  message->SetCode(igtl::StatusMessage::STATUS_UNKNOWN_ERROR);
+  message->SetSubCode(frame.frameId);
+  message->SetErrorName("TrackingDegraded");
+  message->SetStatusString(("frame " + std::to_string(frame.frameId) + "'s pose is degraded" +
+    (frame.reason.empty() ? std::string() : ": " + frame.reason))
+                             .c_str());
+  return packed(*message, timeS);
+}
+
 std::string packStatus(const std::string& device, const PoseVerdict& verdict, double timeS)
 {
   igtl::StatusMessage::Pointer message = igtl::StatusMessage::New();

@@ -24,6 +24,10 @@ std::string packImage(const std::string& device, const FramePicture& picture, do
 std::string packTrackingLost(
   const std::string& device, const FrameWithoutPose& frame, double timeS);
 
+/// @brief A STATUS after a pose its tracker does not vouch for (TrackingDegraded).
+std::string packTrackingDegraded(
+  const std::string& device, const DegradedPose& frame, double timeS);
+
 /// @brief A STATUS with a registration's verdict (OK, or RegistrationFlagged).
 std::string packStatus(const std::string& device, const PoseVerdict& verdict, double timeS);
 

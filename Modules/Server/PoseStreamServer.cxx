@@ -24,6 +24,7 @@ namespace vimlop
 
 using igtlmessages::packImage;
 using igtlmessages::packStatus;
+using igtlmessages::packTrackingDegraded;
 using igtlmessages::packTrackingLost;
 using igtlmessages::packTransform;
 
@@ -241,6 +242,15 @@ void PoseStreamServer::publish(const ServedPoses& poses)
           " without a pose has no finite time, and the poses have times");
       }
     }
+    for (const DegradedPose& degraded : poses.degradedPoses)
+    {
+      if (std::none_of(cameraToCT.begin(), cameraToCT.end(),
+            [&](const FramePose& p) { return p.frameId == degraded.frameId; }))
+      {
+        throw Error("frame " + std::to_string(degraded.frameId) +
+          " is said to be degraded but has no pose among those published");
+      }
+    }
     for (const FramePose& pose : cameraToCT)
     {
       const std::string name = deviceNameOf(this->Options, pose.frameId);
@@ -278,6 +288,13 @@ void PoseStreamServer::publish(const ServedPoses& poses)
                               : packImage(this->Options.imageName, poses.pictures[i], timeS)) +
         packTransform(deviceNameOf(this->Options, cameraToCT[i].frameId),
           intoRas(cameraToCT[i].cameraToWorld.matrix()), timeS));
+    for (const DegradedPose& degraded : poses.degradedPoses)
+    {
+      if (degraded.frameId == cameraToCT[i].frameId)
+      {
+        frames.back().second += packTrackingDegraded(this->Options.cameraName, degraded, timeS);
+      }
+    }
   }
   for (const FrameWithoutPose& lost : poses.framesWithoutPose)
   {
@@ -497,41 +514,52 @@ void PoseStreamServer::serve(const std::function<bool()>& keepRunning)
 {
   while (keepRunning())
   {
-    std::vector<pollfd> fds;
-    fds.push_back({ this->Listener, POLLIN, 0 });
-    for (const Client& client : this->Clients)
+    this->pump(100);
+  }
+}
+
+bool PoseStreamServer::allSent() const
+{
+  return std::all_of(this->Clients.begin(), this->Clients.end(),
+    [](const Client& client) { return client.pending.empty(); });
+}
+
+void PoseStreamServer::pump(int timeoutMs)
+{
+  std::vector<pollfd> fds;
+  fds.push_back({ this->Listener, POLLIN, 0 });
+  for (const Client& client : this->Clients)
+  {
+    fds.push_back(
+      { client.fd, static_cast<short>(POLLIN | (client.pending.empty() ? 0 : POLLOUT)), 0 });
+  }
+  if (poll(fds.data(), fds.size(), std::max(timeoutMs, 0)) < 0 && errno != EINTR)
+  {
+    throw Error(std::string("the server's poll failed: ") + std::strerror(errno));
+  }
+  // Clients first (their indices match fds[1...]), newest last.
+  for (size_t i = this->Clients.size(); i-- > 0;)
+  {
+    const short events = fds[i + 1].revents;
+    bool alive = (events & (POLLERR | POLLNVAL)) == 0;
+    if (alive && (events & (POLLIN | POLLHUP)))
     {
-      fds.push_back(
-        { client.fd, static_cast<short>(POLLIN | (client.pending.empty() ? 0 : POLLOUT)), 0 });
+      this->drain(this->Clients[i], alive);
     }
-    if (poll(fds.data(), fds.size(), 100) < 0 && errno != EINTR)
+    if (alive && (events & POLLOUT) && !this->flush(this->Clients[i]))
     {
-      throw Error(std::string("the server's poll failed: ") + std::strerror(errno));
+      this->dropSlowClient(i);
+      continue;
     }
-    // Clients first (their indices match fds[1...]), newest last.
-    for (size_t i = this->Clients.size(); i-- > 0;)
+    if (!alive)
     {
-      const short events = fds[i + 1].revents;
-      bool alive = (events & (POLLERR | POLLNVAL)) == 0;
-      if (alive && (events & (POLLIN | POLLHUP)))
-      {
-        this->drain(this->Clients[i], alive);
-      }
-      if (alive && (events & POLLOUT) && !this->flush(this->Clients[i]))
-      {
-        this->dropSlowClient(i);
-        continue;
-      }
-      if (!alive)
-      {
-        this->closeClient(i);
-      }
+      this->closeClient(i);
     }
-    this->dropStalledClients();
-    if (fds[0].revents & POLLIN)
-    {
-      this->accept();
-    }
+  }
+  this->dropStalledClients();
+  if (fds[0].revents & POLLIN)
+  {
+    this->accept();
   }
 }
 

@@ -89,7 +89,9 @@ struct PoseStreamServerOptions
  * time; rows top first, the image's j axis pointing down, so that 3D Slicer
  * shows it upright), a STATUS message (code NOT_PRESENT, error name
  * `TrackingLost`, sub-code the frame id) in the place of each frame without
- * a pose, and, for a registration's poses, a STATUS message with its
+ * a pose, a STATUS message (code UNKNOWN_ERROR, error name
+ * `TrackingDegraded`, sub-code the frame id) right after each pose its
+ * tracker does not vouch for, and, for a registration's poses, a STATUS message with its
  * verdict (code OK, or error name `RegistrationFlagged` for a result flagged
  * as a failure). Each message carries a wall-clock timestamp: the newest
  * frame is stamped with the moment of publication, the others earlier by
@@ -139,6 +141,17 @@ public:
 
   /// @brief Serves until `keepRunning()` returns false (checked about every 100 ms).
   void serve(const std::function<bool()>& keepRunning);
+
+  /**
+   * @brief Serves once: accepts new clients, sends what is pending, reads
+   * and discards what clients sent, drops the dead and the stalled. Waits
+   * at most `timeoutMs` (0: not at all) for something to happen, so that a
+   * loop that computes poses (a tracker) can serve between frames.
+   */
+  void pump(int timeoutMs);
+
+  /// @brief True when every connected client has taken all that was sent to it.
+  bool allSent() const;
 
   /// @brief Clients connected now.
   int clientCount() const { return static_cast<int>(this->Clients.size()); }

@@ -32,6 +32,18 @@ struct FrameWithoutPose
   std::string reason;
 };
 
+/**
+ * @brief A frame whose pose is sent, but which its tracker does not vouch for
+ * (tracking degraded: the pose agrees with the features, but nothing has
+ * checked them against the CT lately).
+ */
+struct DegradedPose
+{
+  int frameId = 0;
+  /// Why, for people (e.g. "features cast from a prediction").
+  std::string reason;
+};
+
 /// @brief A frame's picture as the registration saw it: 8-bit RGB, rows top first.
 struct FramePicture
 {
@@ -58,6 +70,9 @@ struct ServedPoses
   /// The frames without a pose, in the order of the video: each is told as a
   /// STATUS "TrackingLost" between the poses around it.
   std::vector<FrameWithoutPose> framesWithoutPose;
+  /// The poses among cameraToCT (by frame id) that are sent but not vouched
+  /// for: each is followed by a STATUS "TrackingDegraded".
+  std::vector<DegradedPose> degradedPoses;
   /// The registration's verdict; none for poses that no registration judged.
   std::optional<PoseVerdict> verdict;
 };

@@ -10,6 +10,8 @@
 //
 // Usage: TestPoseReceiver <vimlop> --poses <poses.json> [serve flags...]
 //        TestPoseReceiver <vimlop> --result <result folder> [serve flags...]
+//        TestPoseReceiver <vimlop> --track <out folder> [track flags...]
+// The last follows `vimlop track --serve` live instead (followTracking()).
 
 #include <igtlClientSocket.h>
 #include <igtlImageMessage.h>
@@ -82,6 +84,7 @@ struct Received
   double timeS = 0.0;
   std::vector<float> matrix;
   int code = 0;
+  std::uint64_t subCode = 0;
   std::string errorName;
   std::string text;
   /// An IMAGE's size and components.
@@ -90,8 +93,9 @@ struct Received
   int components = 0;
 };
 
-/// Receives messages until `expected` arrived or 10 s passed.
-std::vector<Received> receiveMessages(int port, size_t expected)
+/// Receives messages until `expected` arrived, the server closed the
+/// connection or `seconds` passed.
+std::vector<Received> receiveMessages(int port, size_t expected, int seconds = 10)
 {
   std::vector<Received> got;
   igtl::ClientSocket::Pointer socket = igtl::ClientSocket::New();
@@ -101,8 +105,8 @@ std::vector<Received> receiveMessages(int port, size_t expected)
   }
   socket->SetReceiveTimeout(10000);
   const auto start = std::chrono::steady_clock::now();
-  while (
-    got.size() < expected && std::chrono::steady_clock::now() - start < std::chrono::seconds(10))
+  while (got.size() < expected &&
+    std::chrono::steady_clock::now() - start < std::chrono::seconds(seconds))
   {
     igtl::MessageHeader::Pointer header = igtl::MessageHeader::New();
     header->InitPack();
@@ -169,6 +173,7 @@ std::vector<Received> receiveMessages(int port, size_t expected)
     else
     {
       r.code = status->GetCode();
+      r.subCode = status->GetSubCode();
       r.errorName = status->GetErrorName();
       r.text = status->GetStatusString();
     }
@@ -208,6 +213,75 @@ double determinant3(const std::vector<float>& m)
     m[2] * (m[4] * m[9] - m[5] * m[8]);
 }
 
+/// Starts `args` (the vimlop program first) with its stdout read here until
+/// it announces `127.0.0.1:<port>`; returns its process id, or -1 after
+/// killing it when it announced none.
+pid_t launch(std::vector<std::string> args, int& port)
+{
+  int out[2];
+  if (pipe(out) != 0)
+  {
+    return -1;
+  }
+  const pid_t child = fork();
+  if (child == 0)
+  {
+    dup2(out[1], STDOUT_FILENO);
+    close(out[0]);
+    std::vector<char*> pointers;
+    for (std::string& arg : args)
+    {
+      pointers.push_back(arg.data());
+    }
+    pointers.push_back(nullptr);
+    execv(pointers[0], pointers.data());
+    _exit(127);
+  }
+  close(out[1]);
+  char line[512] = {};
+  FILE* stream = fdopen(out[0], "r");
+  if (!std::fgets(line, sizeof(line), stream) || !std::strstr(line, "127.0.0.1:") ||
+    std::sscanf(std::strstr(line, "127.0.0.1:") + 10, "%d", &port) != 1)
+  {
+    std::fprintf(stderr, "the server did not announce its port: %s\n", line);
+    kill(child, SIGKILL);
+    return -1;
+  }
+  // The rest of its output goes on to ours, so that the pipe never fills.
+  std::thread(
+    [stream]
+    {
+      char rest[512];
+      while (std::fgets(rest, sizeof(rest), stream))
+      {
+        std::fputs(rest, stdout);
+      }
+      std::fclose(stream);
+    })
+    .detach();
+  return child;
+}
+
+/// Waits up to `seconds` for `child` to end; its exit code, or -1 (killed) when it did not.
+int exitCodeOf(pid_t child, int seconds)
+{
+  int status = 0;
+  const auto start = std::chrono::steady_clock::now();
+  pid_t done = 0;
+  while ((done = waitpid(child, &status, WNOHANG)) == 0 &&
+    std::chrono::steady_clock::now() - start < std::chrono::seconds(seconds))
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (done != child)
+  {
+    kill(child, SIGKILL);
+    waitpid(child, &status, 0);
+    return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 } // namespace
 
 /// What one message must carry, from the files themselves (not VIMLOP's readers).
@@ -222,6 +296,8 @@ struct Expected
   std::string errorName;
   int width = 0;
   int height = 0;
+  /// The frame a live stream's message is for (`--track`).
+  int frameId = -1;
 };
 
 Expected transformOf(const std::string& device, const Matrix& matrix)
@@ -233,17 +309,124 @@ Expected transformOf(const std::string& device, const Matrix& matrix)
   return e;
 }
 
+/// `vimlop track --serve` followed live: the client connects before the
+/// first frame (--wait-for-client-s) and must receive, frame after frame as
+/// tracking.json lists them, a TRANSFORM of the moving camera for each frame
+/// that is not lost (its pose as in tracked-poses.json, in RAS), followed by
+/// a STATUS TrackingDegraded for a degraded one, and a STATUS TrackingLost
+/// for each lost one, each frame stamped later than the one before.
+int followTracking(
+  const std::string& vimlop, const std::string& out, const std::vector<std::string>& trackArgs)
+{
+  std::vector<std::string> args = { vimlop, "track", "--serve", "--port", "0",
+    "--wait-for-client-s", "60", "--out", out };
+  args.insert(args.end(), trackArgs.begin(), trackArgs.end());
+  int port = 0;
+  const pid_t tracker = launch(args, port);
+  if (tracker < 0)
+  {
+    return 1;
+  }
+  const std::vector<Received> got = receiveMessages(port, SIZE_MAX, 120);
+  check(exitCodeOf(tracker, 60) == 0, "vimlop track ends with 0");
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/tracking.json"));
+  const nlohmann::json poses =
+    nlohmann::json::parse(std::ifstream(out + "/tracked-poses.json"))["poses"];
+  std::vector<Expected> expected;
+  std::vector<int> frameOf; // the index in per_frame of each expected message
+  int counts[3] = { 0, 0, 0 };
+  size_t pose = 0;
+  for (const auto& frame : report["per_frame"])
+  {
+    const int id = frame["frame_id"].get<int>();
+    const std::string state = frame["state"].get<std::string>();
+    counts[state == "tracking" ? 0 : state == "degraded" ? 1 : 2]++;
+    if (state == "lost")
+    {
+      expected.push_back(
+        { "STATUS", "CameraToCT", {}, std::nullopt, 16, "TrackingLost", 0, 0, id });
+    }
+    else
+    {
+      check(pose < poses.size() && poses[pose]["frame_id"].get<int>() == id,
+        "frame " + std::to_string(id) + " has its pose in tracked-poses.json");
+      expected.push_back(transformOf(
+        "CameraToCT", intoRas(toMatrix(poses[std::min(pose, poses.size() - 1)]["camera_to_ct"]))));
+      expected.back().frameId = id;
+      ++pose;
+      if (state == "degraded")
+      {
+        expected.push_back(
+          { "STATUS", "CameraToCT", {}, std::nullopt, 2, "TrackingDegraded", 0, 0, id });
+      }
+    }
+  }
+  std::printf("%d tracking, %d degraded, %d lost frames: expecting %zu messages\n", counts[0],
+    counts[1], counts[2], expected.size());
+  // The sequence must have all three, or this test would not test the stream's statuses.
+  check(counts[0] > 0 && counts[1] > 0 && counts[2] > 0, "the frames have all three states");
+  check(got.size() == expected.size(),
+    "received " + std::to_string(got.size()) + " of " + std::to_string(expected.size()) +
+      " messages");
+  double previousS = 0.0;
+  for (size_t k = 0; k < std::min(got.size(), expected.size()); ++k)
+  {
+    const Expected& e = expected[k];
+    const Received& r = got[k];
+    const int id = e.frameId;
+    const std::string what = "message " + std::to_string(k) + " (frame " + std::to_string(id) +
+      ", " + e.type + " " + e.errorName + ")";
+    if (r.type != e.type || r.device != e.device)
+    {
+      check(false, what + " received as " + r.type + " " + r.device);
+      continue;
+    }
+    if (e.errorName == "TrackingDegraded")
+    {
+      // It follows its frame's pose, at the same time.
+      check(r.timeS == previousS, what + " carries its pose's time");
+    }
+    else
+    {
+      check(r.timeS > previousS, what + " is stamped later than the frame before it");
+    }
+    previousS = r.timeS;
+    if (e.type == "STATUS")
+    {
+      check(r.code == e.code && r.errorName == e.errorName && r.subCode == std::uint64_t(id),
+        what + " says code " + std::to_string(r.code) + " '" + r.errorName + "', sub-code " +
+          std::to_string(r.subCode) + ": " + r.text);
+      continue;
+    }
+    double worst = 0.0;
+    for (size_t i = 0; i < 16; ++i)
+    {
+      worst =
+        std::max(worst, std::abs(e.matrix[i] - r.matrix[i]) / std::max(1.0, std::abs(e.matrix[i])));
+    }
+    check(worst < 1e-5,
+      what + " is the tracked pose in RAS (worst relative element error " + std::to_string(worst) +
+        ")");
+  }
+  return failures == 0 ? 0 : 1;
+}
+
 int main(int argc, char** argv)
 {
   const std::string mode = argc >= 4 ? argv[2] : "";
+  std::signal(SIGPIPE, SIG_IGN);
+  if (mode == "--track")
+  {
+    return followTracking(argv[1], argv[3], std::vector<std::string>(argv + 4, argv + argc));
+  }
   if (mode != "--poses" && mode != "--result")
   {
     std::fprintf(stderr,
-      "usage: %s <vimlop> --poses <poses.json> | --result <result folder> [serve flags...]\n",
-      argv[0]);
+      "usage: %s <vimlop> --poses <poses.json> | --result <result folder> [serve flags...]\n"
+      "       %s <vimlop> --track <out folder> [track flags...]\n",
+      argv[0], argv[0]);
     return 2;
   }
-  std::signal(SIGPIPE, SIG_IGN);
   std::vector<std::string> serveFlags(argv + 4, argv + argc);
   const bool perFrame =
     std::find(serveFlags.begin(), serveFlags.end(), "--per-frame-names") != serveFlags.end();
@@ -317,37 +500,13 @@ int main(int argc, char** argv)
   }
   std::printf("expecting %zu messages\n", expected.size());
 
-  int out[2];
-  if (pipe(out) != 0)
-  {
-    return 2;
-  }
-  const pid_t server = fork();
-  if (server == 0)
-  {
-    dup2(out[1], STDOUT_FILENO);
-    close(out[0]);
-    std::vector<std::string> args = { argv[1], "serve", argv[2], argv[3], "--port", "0",
-      "--duration-s", "120" };
-    args.insert(args.end(), serveFlags.begin(), serveFlags.end());
-    std::vector<char*> pointers;
-    for (std::string& arg : args)
-    {
-      pointers.push_back(arg.data());
-    }
-    pointers.push_back(nullptr);
-    execv(argv[1], pointers.data());
-    _exit(127);
-  }
-  close(out[1]);
-  char line[512] = {};
-  FILE* stream = fdopen(out[0], "r");
+  std::vector<std::string> args = { argv[1], "serve", argv[2], argv[3], "--port", "0",
+    "--duration-s", "120" };
+  args.insert(args.end(), serveFlags.begin(), serveFlags.end());
   int port = 0;
-  if (!std::fgets(line, sizeof(line), stream) || !std::strstr(line, "127.0.0.1:") ||
-    std::sscanf(std::strstr(line, "127.0.0.1:") + 10, "%d", &port) != 1)
+  const pid_t server = launch(args, port);
+  if (server < 0)
   {
-    std::fprintf(stderr, "the server did not announce its port: %s\n", line);
-    kill(server, SIGKILL);
     return 1;
   }
   std::printf("server on port %d\n", port);
@@ -504,19 +663,6 @@ int main(int argc, char** argv)
   closeCrowd(idle);
 
   kill(server, SIGINT);
-  int status = 0;
-  const auto start = std::chrono::steady_clock::now();
-  pid_t done = 0;
-  while ((done = waitpid(server, &status, WNOHANG)) == 0 &&
-    std::chrono::steady_clock::now() - start < std::chrono::seconds(5))
-  {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  check(done == server && WIFEXITED(status) && WEXITSTATUS(status) == 0,
-    "server stops cleanly on SIGINT");
-  if (done != server)
-  {
-    kill(server, SIGKILL);
-  }
+  check(exitCodeOf(server, 5) == 0, "server stops cleanly on SIGINT");
   return failures == 0 ? 0 : 1;
 }

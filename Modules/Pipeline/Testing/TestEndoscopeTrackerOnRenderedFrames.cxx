@@ -75,6 +75,12 @@ TEST(EndoscopeTracker, IsLostOnABlankFrameThenFollowsAgainDegraded)
       EXPECT_EQ(r.state, f < 8 ? TrackingState::Tracking : TrackingState::Degraded) << f;
       EXPECT_GT(r.inliers, tracker.options().minInliers) << f;
     }
+    // Each frame that is not tracking says why.
+    const std::string why = f < 8 ? ""
+      : f == 8                    ? "no pose agrees with 0 tracked features"
+      : f == 9 ? "0 features left, fewer than 25: new ones are cast from the prediction"
+               : "its features were cast from a prediction after the tracker was lost";
+    EXPECT_EQ(r.reason, why) << f;
     // The prediction carries the lost frames: the path is smooth.
     EXPECT_LT(mm, 0.5) << f;
   }

@@ -1,4 +1,5 @@
 #include "ErrorMessage.h"
+#include <vimlop/Server/LivePoseStream.h>
 #include <vimlop/Server/PoseStreamServer.h>
 
 #include <gtest/gtest.h>
@@ -6,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -345,12 +347,10 @@ std::string field(const std::string& bytes, size_t at, size_t length)
   return raw.substr(0, raw.find('\0'));
 }
 
-/// Everything `server` sends one new client within `ms`, cut into messages
-/// by the protocol's 58-byte header (version, type, device, time, body size, CRC).
-std::vector<WireMessage> receiveAll(PoseStreamServer& server, int ms)
+/// What has arrived on `fd`, cut into messages by the protocol's 58-byte
+/// header (version, type, device, time, body size, CRC); closes `fd`.
+std::vector<WireMessage> messagesArrivedOn(int fd)
 {
-  const int fd = connectTo(server.port());
-  serveFor(server, ms);
   std::string bytes;
   char buffer[4096];
   for (ssize_t got = 0; (got = recv(fd, buffer, sizeof(buffer), MSG_DONTWAIT)) > 0;)
@@ -372,6 +372,14 @@ std::vector<WireMessage> receiveAll(PoseStreamServer& server, int ms)
     at += 58 + bodySize;
   }
   return messages;
+}
+
+/// Everything `server` sends one new client within `ms`.
+std::vector<WireMessage> receiveAll(PoseStreamServer& server, int ms)
+{
+  const int fd = connectTo(server.port());
+  serveFor(server, ms);
+  return messagesArrivedOn(fd);
 }
 
 double wallClockS()
@@ -586,4 +594,90 @@ TEST(PoseStreamServer, EachPoseCanComeWithItsFramesPictureAsAnImageAtTheSameTime
   poses.pictures.back().rgb.pop_back();
   EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(poses); }),
     "pose server: refusing to publish: a picture of 4x2 px holds 23 bytes, not 3 per pixel");
+}
+
+TEST(PoseStreamServer, ADegradedPoseIsFollowedByATrackingDegradedStatusWithItsFrameId)
+{
+  PoseStreamServer server(anyFreePort());
+  ServedPoses poses = threeFramesOfAVideo();
+  poses.degradedPoses = { { 11, "features cast from a prediction" } };
+  server.publish(poses);
+  const std::vector<WireMessage> got = receiveAll(server, 200);
+  ASSERT_EQ(got.size(), 5u);
+  EXPECT_EQ(got[2].type, "TRANSFORM");
+  const WireMessage& status = got[3];
+  EXPECT_EQ(status.type, "STATUS");
+  EXPECT_EQ(status.device, "CameraToCT");
+  EXPECT_EQ(status.timeS, got[2].timeS);
+  EXPECT_EQ(bigEndian(status.body, 0, 2), 2u);
+  EXPECT_EQ(bigEndian(status.body, 2, 8), 11u);
+  EXPECT_EQ(field(status.body, 10, 20), "TrackingDegraded");
+  EXPECT_EQ(field(status.body, 30, status.body.size() - 30),
+    "frame 11's pose is degraded: features cast from a prediction");
+  EXPECT_EQ(got[4].type, "TRANSFORM");
+
+  poses.degradedPoses = { { 13, "" } };
+  EXPECT_EQ(fixtures::errorMessageOf([&] { server.publish(poses); }),
+    "pose server: refusing to publish: frame 13 is said to be degraded but has no pose among "
+    "those published");
+}
+
+TEST(LivePoseStream, AConnectedClientGetsEachFrameInOrderWithIncreasingTimesAndTheLostStretch)
+{
+  PoseStreamServerOptions options = anyFreePort();
+  options.cameraName = "Endoscope";
+  LivePoseStream stream(options, "test");
+  const int fd = connectTo(stream.port());
+  ASSERT_TRUE(stream.waitForClient(5.0));
+  // Frames 0-2 tracked, 3-4 lost, 5 degraded, 6 tracked.
+  for (int id = 0; id < 7; ++id)
+  {
+    FramePose pose;
+    pose.frameId = id;
+    pose.cameraToWorld.centre = Eigen::Vector3d(100.0 + id, 90.0, 30.0);
+    if (id == 3 || id == 4)
+    {
+      stream.sendLost(id, "too few features");
+    }
+    else
+    {
+      stream.sendPose(pose, id == 5 ? "features cast from a prediction" : "");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_TRUE(stream.finish(5.0));
+  const std::vector<WireMessage> got = messagesArrivedOn(fd);
+  const std::vector<std::pair<std::string, std::string>> expected = { { "TRANSFORM", "" },
+    { "TRANSFORM", "" }, { "TRANSFORM", "" }, { "STATUS", "TrackingLost" },
+    { "STATUS", "TrackingLost" }, { "TRANSFORM", "" }, { "STATUS", "TrackingDegraded" },
+    { "TRANSFORM", "" } };
+  ASSERT_EQ(got.size(), expected.size());
+  for (size_t i = 0; i < got.size(); ++i)
+  {
+    EXPECT_EQ(got[i].type, expected[i].first) << i;
+    EXPECT_EQ(got[i].device, "Endoscope") << i;
+    if (got[i].type == "STATUS")
+    {
+      EXPECT_EQ(field(got[i].body, 10, 20), expected[i].second) << i;
+    }
+    // A degraded frame's STATUS shares its pose's time; every new frame is later.
+    if (i > 0)
+    {
+      EXPECT_GE(got[i].timeS, got[i - 1].timeS) << i;
+      EXPECT_TRUE(expected[i].second == "TrackingDegraded" || got[i].timeS > got[i - 1].timeS) << i;
+    }
+  }
+  EXPECT_EQ(bigEndian(got[3].body, 2, 8), 3u);
+  EXPECT_EQ(bigEndian(got[4].body, 2, 8), 4u);
+}
+
+TEST(LivePoseStream, NoClientWithinTheWaitIsToldAndTheStreamFinishesAtOnce)
+{
+  LivePoseStream stream(anyFreePort(), "test");
+  const auto before = std::chrono::steady_clock::now();
+  EXPECT_FALSE(stream.waitForClient(0.2));
+  EXPECT_GE(std::chrono::steady_clock::now() - before, std::chrono::milliseconds(200));
+  FramePose pose;
+  stream.sendPose(pose);
+  EXPECT_TRUE(stream.finish(5.0));
 }
