@@ -10,13 +10,13 @@
 #include <vimlop/Pipeline/EndoscopeTracker.h>
 #include <vimlop/Pipeline/TrackingStart.h>
 #include <vimlop/Server/LivePoseStream.h>
-#include <vimlop/Video/FieldOfView.h>
-#include <vimlop/Video/FrameSequence.h>
+#include <vimlop/Video/FrameStream.h>
+#include <vimlop/Video/FrameUndistorter.h>
 #include <vimlop/Video/IntrinsicsIO.h>
-#include <vimlop/Video/VideoInput.h>
 
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -35,6 +35,7 @@ struct TrackOptions
   std::string intrinsics;
   std::string truth;
   std::string out;
+  int camera = -1;
   int from = -1;
   bool allowFlagged = false;
   bool serve = false;
@@ -44,10 +45,41 @@ struct TrackOptions
   bool json = false;
 };
 
+/// The camera the frames are undistorted with: the intrinsics file's lens
+/// around the camera the result registered with, which it must be.
+PinholeCamera lensOf(const TrackOptions& o, const PinholeCamera& registered)
+{
+  if (o.intrinsics.empty())
+  {
+    return registered;
+  }
+  const PinholeCamera given = readIntrinsics(o.intrinsics);
+  const PinholeCamera pinhole = FrameUndistorter(given).pinhole();
+  const auto same = [](double a, double b)
+  { return std::abs(a - b) <= 1e-6 * std::max(1.0, std::abs(b)); };
+  if (pinhole.widthPx != registered.widthPx || pinhole.heightPx != registered.heightPx ||
+    !same(pinhole.fx, registered.fx) || !same(pinhole.fy, registered.fy) ||
+    !same(pinhole.cx, registered.cx) || !same(pinhole.cy, registered.cy))
+  {
+    throwFileError(o.intrinsics,
+      formatText("a %dx%d camera with fx %g, fy %g, cx %g, cy %g, but the result registered a "
+                 "%dx%d camera with fx %g, fy %g, cx %g, cy %g: give the intrinsics the result "
+                 "was registered with",
+        pinhole.widthPx, pinhole.heightPx, pinhole.fx, pinhole.fy, pinhole.cx, pinhole.cy,
+        registered.widthPx, registered.heightPx, registered.fx, registered.fy, registered.cx,
+        registered.cy));
+  }
+  return given;
+}
+
 void runTrack(const TrackOptions& o)
 {
   namespace fs = std::filesystem;
   o.tracker.validate();
+  if (o.frames.empty() == (o.camera < 0))
+  {
+    throw Error("give exactly one of --frames and --camera");
+  }
   const TrackingStart start = TrackingStart::fromResult(o.result);
   // Tracking carries the registration's error to every frame: a result the
   // registration itself flagged is no start for navigation.
@@ -56,36 +88,15 @@ void runTrack(const TrackOptions& o)
     throw Error("refusing to track from a result flagged as a failure (" + start.failureReason +
       "): every tracked pose would carry its error; pass --allow-flagged to track anyway");
   }
-  const FrameSequence sequence = FrameSequence::load(o.frames);
   // The frames as the registration saw them: undistorted with the lens of
   // the intrinsics file (the one given to `register`), or as they are.
-  std::vector<cv::Mat> undistorted;
-  if (!o.intrinsics.empty())
-  {
-    undistorted =
-      idealFrames(sequence, readIntrinsics(o.intrinsics), o.frames, o.intrinsics, &std::cerr);
-  }
-  auto frame = [&](int i) -> const cv::Mat&
-  { return undistorted.empty() ? sequence.frame(i) : undistorted[static_cast<std::size_t>(i)]; };
+  const FrameUndistorter undistorter(lensOf(o, start.intrinsics));
+  FrameStream stream =
+    o.camera >= 0 ? FrameStream::openCamera(o.camera) : FrameStream::open(o.frames);
   // By default tracking goes on after the frame the registration ended on.
-  int first = o.from;
-  if (first < 0)
-  {
-    first = 0;
-    for (int i = 0; i < sequence.size(); ++i)
-    {
-      if (!start.frameSource.empty() && sequence.name(i) == start.frameSource)
-      {
-        first = i + 1;
-      }
-    }
-  }
-  if (first >= sequence.size())
-  {
-    throw Error(formatText("no frames to track: '%s' has %d frames, and tracking would start at "
-                           "frame %d (after the registered frame '%s'; --from sets it)",
-      o.frames.c_str(), sequence.size(), first, start.frameSource.c_str()));
-  }
+  const std::optional<int> registeredAt =
+    start.frameSource.empty() ? std::nullopt : stream.indexOfName(start.frameSource);
+  const int first = o.from >= 0 ? o.from : registeredAt ? *registeredAt + 1 : 0;
   std::map<int, CameraPose> truth;
   if (!o.truth.empty())
   {
@@ -95,20 +106,13 @@ void runTrack(const TrackOptions& o)
     }
   }
 
-  // The field stop, found on the frames to track as register finds it by default.
-  std::vector<cv::Mat> pictures;
-  for (int i = first; i < sequence.size(); ++i)
-  {
-    pictures.push_back(frame(i));
-  }
-  const FieldOfView view = FieldOfView::ofSequence(pictures, FieldOfViewOptions());
   EndoscopeTracker tracker(start.modelCT, start.intrinsics, o.tracker);
-  tracker.start(start.frame, start.cameraToCT, view.mask());
-  std::unique_ptr<LivePoseStream> stream;
+  tracker.start(start.frame, start.cameraToCT, start.fieldOfViewMask);
+  std::unique_ptr<LivePoseStream> server;
   if (o.serve)
   {
-    stream = std::make_unique<LivePoseStream>(o.server, "vimlop track");
-    if (o.waitForClientS > 0.0 && !stream->waitForClient(o.waitForClientS))
+    server = std::make_unique<LivePoseStream>(o.server, "vimlop track");
+    if (o.waitForClientS > 0.0 && !server->waitForClient(o.waitForClientS))
     {
       std::cerr << formatText("vimlop: warning: no client connected within %g s "
                               "(--wait-for-client-s); tracking starts anyway\n",
@@ -119,46 +123,85 @@ void runTrack(const TrackOptions& o)
   nlohmann::json records = nlohmann::json::array();
   std::vector<double> latency, errorMm;
   int counts[3] = { 0, 0, 0 };
-  for (int i = first; i < sequence.size(); ++i)
+  std::string firstName;
+  std::string stoppedBy;
+  StreamedFrame f;
+  int seen = 0;
+  try
   {
-    const TrackedFrame t = tracker.track(frame(i));
-    const int id = sequence.ids()[static_cast<std::size_t>(i)];
-    ++counts[static_cast<int>(t.state)];
-    latency.push_back(t.latencyMs);
-    nlohmann::json record = { { "frame_id", id }, { "source", sequence.name(i) },
-      { "state", toString(t.state) }, { "tracked_features", t.trackedFeatures },
-      { "inliers", t.inliers }, { "reprojection_error_px", t.reprojectionErrorPx },
-      { "new_features", t.newFeatures }, { "latency_ms", t.latencyMs } };
-    const auto known = truth.find(id);
-    if (known != truth.end())
+    for (; stream.next(f); ++seen)
     {
-      const double mm = cameraPositionError(t.cameraToCT, known->second);
-      record["camera_position_error_mm"] = mm;
-      record["camera_angle_error_deg"] = cameraAngleErrorDeg(t.cameraToCT, known->second);
+      if (f.index < first)
+      {
+        continue;
+      }
+      if (f.image.size() != cv::Size(start.intrinsics.widthPx, start.intrinsics.heightPx))
+      {
+        throw Error(formatText("frame '%s' of %s is %dx%d pixels, but the result's camera is "
+                               "%dx%d: these are not the frames it registered",
+          f.name.c_str(), stream.source().c_str(), f.image.cols, f.image.rows,
+          start.intrinsics.widthPx, start.intrinsics.heightPx));
+      }
+      // The latency is the whole way from the decoded frame to its pose
+      // (sent, with --serve): undistortion, tracking and serving.
+      const auto decoded = std::chrono::steady_clock::now();
+      const TrackedFrame t = tracker.track(undistorter.undistort(f.image));
+      firstName = firstName.empty() ? f.name : firstName;
+      ++counts[static_cast<int>(t.state)];
+      nlohmann::json record = { { "frame_id", f.id }, { "source", f.name },
+        { "state", toString(t.state) }, { "tracked_features", t.trackedFeatures },
+        { "inliers", t.inliers }, { "reprojection_error_px", t.reprojectionErrorPx },
+        { "new_features", t.newFeatures } };
+      const auto known = truth.find(f.id);
+      if (known != truth.end())
+      {
+        const double mm = cameraPositionError(t.cameraToCT, known->second);
+        record["camera_position_error_mm"] = mm;
+        record["camera_angle_error_deg"] = cameraAngleErrorDeg(t.cameraToCT, known->second);
+        if (t.state != TrackingState::Lost)
+        {
+          errorMm.push_back(mm);
+        }
+      }
+      if (!t.reason.empty())
+      {
+        record["reason"] = t.reason;
+      }
+      records.push_back(record);
       if (t.state != TrackingState::Lost)
       {
-        errorMm.push_back(mm);
+        poses.push_back({ f.id, t.cameraToCT });
       }
-    }
-    if (!t.reason.empty())
-    {
-      record["reason"] = t.reason;
-    }
-    records.push_back(record);
-    if (t.state != TrackingState::Lost)
-    {
-      poses.push_back({ id, t.cameraToCT });
-    }
-    if (stream && t.state == TrackingState::Lost)
-    {
-      stream->sendLost(id, t.reason);
-    }
-    else if (stream)
-    {
-      stream->sendPose(poses.back(), t.reason);
+      if (server && t.state == TrackingState::Lost)
+      {
+        server->sendLost(f.id, t.reason);
+      }
+      else if (server)
+      {
+        server->sendPose(poses.back(), t.reason);
+      }
+      latency.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decoded)
+          .count());
+      records.back()["latency_ms"] = latency.back();
     }
   }
-  if (stream && !stream->finish(5.0))
+  catch (const Error& e)
+  {
+    // The frames tracked before it are written all the same.
+    stoppedBy = e.what();
+  }
+  if (records.empty() && !stoppedBy.empty())
+  {
+    throw Error(stoppedBy);
+  }
+  if (records.empty())
+  {
+    throw Error(formatText("no frames to track: '%s' has %d frames, and tracking would start at "
+                           "frame %d (after the registered frame '%s'; --from sets it)",
+      stream.source().c_str(), seen, first, start.frameSource.c_str()));
+  }
+  if (server && !server->finish(5.0))
   {
     std::cerr << "vimlop: warning: a client had not taken every pose 5 s after the last frame\n";
   }
@@ -168,15 +211,19 @@ void runTrack(const TrackOptions& o)
   // tracking.json with their state, not in the pose file.
   writeFramePoses(poses, (fs::path(o.out) / "tracked-poses.json").string());
   const Summary latencyMs = summarize(latency);
-  nlohmann::json report = { { "result", o.result }, { "frames", o.frames },
+  nlohmann::json report = { { "result", o.result }, { "frames", stream.source() },
     { "start_frame_id", start.frameId }, { "first_tracked_index", first },
     { "tracking", counts[0] }, { "degraded", counts[1] }, { "lost", counts[2] },
     { "latency_ms", { { "median", latencyMs.median }, { "p99", latencyMs.p99 } } },
     { "per_frame", records } };
+  if (!stoppedBy.empty())
+  {
+    report["stopped_by"] = stoppedBy;
+  }
   CommandSummary summary;
   summary.lines.push_back(formatText("vimlop track: %zu frames from '%s': %d tracking, %d "
                                      "degraded, %d lost; latency %.1f ms median, %.1f ms p99",
-    records.size(), sequence.name(first).c_str(), counts[0], counts[1], counts[2], latencyMs.median,
+    records.size(), firstName.c_str(), counts[0], counts[1], counts[2], latencyMs.median,
     latencyMs.p99));
   if (!errorMm.empty())
   {
@@ -192,6 +239,12 @@ void runTrack(const TrackOptions& o)
   summary.json = report;
   summary.json.erase("per_frame");
   printSummary(summary, o.json);
+  if (!stoppedBy.empty())
+  {
+    throw Error(formatText("tracking stopped after %zu frames: %s (the frames before it were "
+                           "tracked and written to '%s')",
+      records.size(), stoppedBy.c_str(), o.out.c_str()));
+  }
 }
 
 } // namespace
@@ -205,8 +258,12 @@ void addTrackCommand(CLI::App& app)
     "(tracking, degraded, lost); OUT/tracked-poses.json and OUT/tracking.json");
   c->add_option("--result", o->result, "result folder of vimlop register")->required();
   c->add_option("--frames", o->frames,
-     "the frames to track: a folder of frames, a video file or a tracked sequence")
-    ->required();
+    "the frames to track, read one at a time as they come: a folder of frames, a video file or "
+    "a tracked sequence");
+  c->add_option("--camera", o->camera,
+     "track live from the camera /dev/video<N> (a V4L2 device, e.g. a frame grabber) instead of "
+     "--frames")
+    ->check(CLI::NonNegativeNumber);
   c->add_option("--intrinsics", o->intrinsics,
     "the camera's intrinsics file (as given to register): the frames are undistorted with its "
     "lens");

@@ -3,6 +3,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Results/RegistrationRecordIO.h>
+#include <vimlop/Video/FieldOfView.h>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -32,11 +33,30 @@ TrackingStart TrackingStart::fromResult(const std::string& folder)
   }
   const std::string picture = (std::filesystem::path(folder) / record.frameImages[j]).string();
   TrackingStart start;
-  start.frame = cv::imread(picture, cv::IMREAD_COLOR);
+  std::error_code ec;
+  // Asked first: OpenCV would print its own warning for a missing file.
+  start.frame = std::filesystem::is_regular_file(picture, ec)
+    ? cv::imread(picture, cv::IMREAD_COLOR)
+    : cv::Mat();
   if (start.frame.empty())
   {
     throwFileError(picture, "cannot read the picture of the last registered frame");
   }
+  // The field stop as the registered frames show it: a live stream has no
+  // sequence to find it on before its first frame.
+  std::vector<cv::Mat> registered;
+  for (const std::string& image : record.frameImages)
+  {
+    const std::string path = (std::filesystem::path(folder) / image).string();
+    const cv::Mat other = image.empty() || !std::filesystem::is_regular_file(path, ec)
+      ? cv::Mat()
+      : cv::imread(path, cv::IMREAD_COLOR);
+    if (!other.empty() && other.size() == start.frame.size())
+    {
+      registered.push_back(other);
+    }
+  }
+  start.fieldOfViewMask = FieldOfView::ofSequence(registered, FieldOfViewOptions()).mask();
   start.modelCT = record.model;
   start.intrinsics = last->intrinsics;
   start.cameraToCT = record.result.sfmToCT.apply(last->cameraToSfm);

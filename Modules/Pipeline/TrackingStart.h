@@ -15,13 +15,17 @@ namespace vimlop
 /**
  * @brief Where EndoscopeTracker starts after a registration: the last frame
  * the result registered (its picture, undistorted as it was registered, and
- * its camera pose in the CT), the model and the frames' pinhole camera.
+ * its camera pose in the CT), the field stop of the registered frames, the
+ * model and the frames' pinhole camera.
  */
 struct TrackingStart
 {
   TriangleMesh modelCT;
   PinholeCamera intrinsics;
   cv::Mat frame;
+  /// Where the frames show the anatomy (CV_8U, non-zero inside the field
+  /// stop; FieldOfView::ofSequence() of the registered frames' pictures).
+  cv::Mat fieldOfViewMask;
   CameraPose cameraToCT;
   int frameId = 0;
   /// The file (or video frame) the picture came from, when the result says.

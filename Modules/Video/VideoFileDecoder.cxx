@@ -181,14 +181,18 @@ double videoFramesPerSecond(const std::string& path)
   return 0.0;
 }
 
-std::vector<cv::Mat> decodeVideoFile(const std::string& path, int maxFrames,
-  const std::string& program,
-  const std::function<void(int, std::uint64_t, std::uint64_t)>& checkSize, double idleTimeoutS)
+VideoFileDecoder::VideoFileDecoder(const std::string& path, int maxFrames,
+  const std::string& program, std::function<void(int, std::uint64_t, std::uint64_t)> checkSize,
+  double idleTimeoutS)
+  : Path(path)
+  , Program(program)
+  , MaxFrames(maxFrames)
+  , IdleTimeoutS(idleTimeoutS)
+  , CheckSize(std::move(checkSize))
 {
-  std::unique_ptr<ChildProcess> decoder;
   try
   {
-    decoder = std::make_unique<ChildProcess>(videoDecoderArguments(program, path, maxFrames));
+    this->Decoder = std::make_unique<ChildProcess>(videoDecoderArguments(program, path, maxFrames));
   }
   catch (const Error& e)
   {
@@ -197,42 +201,76 @@ std::vector<cv::Mat> decodeVideoFile(const std::string& path, int maxFrames,
       "$VIMLOP_FFMPEG), which cannot be run here: " +
         std::string(e.what()) + "; or give a folder of frame images");
   }
-  std::vector<cv::Mat> frames;
+}
+
+VideoFileDecoder::~VideoFileDecoder()
+{
+  if (this->Decoder && !this->Finished)
+  {
+    this->Decoder->finish(true);
+  }
+}
+
+cv::Mat VideoFileDecoder::next()
+{
+  if (this->Finished)
+  {
+    return cv::Mat();
+  }
+  ChildProcess& decoder = *this->Decoder;
+  const std::string& path = this->Path;
   std::uint64_t width = 0;
   std::uint64_t height = 0;
-  while (static_cast<int>(frames.size()) < maxFrames &&
-    readPpmHeader(*decoder, path, static_cast<int>(frames.size()), idleTimeoutS, width, height))
+  if (this->Decoded < this->MaxFrames &&
+    readPpmHeader(decoder, path, this->Decoded, this->IdleTimeoutS, width, height))
   {
-    checkSize(static_cast<int>(frames.size()), width, height);
+    this->CheckSize(this->Decoded, width, height);
     cv::Mat rgb(static_cast<int>(height), static_cast<int>(width), CV_8UC3);
     const std::size_t bytes = rgb.total() * rgb.elemSize();
     const std::size_t got =
-      readFrom(*decoder, path, reinterpret_cast<char*>(rgb.data), bytes, idleTimeoutS);
+      readFrom(decoder, path, reinterpret_cast<char*>(rgb.data), bytes, this->IdleTimeoutS);
     if (got != bytes)
     {
-      decoder->finish(true);
+      this->Finished = true;
+      decoder.finish(true);
       throwFileError(path,
-        "the video decoder stopped inside frame " + std::to_string(frames.size()) + " (" +
+        "the video decoder stopped inside frame " + std::to_string(this->Decoded) + " (" +
           std::to_string(got) + " of its " + std::to_string(bytes) + " bytes)" +
-          said(program, path, *decoder));
+          said(this->Program, path, decoder));
     }
     cv::Mat bgr;
     cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-    frames.push_back(bgr);
+    ++this->Decoded;
+    return bgr;
   }
   // A decoder with frames left is stopped; one that ended is judged by how.
-  const bool enough = static_cast<int>(frames.size()) >= maxFrames;
-  const ChildProcessResult end = decoder->finish(enough);
+  this->Finished = true;
+  const bool enough = this->Decoded >= this->MaxFrames;
+  const ChildProcessResult end = decoder.finish(enough);
   if (!enough && (end.exitCode != 0 || end.signal != 0))
   {
     throwFileError(path,
-      (frames.empty() ? std::string("not a readable video file")
-                      : "the video decoder failed after " + frameCount(frames.size())) +
-        said(program, path, *decoder, &end));
+      (this->Decoded == 0 ? std::string("not a readable video file")
+                          : "the video decoder failed after " +
+            frameCount(static_cast<std::size_t>(this->Decoded))) +
+        said(this->Program, path, decoder, &end));
   }
-  if (frames.empty())
+  if (this->Decoded == 0)
   {
-    throwFileError(path, "the video has no readable frames" + said(program, path, *decoder));
+    throwFileError(path, "the video has no readable frames" + said(this->Program, path, decoder));
+  }
+  return cv::Mat();
+}
+
+std::vector<cv::Mat> decodeVideoFile(const std::string& path, int maxFrames,
+  const std::string& program,
+  const std::function<void(int, std::uint64_t, std::uint64_t)>& checkSize, double idleTimeoutS)
+{
+  VideoFileDecoder decoder(path, maxFrames, program, checkSize, idleTimeoutS);
+  std::vector<cv::Mat> frames;
+  for (cv::Mat frame = decoder.next(); !frame.empty(); frame = decoder.next())
+  {
+    frames.push_back(frame);
   }
   return frames;
 }

@@ -11,8 +11,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
+
+namespace vimlop
+{
+class ChildProcess;
+}
 
 namespace vimlop::detail
 {
@@ -34,6 +40,42 @@ std::vector<std::string> videoDecoderArguments(
  * the rate is a default, the decoder reports what is wrong with the file.
  */
 double videoFramesPerSecond(const std::string& path);
+
+/**
+ * @brief The frames of a video file one at a time, as the decoder gives
+ * them (what decodeVideoFile() does, for a consumer that must not wait for
+ * the whole file: tracking). The decoder is stopped on destruction.
+ */
+class VideoFileDecoder
+{
+public:
+  /// @brief Starts `program` on `path` (arguments and checks as decodeVideoFile()).
+  VideoFileDecoder(const std::string& path, int maxFrames, const std::string& program,
+    std::function<void(int, std::uint64_t, std::uint64_t)> checkSize, double idleTimeoutS = 60.0);
+  ~VideoFileDecoder();
+  VideoFileDecoder(const VideoFileDecoder&) = delete;
+  VideoFileDecoder& operator=(const VideoFileDecoder&) = delete;
+
+  /**
+   * @brief The next frame (8-bit BGR); empty after the last one.
+   * @throws vimlop::Error as decodeVideoFile() does, when the frame that
+   * would come next cannot be: the frames returned before stay good.
+   */
+  cv::Mat next();
+
+  /// @brief Frames returned so far.
+  int decoded() const { return this->Decoded; }
+
+private:
+  std::string Path;
+  std::string Program;
+  int MaxFrames = 0;
+  double IdleTimeoutS = 60.0;
+  std::function<void(int, std::uint64_t, std::uint64_t)> CheckSize;
+  std::unique_ptr<ChildProcess> Decoder;
+  int Decoded = 0;
+  bool Finished = false;
+};
 
 /**
  * @brief Decodes at most `maxFrames` frames of the video `path` with

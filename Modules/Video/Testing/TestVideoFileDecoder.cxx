@@ -1,5 +1,6 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Video/FrameSequence.h>
+#include <vimlop/Video/FrameStream.h>
 #include <vimlop/Video/VideoFileDecoder.h>
 
 #include "ErrorMessage.h"
@@ -144,4 +145,26 @@ TEST(VideoFileDecoder, TheRealDecoderReadsOnlyLocalFilesAndTheFirstVideoStream)
   EXPECT_EQ(after("-c:v"), "ppm");
   EXPECT_EQ(after("-pix_fmt"), "rgb24");
   EXPECT_EQ(arguments.back(), "pipe:1");
+}
+
+TEST(VideoFileDecoder, AStreamedVideoGivesItsFramesBeforeTheDecodersFailureIsTold)
+{
+  const fs::path dir = fixtures::freshTestFolder("video-decoder");
+  ::setenv("VIMLOP_FFMPEG",
+    fakeDecoder(dir, "fails-late", std::string(twoFrames) + "; echo 'corrupt packet' >&2; exit 1")
+      .c_str(),
+    1);
+  const std::string video = anyVideo(dir);
+  FrameStream stream = FrameStream::open(video);
+  ::unsetenv("VIMLOP_FFMPEG");
+  EXPECT_EQ(stream.indexOfName("frame1"), 1);
+  StreamedFrame f;
+  ASSERT_TRUE(stream.next(f));
+  EXPECT_EQ(f.name, "frame0");
+  ASSERT_TRUE(stream.next(f));
+  EXPECT_EQ(f.id, 1);
+  EXPECT_EQ(f.image.at<cv::Vec3b>(0, 0), cv::Vec3b(255, 0, 0));
+  EXPECT_EQ(fixtures::errorMessageOf([&] { stream.next(f); }),
+    "'" + video + "': the video decoder failed after 2 frames (fails-late: corrupt packet)");
+  EXPECT_FALSE(stream.next(f));
 }
