@@ -287,6 +287,10 @@ void addTrackCommand(CLI::App& app)
   addPoseServerOptions(*c, o->server);
   c->add_option("--max-features", o->tracker.maxFeatures, "features tracked at most")
     ->capture_default_str();
+  c->add_option("--max-tracking-width-px", o->tracker.maxTrackingWidthPx,
+     "frames wider than this are tracked halved until they fit (the tracker's pixel settings "
+     "are for frames about 320 px wide)")
+    ->capture_default_str();
   c->add_option("--inlier-px", o->tracker.inlierThresholdPx,
      "a feature agrees with a pose within this reprojection error, px")
     ->capture_default_str();

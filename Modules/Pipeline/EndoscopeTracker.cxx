@@ -71,6 +71,10 @@ void EndoscopeTrackerOptions::validate() const
   {
     refuse("the largest depth must be positive (mm)", this->maxDepthMm);
   }
+  if (this->maxTrackingWidthPx < 64)
+  {
+    refuse("frames must be tracked at least 64 px wide", this->maxTrackingWidthPx);
+  }
   if (!(this->minIncidenceCosine >= 0.0 && this->minIncidenceCosine < 1.0))
   {
     refuse("the least incidence cosine must lie in [0, 1)", this->minIncidenceCosine);
@@ -91,6 +95,10 @@ struct EndoscopeTracker::Internals
   /// The lens of the frames given, and the pinhole camera of the frames once undistorted.
   FrameUndistorter Undistorter;
   PinholeCamera Intrinsics;
+  /// Frames are tracked this many times smaller (a power of 2; 1: as they
+  /// are), with this pinhole camera.
+  int Shrink = 1;
+  PinholeCamera Tracked;
   EmbreeScene Scene;
   KltFeatureTracker Klt;
   std::vector<TrackedFeature> Features;
@@ -113,6 +121,33 @@ struct EndoscopeTracker::Internals
     , Scene(mesh)
     , Klt(o.features)
   {
+    while (this->Intrinsics.widthPx / this->Shrink > o.maxTrackingWidthPx)
+    {
+      this->Shrink *= 2;
+    }
+    // Pixel centres map as (x + 0.5) / shrink - 0.5 (cv::resize's area mode).
+    const double f = this->Shrink;
+    this->Tracked = this->Intrinsics;
+    this->Tracked.widthPx = static_cast<int>(std::lround(this->Intrinsics.widthPx / f));
+    this->Tracked.heightPx = static_cast<int>(std::lround(this->Intrinsics.heightPx / f));
+    this->Tracked.fx = this->Intrinsics.fx / f;
+    this->Tracked.fy = this->Intrinsics.fy / f;
+    this->Tracked.cx = (this->Intrinsics.cx + 0.5) / f - 0.5;
+    this->Tracked.cy = (this->Intrinsics.cy + 0.5) / f - 0.5;
+  }
+
+  /// A frame as it is tracked: undistorted, and shrunk when it is wide.
+  cv::Mat prepare(const cv::Mat& frame) const
+  {
+    const cv::Mat ideal = this->Undistorter.undistort(frame);
+    if (this->Shrink == 1)
+    {
+      return ideal;
+    }
+    cv::Mat small;
+    cv::resize(
+      ideal, small, cv::Size(this->Tracked.widthPx, this->Tracked.heightPx), 0, 0, cv::INTER_AREA);
+    return small;
   }
 
   void checkSize(const cv::Mat& frame) const
@@ -160,7 +195,7 @@ struct EndoscopeTracker::Internals
     int added = 0;
     for (const Eigen::Vector2d& pixel : this->Klt.detect(wanted, existing, this->Mask))
     {
-      const Eigen::Vector3d ray = pose.rotation * this->Intrinsics.rayDirection(pixel);
+      const Eigen::Vector3d ray = pose.rotation * this->Tracked.rayDirection(pixel);
       const std::optional<SurfacePoint> hit =
         this->Scene.castRay(pose.centre, ray, this->Options.maxDepthMm);
       if (!hit)
@@ -195,6 +230,11 @@ const EndoscopeTrackerOptions& EndoscopeTracker::options() const
   return this->d->Options;
 }
 
+const PinholeCamera& EndoscopeTracker::trackedCamera() const
+{
+  return this->d->Tracked;
+}
+
 TrackedFrame EndoscopeTracker::start(
   const cv::Mat& frame, const CameraPose& cameraToCT, const cv::Mat& fieldOfViewMask)
 {
@@ -210,12 +250,18 @@ TrackedFrame EndoscopeTracker::start(
                              "frames of %d x %d",
         fieldOfViewMask.cols, fieldOfViewMask.rows, frame.cols, frame.rows));
     }
+    cv::Mat inside = fieldOfViewMask != 0;
+    if (s.Shrink > 1)
+    {
+      cv::resize(
+        inside, inside, cv::Size(s.Tracked.widthPx, s.Tracked.heightPx), 0, 0, cv::INTER_NEAREST);
+    }
     const int halfWindow = s.Options.features.windowPx / 2;
-    cv::erode(fieldOfViewMask != 0, s.Mask,
+    cv::erode(inside, s.Mask,
       cv::getStructuringElement(
         cv::MORPH_ELLIPSE, cv::Size(2 * halfWindow + 1, 2 * halfWindow + 1)));
   }
-  s.Klt.reset(s.Undistorter.undistort(frame));
+  s.Klt.reset(s.prepare(frame));
   s.Features.clear();
   s.Frame = -1;
   const int added = s.addFeatures(cameraToCT);
@@ -250,7 +296,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     throw Error("endoscope tracker: start() on a registered frame first");
   }
   s.checkSize(frame);
-  const cv::Mat ideal = s.Undistorter.undistort(frame);
+  const cv::Mat ideal = s.prepare(frame);
   const CameraPose predicted = s.predict();
   TrackedFrame r;
   r.frame = ++s.Frame;
@@ -308,7 +354,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
   pnp.iterations = 100;
   pnp.solver = ResectionSolver::IterativeFromGuess;
   const std::optional<CameraResection> pose =
-    resectCamera(points, seen, s.Intrinsics, pnp, &predicted);
+    resectCamera(points, seen, s.Tracked, pnp, &predicted);
   // Why the pose is not believed; empty when it is.
   if (!pose)
   {

@@ -6,6 +6,8 @@
 #include <vimlop/Video/ColmapModel.h>
 #include <vimlop/Video/ColmapTextModel.h>
 
+#include "FrameFiles.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -23,54 +25,7 @@ namespace
 
 namespace fs = std::filesystem;
 
-/// "frame2" before "frame10".
-bool naturalLess(const std::string& a, const std::string& b)
-{
-  size_t i = 0;
-  size_t j = 0;
-  while (i < a.size() && j < b.size())
-  {
-    const bool da = std::isdigit(static_cast<unsigned char>(a[i])) != 0;
-    const bool db = std::isdigit(static_cast<unsigned char>(b[j])) != 0;
-    if (da && db)
-    {
-      size_t ie = i;
-      size_t je = j;
-      while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie])))
-      {
-        ++ie;
-      }
-      while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je])))
-      {
-        ++je;
-      }
-      const std::string na = a.substr(i, ie - i);
-      const std::string nb = b.substr(j, je - j);
-      const std::string sa = na.substr(std::min(na.find_first_not_of('0'), na.size()));
-      const std::string sb = nb.substr(std::min(nb.find_first_not_of('0'), nb.size()));
-      if (sa.size() != sb.size())
-      {
-        return sa.size() < sb.size();
-      }
-      if (sa != sb)
-      {
-        return sa < sb;
-      }
-      i = ie;
-      j = je;
-    }
-    else
-    {
-      if (a[i] != b[j])
-      {
-        return a[i] < b[j];
-      }
-      ++i;
-      ++j;
-    }
-  }
-  return a.size() - i < b.size() - j;
-}
+using detail::naturalLess;
 
 } // namespace
 

@@ -207,6 +207,18 @@ Matrix intoRas(Matrix m)
   return m;
 }
 
+/// The largest difference between a matrix sent and one received, relative
+/// to each element's size: floats on the wire, translations up to 10^3 mm.
+double worstRelativeError(const Matrix& sent, const std::vector<float>& received)
+{
+  double worst = 0.0;
+  for (size_t i = 0; i < 16; ++i)
+  {
+    worst = std::max(worst, std::abs(sent[i] - received[i]) / std::max(1.0, std::abs(sent[i])));
+  }
+  return worst;
+}
+
 double determinant3(const std::vector<float>& m)
 {
   return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
@@ -398,12 +410,7 @@ int followTracking(
           std::to_string(r.subCode) + ": " + r.text);
       continue;
     }
-    double worst = 0.0;
-    for (size_t i = 0; i < 16; ++i)
-    {
-      worst =
-        std::max(worst, std::abs(e.matrix[i] - r.matrix[i]) / std::max(1.0, std::abs(e.matrix[i])));
-    }
+    const double worst = worstRelativeError(e.matrix, r.matrix);
     check(worst < 1e-5,
       what + " is the tracked pose in RAS (worst relative element error " + std::to_string(worst) +
         ")");
@@ -598,13 +605,7 @@ int main(int argc, char** argv)
         what + " carries the time of the pose after it");
       continue;
     }
-    double worst = 0.0;
-    for (size_t i = 0; i < 16; ++i)
-    {
-      // Floats on the wire: relative to the element's size (translations are up to 10^3 mm).
-      worst =
-        std::max(worst, std::abs(e.matrix[i] - r.matrix[i]) / std::max(1.0, std::abs(e.matrix[i])));
-    }
+    const double worst = worstRelativeError(e.matrix, r.matrix);
     check(worst < 1e-5,
       what + " matches in RAS (worst relative element error " + std::to_string(worst) + ")");
     if (e.device == "CTFromSfM")
