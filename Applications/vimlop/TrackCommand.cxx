@@ -8,6 +8,7 @@
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Pipeline/EndoscopeTracker.h>
+#include <vimlop/Pipeline/TrackedVideoWriter.h>
 #include <vimlop/Pipeline/TrackingStart.h>
 #include <vimlop/Server/LivePoseStream.h>
 #include <vimlop/Video/FrameStream.h>
@@ -39,6 +40,8 @@ struct TrackOptions
   int from = -1;
   bool allowFlagged = false;
   bool serve = false;
+  bool noVideo = false;
+  double fps = 30.0;
   double waitForClientS = 0.0;
   PoseStreamServerOptions server;
   EndoscopeTrackerOptions tracker;
@@ -119,6 +122,14 @@ void runTrack(const TrackOptions& o)
         o.waitForClientS);
     }
   }
+  fs::create_directories(o.out);
+  // The tracked video is written as the frames come, after each pose is sent.
+  std::unique_ptr<TrackedVideoWriter> video;
+  if (!o.noVideo)
+  {
+    video = std::make_unique<TrackedVideoWriter>(
+      start.modelCT, start.intrinsics, (fs::path(o.out) / "tracked-video.avi").string(), o.fps);
+  }
   std::vector<FramePose> poses;
   nlohmann::json records = nlohmann::json::array();
   std::vector<double> latency, errorMm;
@@ -145,7 +156,8 @@ void runTrack(const TrackOptions& o)
       // The latency is the whole way from the decoded frame to its pose
       // (sent, with --serve): undistortion, tracking and serving.
       const auto decoded = std::chrono::steady_clock::now();
-      const TrackedFrame t = tracker.track(undistorter.undistort(f.image));
+      const cv::Mat ideal = undistorter.undistort(f.image);
+      const TrackedFrame t = tracker.track(ideal);
       firstName = firstName.empty() ? f.name : firstName;
       ++counts[static_cast<int>(t.state)];
       nlohmann::json record = { { "frame_id", f.id }, { "source", f.name },
@@ -184,6 +196,10 @@ void runTrack(const TrackOptions& o)
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decoded)
           .count());
       records.back()["latency_ms"] = latency.back();
+      if (video)
+      {
+        video->write(ideal, t, f.name);
+      }
     }
   }
   catch (const Error& e)
@@ -206,7 +222,7 @@ void runTrack(const TrackOptions& o)
     std::cerr << "vimlop: warning: a client had not taken every pose 5 s after the last frame\n";
   }
 
-  fs::create_directories(o.out);
+  video.reset();
   // Lost frames have no pose a navigation system should show: they are in
   // tracking.json with their state, not in the pose file.
   writeFramePoses(poses, (fs::path(o.out) / "tracked-poses.json").string());
@@ -234,8 +250,8 @@ void runTrack(const TrackOptions& o)
         e.mean, e.max));
   }
   writeJsonFile(report, (fs::path(o.out) / "tracking.json").string());
-  summary.lines.push_back(
-    "wrote '" + (fs::path(o.out) / "tracked-poses.json").string() + "' and tracking.json");
+  summary.lines.push_back("wrote '" + (fs::path(o.out) / "tracked-poses.json").string() +
+    "', tracking.json" + (o.noVideo ? "" : " and tracked-video.avi"));
   summary.json = report;
   summary.json.erase("per_frame");
   printSummary(summary, o.json);
@@ -275,6 +291,12 @@ void addTrackCommand(CLI::App& app)
   c->add_flag("--allow-flagged", o->allowFlagged,
     "track from a result the registration flagged as a failure (refused without it)");
   c->add_option("--out", o->out, "output folder")->required();
+  c->add_flag("--no-video", o->noVideo,
+    "do not write tracked-video.avi (each frame with the model's contours at its tracked pose, "
+    "under a band with its state)");
+  c->add_option("--fps", o->fps, "the tracked video's rate, frames per second")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
   c->add_flag("--serve", o->serve,
     "stream each pose over OpenIGTLink as it is computed: a TRANSFORM of the moving camera (RAS "
     "mm) stamped when it is sent, followed by a STATUS TrackingDegraded for a degraded frame; a "

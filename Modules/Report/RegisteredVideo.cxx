@@ -17,6 +17,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <vimlop/Results/RegistrationVerdict.h>
+#include <vimlop/Video/FrameBanner.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -59,31 +60,14 @@ cv::Mat toBgrTopDown(vtkImageData* rgb)
   return bgr;
 }
 
-/// Height of the verdict's band above every picture of the video, px.
-constexpr int bannerHeightPx = 30;
-
-/**
- * `picture` under a band in the verdict's colour (green registered, red
- * flagged, amber unchecked: the report's) holding its headline in white, so
- * that a clip cut from the video still says whether it may be trusted.
- */
+/// `picture` under a band in the verdict's colour (green registered, red
+/// flagged, amber unchecked: the report's) holding its headline.
 cv::Mat underVerdictBanner(const cv::Mat& picture, const RegistrationVerdict& verdict)
 {
   const cv::Scalar colour = verdict.status == VerdictStatus::Registered ? cv::Scalar(46, 122, 27)
     : verdict.status == VerdictStatus::Flagged                          ? cv::Scalar(27, 22, 179)
                                                                         : cv::Scalar(0, 98, 122);
-  cv::Mat framed(picture.rows + bannerHeightPx, picture.cols, CV_8UC3, colour);
-  picture.copyTo(framed(cv::Rect(0, bannerHeightPx, picture.cols, picture.rows)));
-  const std::string text = verdict.headline();
-  const int font = cv::FONT_HERSHEY_SIMPLEX;
-  int baseline = 0;
-  double scale = 0.6;
-  const cv::Size size = cv::getTextSize(text, font, scale, 1, &baseline);
-  // Long reasons shrink to the width (not below legibility; beyond, the end is cut).
-  scale = std::max(0.35, std::min(scale, scale * (picture.cols - 16) / std::max(1, size.width)));
-  cv::putText(framed, text, cv::Point(8, bannerHeightPx - 10), font, scale,
-    cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
-  return framed;
+  return underBanner(picture, colour, verdict.headline());
 }
 
 } // namespace
