@@ -75,6 +75,9 @@ function(vimlop_add_cli_test name)
     set_tests_properties(${name} PROPERTIES LABELS "cli")
   endif()
   if(arg_PASS_REGEX)
-    set_tests_properties(${name} PROPERTIES PASS_REGULAR_EXPRESSION "${arg_PASS_REGEX}")
+    # A ';' in the expression would make it a list of alternatives, any of
+    # which passes the test: it stands for any character instead.
+    string(REPLACE ";" "." pass_regex "${arg_PASS_REGEX}")
+    set_tests_properties(${name} PROPERTIES PASS_REGULAR_EXPRESSION "${pass_regex}")
   endif()
 endfunction()

@@ -138,9 +138,12 @@ void runTrack(const TrackOptions& o)
   std::string stoppedBy;
   StreamedFrame f;
   int seen = 0;
+  // Ctrl-C (the way a live camera's tracking ends) stops after the frame in
+  // hand, and what was tracked is written.
+  InterruptGuard interrupt;
   try
   {
-    for (; stream.next(f); ++seen)
+    for (; !interrupt.requested() && stream.next(f); ++seen)
     {
       if (f.index < first)
       {
@@ -204,14 +207,16 @@ void runTrack(const TrackOptions& o)
   }
   catch (const Error& e)
   {
-    // The frames tracked before it are written all the same.
-    stoppedBy = e.what();
+    // The frames tracked before it are written all the same. (A camera or
+    // decoder may fail because of the interruption itself: that is no error.)
+    stoppedBy = interrupt.requested() ? std::string() : e.what();
   }
+  const bool interrupted = interrupt.requested();
   if (records.empty() && !stoppedBy.empty())
   {
     throw Error(stoppedBy);
   }
-  if (records.empty())
+  if (records.empty() && !interrupted)
   {
     throw Error(formatText("no frames to track: '%s' has %d frames, and tracking would start at "
                            "frame %d (after the registered frame '%s'; --from sets it)",
@@ -232,9 +237,9 @@ void runTrack(const TrackOptions& o)
     { "tracking", counts[0] }, { "degraded", counts[1] }, { "lost", counts[2] },
     { "latency_ms", { { "median", latencyMs.median }, { "p99", latencyMs.p99 } } },
     { "per_frame", records } };
-  if (!stoppedBy.empty())
+  if (!stoppedBy.empty() || interrupted)
   {
-    report["stopped_by"] = stoppedBy;
+    report["stopped_by"] = interrupted ? "interrupted (Ctrl-C or SIGTERM)" : stoppedBy;
   }
   CommandSummary summary;
   summary.lines.push_back(formatText("vimlop track: %zu frames from '%s': %d tracking, %d "
@@ -255,6 +260,13 @@ void runTrack(const TrackOptions& o)
   summary.json = report;
   summary.json.erase("per_frame");
   printSummary(summary, o.json);
+  if (interrupted)
+  {
+    std::cerr << formatText("vimlop track: interrupted after %zu frames; the frames tracked were "
+                            "written to '%s'\n",
+      records.size(), o.out.c_str());
+    throw ExitRequest{ 130 };
+  }
   if (!stoppedBy.empty())
   {
     throw Error(formatText("tracking stopped after %zu frames: %s (the frames before it were "
