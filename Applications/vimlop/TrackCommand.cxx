@@ -283,7 +283,8 @@ void addTrackCommand(CLI::App& app)
   CLI::App* c = app.add_subcommand("track",
     "Follow the endoscope frame by frame after a registration (issue 16): from the last frame a "
     "result folder registered, the pose of every later frame in the CT, with its state "
-    "(tracking, degraded, lost); OUT/tracked-poses.json and OUT/tracking.json");
+    "(tracking, degraded, lost); OUT/tracked-poses.json, OUT/tracking.json and "
+    "OUT/tracked-video.avi; --serve streams the poses over OpenIGTLink as they are computed");
   c->add_option("--result", o->result, "result folder of vimlop register")->required();
   c->add_option("--frames", o->frames,
     "the frames to track, read one at a time as they come: a folder of frames, a video file or "
