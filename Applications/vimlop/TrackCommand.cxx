@@ -10,6 +10,7 @@
 #include <vimlop/Pipeline/EndoscopeTracker.h>
 #include <vimlop/Pipeline/TrackedVideoWriter.h>
 #include <vimlop/Pipeline/TrackingStart.h>
+#include <vimlop/Results/TrackedPoseTable.h>
 #include <vimlop/Server/LivePoseStream.h>
 #include <vimlop/Video/FrameStream.h>
 #include <vimlop/Video/FrameUndistorter.h>
@@ -131,6 +132,7 @@ void runTrack(const TrackOptions& o)
       start.modelCT, start.intrinsics, (fs::path(o.out) / "tracked-video.avi").string(), o.fps);
   }
   std::vector<FramePose> poses;
+  std::vector<TrackedPoseRow> rows;
   nlohmann::json records = nlohmann::json::array();
   std::vector<double> latency, errorMm;
   int counts[3] = { 0, 0, 0 };
@@ -199,6 +201,7 @@ void runTrack(const TrackOptions& o)
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decoded)
           .count());
       records.back()["latency_ms"] = latency.back();
+      rows.push_back({ { f.id, t.cameraToCT }, toString(t.state), latency.back() });
       if (video)
       {
         video->write(ideal, t, f.name);
@@ -231,6 +234,8 @@ void runTrack(const TrackOptions& o)
   // Lost frames have no pose a navigation system should show: they are in
   // tracking.json with their state, not in the pose file.
   writeFramePoses(poses, (fs::path(o.out) / "tracked-poses.json").string());
+  // Every frame, with its state, for VTK pipelines.
+  writeTrackedPoseTable(rows, (fs::path(o.out) / "tracked-poses.vtt").string());
   const Summary latencyMs = summarize(latency);
   nlohmann::json report = { { "result", o.result }, { "frames", stream.source() },
     { "start_frame_id", start.frameId }, { "first_tracked_index", first },
@@ -256,7 +261,7 @@ void runTrack(const TrackOptions& o)
   }
   writeJsonFile(report, (fs::path(o.out) / "tracking.json").string());
   summary.lines.push_back("wrote '" + (fs::path(o.out) / "tracked-poses.json").string() +
-    "', tracking.json" + (o.noVideo ? "" : " and tracked-video.avi"));
+    "', tracked-poses.vtt, tracking.json" + (o.noVideo ? "" : " and tracked-video.avi"));
   summary.json = report;
   summary.json.erase("per_frame");
   printSummary(summary, o.json);
@@ -283,7 +288,7 @@ void addTrackCommand(CLI::App& app)
   CLI::App* c = app.add_subcommand("track",
     "Follow the endoscope frame by frame after a registration (issue 16): from the last frame a "
     "result folder registered, the pose of every later frame in the CT, with its state "
-    "(tracking, degraded, lost); OUT/tracked-poses.json, OUT/tracking.json and "
+    "(tracking, degraded, lost); OUT/tracked-poses.json and .vtt, OUT/tracking.json and "
     "OUT/tracked-video.avi; --serve streams the poses over OpenIGTLink as they are computed");
   c->add_option("--result", o->result, "result folder of vimlop register")->required();
   c->add_option("--frames", o->frames,

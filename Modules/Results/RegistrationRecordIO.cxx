@@ -10,6 +10,8 @@
 #include <vimlop/Registration/RegistrationOutputConversion.h>
 #include <vimlop/Results/RecordJson.h>
 
+#include "TableFile.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -21,7 +23,6 @@
 #include <vtkTable.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLTableReader.h>
-#include <vtkXMLTableWriter.h>
 
 #include <Eigen/Geometry>
 
@@ -143,14 +144,7 @@ vtkSmartPointer<vtkPolyData> pointCloud(const std::vector<Eigen::Vector3d>& poin
 
 void writeTable(vtkTable* table, const fs::path& path)
 {
-  vtkNew<vtkXMLTableWriter> writer;
-  writer->SetFileName(path.string().c_str());
-  writer->SetInputData(table);
-  writer->SetDataModeToBinary();
-  if (writer->Write() != 1)
-  {
-    throwFileError(path.string(), "cannot write the table");
-  }
+  detail::writeTableFile(table, path.string());
 }
 
 vtkSmartPointer<vtkTable> readTable(const fs::path& path)
