@@ -3,6 +3,7 @@
 
 // Meshes that tests build in memory, with known geometry.
 
+#include <vimlop/Core/CameraPose.h>
 #include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Core/TriangleMesh.h>
 
@@ -178,6 +179,13 @@ inline TriangleMesh makeTube(
     f.emplace_back(top, index(i + 1, rings), index(i, rings));
   }
   return TriangleMesh(std::move(v), std::move(f));
+}
+
+/// A camera on the axis of makeTube()'s tube, 10 mm in, looking down it (y up).
+inline CameraPose cameraOnTheTubeAxis()
+{
+  return CameraPose::lookAt(
+    Eigen::Vector3d(0.0, 0.0, 10.0), Eigen::Vector3d(0.0, 0.0, 30.0), Eigen::Vector3d::UnitY());
 }
 
 /// Axis-aligned box [lo, hi], two triangles per side; normals inward unless `outward`.

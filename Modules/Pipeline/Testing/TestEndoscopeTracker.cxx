@@ -10,13 +10,6 @@ namespace vimlop
 namespace
 {
 
-/// A camera on the axis of the tube (radius 4 mm, along z), looking down it.
-CameraPose onTheAxis()
-{
-  return CameraPose::lookAt(
-    Eigen::Vector3d(0.0, 0.0, 10.0), Eigen::Vector3d(0.0, 0.0, 30.0), Eigen::Vector3d::UnitY());
-}
-
 TEST(EndoscopeTracker, RefusesFramesOfAnotherSizeAndTrackingBeforeItStarted)
 {
   EndoscopeTracker tracker(
@@ -24,8 +17,8 @@ TEST(EndoscopeTracker, RefusesFramesOfAnotherSizeAndTrackingBeforeItStarted)
   const cv::Mat frame(240, 320, CV_8UC3, cv::Scalar(90, 90, 160));
   EXPECT_EQ(fixtures::errorMessageOf([&] { tracker.track(frame); }),
     "endoscope tracker: start() on a registered frame first");
-  EXPECT_EQ(
-    fixtures::errorMessageOf([&] { tracker.start(cv::Mat(480, 640, CV_8UC3), onTheAxis()); }),
+  EXPECT_EQ(fixtures::errorMessageOf(
+              [&] { tracker.start(cv::Mat(480, 640, CV_8UC3), fixtures::cameraOnTheTubeAxis()); }),
     "endoscope tracker: a frame of 640 x 480 pixels, but the intrinsics are for 320 x 240");
 }
 
@@ -35,7 +28,7 @@ TEST(EndoscopeTracker, RefusesToStartOnAFrameWithoutTexture)
   EndoscopeTracker tracker(
     fixtures::makeTube(4.0, 60.0, 0.35), PinholeCamera::simulatedEndoscope());
   const cv::Mat flat(240, 320, CV_8UC3, cv::Scalar(90, 90, 160));
-  EXPECT_EQ(fixtures::errorMessageOf([&] { tracker.start(flat, onTheAxis()); }),
+  EXPECT_EQ(fixtures::errorMessageOf([&] { tracker.start(flat, fixtures::cameraOnTheTubeAxis()); }),
     "endoscope tracker: only 0 corners of the first frame stand for a point of the model (at "
     "least 25 needed): is the camera inside the airway, and the frame textured?");
 }

@@ -19,13 +19,6 @@ namespace vimlop
 namespace
 {
 
-/// A camera on the axis of the tube (radius 4 mm, along z), looking down it.
-CameraPose onTheAxis()
-{
-  return CameraPose::lookAt(
-    Eigen::Vector3d(0.0, 0.0, 10.0), Eigen::Vector3d(0.0, 0.0, 30.0), Eigen::Vector3d::UnitY());
-}
-
 TEST(TrackedVideoWriter, DrawsTheContoursTheCameraSeesUnderABandInTheStatesColour)
 {
   const std::filesystem::path dir = fixtures::freshTestFolder("tracked-video");
@@ -34,12 +27,12 @@ TEST(TrackedVideoWriter, DrawsTheContoursTheCameraSeesUnderABandInTheStatesColou
   const std::string path = (dir / "tracked.avi").string();
   const cv::Mat grey(k.heightPx, k.widthPx, CV_8UC3, cv::Scalar(60, 60, 60));
   const std::vector<ModelContourPoint> seen =
-    visibleModelContours(makeEmbreeRegistrationModel(tube), k, onTheAxis());
+    visibleModelContours(makeEmbreeRegistrationModel(tube), k, fixtures::cameraOnTheTubeAxis());
   ASSERT_GT(seen.size(), 50u);
   {
     TrackedVideoWriter writer(tube, k, path, 30.0);
     TrackedFrame t;
-    t.cameraToCT = onTheAxis();
+    t.cameraToCT = fixtures::cameraOnTheTubeAxis();
     const cv::Mat tracking = writer.write(grey, t, "frame0");
     ASSERT_EQ(tracking.size(), cv::Size(k.widthPx, k.heightPx + 30));
     // Green band; each contour sample a green dot where the camera sees it.
