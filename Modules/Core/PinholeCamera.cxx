@@ -101,6 +101,18 @@ void PinholeCamera::validate() const
   }
 }
 
+PinholeCamera PinholeCamera::resampled(double factor) const
+{
+  PinholeCamera k = *this;
+  k.fx = factor * this->fx;
+  k.fy = factor * this->fy;
+  k.cx = factor * (this->cx + 0.5) - 0.5;
+  k.cy = factor * (this->cy + 0.5) - 0.5;
+  k.widthPx = static_cast<int>(std::lround(factor * this->widthPx));
+  k.heightPx = static_cast<int>(std::lround(factor * this->heightPx));
+  return k;
+}
+
 PinholeCamera PinholeCamera::simulatedEndoscope()
 {
   PinholeCamera k;

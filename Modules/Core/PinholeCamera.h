@@ -73,6 +73,16 @@ struct PinholeCamera
     lensModel = LensModel::RadialTangential;
   }
 
+  /**
+   * @brief The camera of the same view in a picture `factor` times the size
+   * (2: twice as large; 0.5: halved): the focal lengths times `factor`, the
+   * size rounded, and the principal point where pixel centres map,
+   * (c + 0.5) factor - 0.5, so that a pixel of the resampled picture covers
+   * `1 / factor` pixels of this one. The distortion, in normalised
+   * coordinates, is kept.
+   */
+  PinholeCamera resampled(double factor) const;
+
   /// @brief The 3x3 matrix K = [fx 0 cx; 0 fy cy; 0 0 1].
   Eigen::Matrix3d matrix() const;
 

@@ -125,15 +125,8 @@ struct EndoscopeTracker::Internals
     {
       this->Shrink *= 2;
     }
-    // Pixel centres map as (x + 0.5) / shrink - 0.5 (cv::resize's area mode).
-    const double f = this->Shrink;
-    this->Tracked = this->Intrinsics;
-    this->Tracked.widthPx = static_cast<int>(std::lround(this->Intrinsics.widthPx / f));
-    this->Tracked.heightPx = static_cast<int>(std::lround(this->Intrinsics.heightPx / f));
-    this->Tracked.fx = this->Intrinsics.fx / f;
-    this->Tracked.fy = this->Intrinsics.fy / f;
-    this->Tracked.cx = (this->Intrinsics.cx + 0.5) / f - 0.5;
-    this->Tracked.cy = (this->Intrinsics.cy + 0.5) / f - 0.5;
+    // Pixel centres map as cv::resize's area mode maps them.
+    this->Tracked = this->Intrinsics.resampled(1.0 / this->Shrink);
   }
 
   /// A frame as it is tracked: undistorted, and shrunk when it is wide.
@@ -356,6 +349,10 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
   const std::optional<CameraResection> pose =
     resectCamera(points, seen, s.Tracked, pnp, &predicted);
   // Why the pose is not believed; empty when it is.
+  const double jumpMm = pose ? (pose->cameraToWorld.centre - predicted.centre).norm() : 0.0;
+  const double turnDeg = pose
+    ? rotationAngleBetween(predicted.rotation, pose->cameraToWorld.rotation) * 180.0 / M_PI
+    : 0.0;
   if (!pose)
   {
     r.reason = formatText("no pose agrees with %d tracked features", r.trackedFeatures);
@@ -370,16 +367,13 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     r.reason = formatText("the features' reprojection error %.2f px is above %.2f px",
       pose->rmsErrorPx, s.Options.inlierThresholdPx);
   }
-  else if ((pose->cameraToWorld.centre - predicted.centre).norm() > s.Options.maxJumpMm)
+  else if (jumpMm > s.Options.maxJumpMm)
   {
-    r.reason = formatText("the pose is %.1f mm from the prediction",
-      (pose->cameraToWorld.centre - predicted.centre).norm());
+    r.reason = formatText("the pose is %.1f mm from the prediction", jumpMm);
   }
-  else if (rotationAngleBetween(predicted.rotation, pose->cameraToWorld.rotation) >
-    s.Options.maxTurnDeg * M_PI / 180.0)
+  else if (turnDeg > s.Options.maxTurnDeg)
   {
-    r.reason = formatText("the pose is turned %.1f degrees from the prediction",
-      rotationAngleBetween(predicted.rotation, pose->cameraToWorld.rotation) * 180.0 / M_PI);
+    r.reason = formatText("the pose is turned %.1f degrees from the prediction", turnDeg);
   }
   if (r.reason.empty())
   {

@@ -54,10 +54,9 @@ cv::Mat TrackedVideoWriter::write(
                            "is %d x %d and frames are 8-bit BGR",
       frame.cols, frame.rows, frame.type(), s.Camera.widthPx, s.Camera.heightPx));
   }
-  // The report's colours: green, amber, red.
-  const cv::Scalar colour = tracked.state == TrackingState::Tracking ? cv::Scalar(46, 122, 27)
-    : tracked.state == TrackingState::Degraded                       ? cv::Scalar(0, 98, 122)
-                                                                     : cv::Scalar(27, 22, 179);
+  const BannerColour colour = tracked.state == TrackingState::Tracking ? BannerColour::Green
+    : tracked.state == TrackingState::Degraded                         ? BannerColour::Amber
+                                                                       : BannerColour::Red;
   const cv::Scalar contourColour = tracked.state == TrackingState::Tracking
     ? cv::Scalar(80, 255, 80)
     : tracked.state == TrackingState::Degraded ? cv::Scalar(0, 200, 255)

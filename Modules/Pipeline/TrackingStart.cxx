@@ -32,12 +32,16 @@ TrackingStart TrackingStart::fromResult(const std::string& folder)
         "), which tracking starts on");
   }
   const std::string picture = (std::filesystem::path(folder) / record.frameImages[j]).string();
+  // A registered frame's picture, empty when it cannot be read (asked
+  // first: OpenCV would print its own warning for a missing file).
+  const auto readPicture = [](const std::string& path)
+  {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(path, ec) ? cv::imread(path, cv::IMREAD_COLOR)
+                                                      : cv::Mat();
+  };
   TrackingStart start;
-  std::error_code ec;
-  // Asked first: OpenCV would print its own warning for a missing file.
-  start.frame = std::filesystem::is_regular_file(picture, ec)
-    ? cv::imread(picture, cv::IMREAD_COLOR)
-    : cv::Mat();
+  start.frame = readPicture(picture);
   if (start.frame.empty())
   {
     throwFileError(picture, "cannot read the picture of the last registered frame");
@@ -45,12 +49,12 @@ TrackingStart TrackingStart::fromResult(const std::string& folder)
   // The field stop as the registered frames show it: a live stream has no
   // sequence to find it on before its first frame.
   std::vector<cv::Mat> registered;
-  for (const std::string& image : record.frameImages)
+  for (std::size_t i = 0; i < record.frameImages.size(); ++i)
   {
-    const std::string path = (std::filesystem::path(folder) / image).string();
-    const cv::Mat other = image.empty() || !std::filesystem::is_regular_file(path, ec)
-      ? cv::Mat()
-      : cv::imread(path, cv::IMREAD_COLOR);
+    const std::string& image = record.frameImages[i];
+    const cv::Mat other = i == j ? start.frame
+      : image.empty()            ? cv::Mat()
+                                 : readPicture((std::filesystem::path(folder) / image).string());
     if (!other.empty() && other.size() == start.frame.size())
     {
       registered.push_back(other);

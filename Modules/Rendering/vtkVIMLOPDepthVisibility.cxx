@@ -71,13 +71,11 @@ void vtkVIMLOPDepthVisibility::classify(const vimlop::PinholeCamera& intrinsics,
   // i.e. s pixels of the rendering. A margin of one pixel gives samples at the
   // border all four neighbours.
   const int s = this->Supersampling;
-  vimlop::PinholeCamera fine = intrinsics;
-  fine.fx *= s;
-  fine.fy *= s;
-  fine.cx = (intrinsics.cx + 0.5) * s - 0.5 + 1.0;
-  fine.cy = (intrinsics.cy + 0.5) * s - 0.5 + 1.0;
-  fine.widthPx = intrinsics.widthPx * s + 2;
-  fine.heightPx = intrinsics.heightPx * s + 2;
+  vimlop::PinholeCamera fine = intrinsics.resampled(s);
+  fine.cx += 1.0;
+  fine.cy += 1.0;
+  fine.widthPx += 2;
+  fine.heightPx += 2;
   const vimlop::DepthMap depth = this->Renderer->RenderDepth(fine, cameraToCT);
   const double nearMm = this->Renderer->GetNearClipMm();
 

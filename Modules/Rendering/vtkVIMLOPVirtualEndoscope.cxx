@@ -248,13 +248,7 @@ vimlop::EndoscopeImage vtkVIMLOPVirtualEndoscope::Render(
   // Colour at s times the size: pixel u of the picture covers pixels
   // s u .. s u + s - 1 of the large render, whose centres average to u when
   // c' = s (c + 0.5) - 0.5.
-  vimlop::PinholeCamera large = k;
-  large.fx = s * k.fx;
-  large.fy = s * k.fy;
-  large.cx = s * (k.cx + 0.5) - 0.5;
-  large.cy = s * (k.cy + 0.5) - 0.5;
-  large.widthPx = s * w;
-  large.heightPx = s * h;
+  vimlop::PinholeCamera large = k.resampled(s);
   large.removeDistortion();
   this->Window->SetSize(large.widthPx, large.heightPx);
   vimlop::setVTKCamera(

@@ -64,9 +64,9 @@ cv::Mat toBgrTopDown(vtkImageData* rgb)
 /// flagged, amber unchecked: the report's) holding its headline.
 cv::Mat underVerdictBanner(const cv::Mat& picture, const RegistrationVerdict& verdict)
 {
-  const cv::Scalar colour = verdict.status == VerdictStatus::Registered ? cv::Scalar(46, 122, 27)
-    : verdict.status == VerdictStatus::Flagged                          ? cv::Scalar(27, 22, 179)
-                                                                        : cv::Scalar(0, 98, 122);
+  const BannerColour colour = verdict.status == VerdictStatus::Registered ? BannerColour::Green
+    : verdict.status == VerdictStatus::Flagged                            ? BannerColour::Red
+                                                                          : BannerColour::Amber;
   return underBanner(picture, colour, verdict.headline());
 }
 

@@ -9,13 +9,6 @@ namespace vimlop
 namespace
 {
 
-PoseStreamServerOptions warningOnStderr(PoseStreamServerOptions options, const std::string& label)
-{
-  options.onNotice = [label](const std::string& text)
-  { std::fprintf(stderr, "%s: warning: %s\n", label.c_str(), text.c_str()); };
-  return options;
-}
-
 /// Serves `server` until `done()` or `timeoutS`; returns done().
 template <typename Done>
 bool serveUntil(PoseStreamServer& server, double timeoutS, Done done)
@@ -31,7 +24,7 @@ bool serveUntil(PoseStreamServer& server, double timeoutS, Done done)
 } // namespace
 
 LivePoseStream::LivePoseStream(const PoseStreamServerOptions& options, const std::string& label)
-  : Server(warningOnStderr(options, label))
+  : Server(withNoticesOnStderr(options, label))
 {
   const std::string device = options.cameraNames == CameraDeviceNames::OneMovingCamera
     ? options.cameraName

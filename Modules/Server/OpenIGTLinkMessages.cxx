@@ -59,43 +59,51 @@ std::string packImage(const std::string& device, const FramePicture& picture, do
   return packed(*message, timeS);
 }
 
-std::string packTrackingLost(const std::string& device, const FrameWithoutPose& frame, double timeS)
+namespace
+{
+
+/// A STATUS message: every status VIMLOP sends is this with its own fields.
+std::string packStatusMessage(const std::string& device, int code, int subCode,
+  const std::string& errorName, const std::string& text, double timeS)
 {
   igtl::StatusMessage::Pointer message = igtl::StatusMessage::New();
   message->SetDeviceName(device.c_str());
-  message->SetCode(igtl::StatusMessage::STATUS_NOT_PRESENT);
-  message->SetSubCode(frame.frameId);
-  message->SetErrorName("TrackingLost");
-  message->SetStatusString(("frame " + std::to_string(frame.frameId) + " has no pose" +
-    (frame.reason.empty() ? std::string() : ": " + frame.reason))
-                             .c_str());
+  message->SetCode(code);
+  message->SetSubCode(subCode);
+  message->SetErrorName(errorName.c_str());
+  message->SetStatusString(text.c_str());
   return packed(*message, timeS);
+}
+
+/// ": reason", or nothing.
+std::string because(const std::string& reason)
+{
+  return reason.empty() ? std::string() : ": " + reason;
+}
+
+} // namespace
+
+std::string packTrackingLost(const std::string& device, const FrameWithoutPose& frame, double timeS)
+{
+  return packStatusMessage(device, igtl::StatusMessage::STATUS_NOT_PRESENT, frame.frameId,
+    "TrackingLost",
+    "frame " + std::to_string(frame.frameId) + " has no pose" + because(frame.reason), timeS);
 }
 
 std::string packTrackingDegraded(const std::string& device, const DegradedPose& frame, double timeS)
 {
-  igtl::StatusMessage::Pointer message = igtl::StatusMessage::New();
-  message->SetDeviceName(device.c_str());
   // An error, like a flagged registration's: do not navigate with the pose as it is.
-  message->SetCode(igtl::StatusMessage::STATUS_UNKNOWN_ERROR);
-  message->SetSubCode(frame.frameId);
-  message->SetErrorName("TrackingDegraded");
-  message->SetStatusString(("frame " + std::to_string(frame.frameId) + "'s pose is degraded" +
-    (frame.reason.empty() ? std::string() : ": " + frame.reason))
-                             .c_str());
-  return packed(*message, timeS);
+  return packStatusMessage(device, igtl::StatusMessage::STATUS_UNKNOWN_ERROR, frame.frameId,
+    "TrackingDegraded",
+    "frame " + std::to_string(frame.frameId) + "'s pose is degraded" + because(frame.reason),
+    timeS);
 }
 
 std::string packStatus(const std::string& device, const PoseVerdict& verdict, double timeS)
 {
-  igtl::StatusMessage::Pointer message = igtl::StatusMessage::New();
-  message->SetDeviceName(device.c_str());
-  message->SetCode(
-    verdict.flagged ? igtl::StatusMessage::STATUS_UNKNOWN_ERROR : igtl::StatusMessage::STATUS_OK);
-  message->SetSubCode(0);
-  message->SetErrorName(verdict.flagged ? "RegistrationFlagged" : "");
-  message->SetStatusString(verdict.text.c_str());
-  return packed(*message, timeS);
+  return packStatusMessage(device,
+    verdict.flagged ? igtl::StatusMessage::STATUS_UNKNOWN_ERROR : igtl::StatusMessage::STATUS_OK, 0,
+    verdict.flagged ? "RegistrationFlagged" : "", verdict.text, timeS);
 }
 
 } // namespace vimlop::igtlmessages

@@ -41,10 +41,7 @@ void servePoses(const PoseServingOptions& options, const ServedPoses& poses)
       "): navigation would show it like any other; pass --allow-flagged to serve it anyway "
       "(clients are told by a STATUS message)");
   }
-  PoseStreamServerOptions serverOptions = options.server;
-  serverOptions.onNotice = [&options](const std::string& text)
-  { std::fprintf(stderr, "%s: warning: %s\n", options.label.c_str(), text.c_str()); };
-  PoseStreamServer server(serverOptions);
+  PoseStreamServer server(withNoticesOnStderr(options.server, options.label));
   server.publish(poses);
   stopRequested = 0;
   const auto previousInt = std::signal(SIGINT, requestStop);

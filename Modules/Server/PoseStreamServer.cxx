@@ -113,6 +113,14 @@ std::string addressText(std::uint32_t address)
 
 } // namespace
 
+PoseStreamServerOptions withNoticesOnStderr(
+  PoseStreamServerOptions options, const std::string& label)
+{
+  options.onNotice = [label](const std::string& text)
+  { std::fprintf(stderr, "%s: warning: %s\n", label.c_str(), text.c_str()); };
+  return options;
+}
+
 PoseStreamServer::PoseStreamServer(const PoseStreamServerOptions& options)
   : Options(options)
 {

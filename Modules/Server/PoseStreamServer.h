@@ -77,6 +77,11 @@ struct PoseStreamServerOptions
   std::string imageName = "CameraImage";
 };
 
+/// @brief `options` whose notices go to stderr as one line, "<label>: warning:
+/// <notice>": how the commands that serve poses tell them.
+PoseStreamServerOptions withNoticesOnStderr(
+  PoseStreamServerOptions options, const std::string& label);
+
 /**
  * @brief Streams registration results to navigation software over OpenIGTLink.
  *

@@ -7,9 +7,23 @@
 namespace vimlop
 {
 
-cv::Mat underBanner(const cv::Mat& picture, const cv::Scalar& colourBgr, const std::string& text)
+cv::Scalar bannerBgr(BannerColour colour)
 {
-  cv::Mat framed(picture.rows + frameBannerHeightPx, picture.cols, CV_8UC3, colourBgr);
+  switch (colour)
+  {
+    case BannerColour::Amber:
+      return cv::Scalar(0, 98, 122);
+    case BannerColour::Red:
+      return cv::Scalar(27, 22, 179);
+    case BannerColour::Green:
+      break;
+  }
+  return cv::Scalar(46, 122, 27);
+}
+
+cv::Mat underBanner(const cv::Mat& picture, BannerColour colour, const std::string& text)
+{
+  cv::Mat framed(picture.rows + frameBannerHeightPx, picture.cols, CV_8UC3, bannerBgr(colour));
   picture.copyTo(framed(cv::Rect(0, frameBannerHeightPx, picture.cols, picture.rows)));
   const int font = cv::FONT_HERSHEY_SIMPLEX;
   int baseline = 0;

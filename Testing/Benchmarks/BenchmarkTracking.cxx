@@ -116,13 +116,7 @@ int main(int argc, char** argv)
       argv[0]);
     return 2;
   }
-  PinholeCamera& k = simulation.intrinsics;
-  k.fx *= frameScale;
-  k.fy *= frameScale;
-  k.widthPx *= frameScale;
-  k.heightPx *= frameScale;
-  k.cx = (k.widthPx - 1) / 2.0;
-  k.cy = (k.heightPx - 1) / 2.0;
+  simulation.intrinsics = simulation.intrinsics.resampled(frameScale);
   try
   {
     const TriangleMesh mesh = toTriangleMesh(readPolyData(meshPath));
