@@ -6,6 +6,7 @@
 #include <vtkDoubleArray.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
+#include <vtkStringArray.h>
 #include <vtkTable.h>
 
 #include <string>
@@ -39,6 +40,30 @@ vtkSmartPointer<vtkTable> makeCameraPoseTable(const std::vector<FramePose>& pose
   auto table = vtkSmartPointer<vtkTable>::New();
   table->AddColumn(ids);
   table->AddColumn(matrices);
+  return table;
+}
+
+vtkSmartPointer<vtkTable> makeTrackedPoseTable(const std::vector<FramePose>& poses,
+  const std::vector<std::string>& states, const std::vector<double>& latencyMs)
+{
+  if (states.size() != poses.size() || latencyMs.size() != poses.size())
+  {
+    throw Error("tracked pose table: " + std::to_string(poses.size()) + " poses, " +
+      std::to_string(states.size()) + " states and " + std::to_string(latencyMs.size()) +
+      " latencies: one of each per frame");
+  }
+  const vtkSmartPointer<vtkTable> table = makeCameraPoseTable(poses);
+  vtkNew<vtkStringArray> state;
+  state->SetName("State");
+  vtkNew<vtkDoubleArray> latency;
+  latency->SetName("LatencyMs");
+  for (std::size_t i = 0; i < poses.size(); ++i)
+  {
+    state->InsertNextValue(states[i]);
+    latency->InsertNextValue(latencyMs[i]);
+  }
+  table->AddColumn(state);
+  table->AddColumn(latency);
   return table;
 }
 

@@ -7,6 +7,7 @@
 
 #include <vtkSmartPointer.h>
 
+#include <string>
 #include <vector>
 
 class vtkTable;
@@ -28,6 +29,18 @@ namespace vimlop
 /// @brief The table of `poses`, in their order.
 VIMLOPREGISTRATION_EXPORT vtkSmartPointer<vtkTable> makeCameraPoseTable(
   const std::vector<FramePose>& poses);
+
+/**
+ * @brief The table of tracked frames (vimlop track's tracked-poses.vtt):
+ * makeCameraPoseTable() of `poses` (for a lost frame, the prediction), then
+ * "State" (vtkStringArray: "tracking", "degraded" or "lost"; filter on it
+ * before showing a pose) and "LatencyMs" (from the decoded frame to its
+ * pose). The three vectors hold one value per frame.
+ * @throws vimlop::Error when their sizes differ.
+ */
+VIMLOPREGISTRATION_EXPORT vtkSmartPointer<vtkTable> makeTrackedPoseTable(
+  const std::vector<FramePose>& poses, const std::vector<std::string>& states,
+  const std::vector<double>& latencyMs);
 
 /**
  * @brief The poses held by a table made by makeCameraPoseTable() (or by hand

@@ -4,9 +4,6 @@
 
 #include "TableFile.h"
 
-#include <vtkDoubleArray.h>
-#include <vtkNew.h>
-#include <vtkStringArray.h>
 #include <vtkTable.h>
 
 namespace vimlop
@@ -15,23 +12,15 @@ namespace vimlop
 void writeTrackedPoseTable(const std::vector<TrackedPoseRow>& rows, const std::string& path)
 {
   std::vector<FramePose> poses;
+  std::vector<std::string> states;
+  std::vector<double> latencyMs;
   for (const TrackedPoseRow& row : rows)
   {
     poses.push_back(row.pose);
+    states.push_back(row.state);
+    latencyMs.push_back(row.latencyMs);
   }
-  const vtkSmartPointer<vtkTable> table = makeCameraPoseTable(poses);
-  vtkNew<vtkStringArray> state;
-  state->SetName("State");
-  vtkNew<vtkDoubleArray> latency;
-  latency->SetName("LatencyMs");
-  for (const TrackedPoseRow& row : rows)
-  {
-    state->InsertNextValue(row.state);
-    latency->InsertNextValue(row.latencyMs);
-  }
-  table->AddColumn(state);
-  table->AddColumn(latency);
-  detail::writeTableFile(table, path);
+  detail::writeTableFile(makeTrackedPoseTable(poses, states, latencyMs), path);
 }
 
 } // namespace vimlop

@@ -5,10 +5,14 @@
                                    intrinsics="sim/intrinsics.yaml", tracker="sim/tracker.csv")
     result["camera_to_ct"]          # (n, 4, 4) numpy array, one pose per registered frame
     result["flagged_as_failure"]    # True: do not navigate with it
+    tracked = vimlop.track_video(result="register-out", frames="sim/frames",
+                                 intrinsics="sim/intrinsics.yaml")
+    tracked["camera_to_ct"][tracked["states"] != "lost"]   # the poses to show
 
 register_video() runs the main job (what `vimlop register` does, with the
-same defaults) and returns numpy arrays. vtkVIMLOPVideoRegistration is the
-same job as a VTK source; vtkVIMLOPRegistration (the registration filter
+same defaults) and returns numpy arrays; track_video() follows the endoscope
+frame by frame after it (what `vimlop track` does). vtkVIMLOPVideoRegistration
+and vtkVIMLOPVideoTracking are the same jobs as VTK sources; vtkVIMLOPRegistration (the registration filter
 with a live GetTransform()) and vtkVIMLOPCTReader (CT volumes through ITK
 and InVesalius projects) work with the classes of VTK's own Python package,
 `vtkmodules`. The layouts of the inputs and outputs are in
@@ -22,14 +26,39 @@ from vtkmodules import vtkCommonExecutionModel, vtkCommonTransforms  # noqa: F40
 
 from .VIMLOPImaging import vtkVIMLOPCTReader  # noqa: F401
 from .VIMLOPRegistration import vtkVIMLOPRegistration  # noqa: F401
-from .VIMLOPPipeline import vtkVIMLOPVideoRegistration  # noqa: F401
+from .VIMLOPPipeline import vtkVIMLOPVideoRegistration, vtkVIMLOPVideoTracking  # noqa: F401
 
 __all__ = ["vtkVIMLOPCTReader", "vtkVIMLOPRegistration", "vtkVIMLOPVideoRegistration",
-           "register_video"]
+           "vtkVIMLOPVideoTracking", "register_video", "track_video"]
 
 
 class RegistrationError(RuntimeError):
     """The registration could not run (bad input, too little SfM, no start inside the airway)."""
+
+
+class TrackingError(RuntimeError):
+    """Tracking could not start or go on (not a result, a flagged one, frames of another camera)."""
+
+
+def _run_source(source, error_class):
+    """Updates a VIMLOP VTK source; raises error_class with the last error it reported."""
+    import re
+
+    from vtkmodules.util.misc import calldata_type
+    from vtkmodules.util.vtkConstants import VTK_STRING
+
+    errors = []
+
+    @calldata_type(VTK_STRING)
+    def on_error(caller, event, text):
+        errors.append(text or "failed")
+
+    source.AddObserver("ErrorEvent", on_error)
+    source.Update()
+    if errors:
+        # The last line of VTK's message, without its "vtkClass (0x...): " prefix.
+        last = errors[-1].strip().split("\n")[-1]
+        raise error_class(re.sub(r"^vtk\w+ \(0x[0-9a-fA-F]+\): ", "", last))
 
 
 def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0.0,
@@ -60,9 +89,7 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
     Raises RegistrationError with the reason when the registration cannot run.
     """
     import numpy
-    from vtkmodules.util.misc import calldata_type
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.util.vtkConstants import VTK_STRING
 
     if (ct is None) == (mesh is None):
         raise ValueError("give exactly one of ct and mesh")
@@ -83,17 +110,7 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
     registration.SetStartPosesFileName(str(start_poses) if start_poses is not None else "")
     registration.SetStartFromManualPose(bool(manual_start))
     registration.SetNumberOfThreads(int(threads))
-
-    errors = []
-
-    @calldata_type(VTK_STRING)
-    def on_error(caller, event, text):
-        errors.append(text or "registration failed")
-
-    registration.AddObserver("ErrorEvent", on_error)
-    registration.Update()
-    if errors:
-        raise RegistrationError(errors[-1].strip().split("\n")[-1])
+    _run_source(registration, RegistrationError)
 
     table = registration.GetCameraPoses()
     poses = vtk_to_numpy(table.GetColumnByName("CameraToCT")).reshape(-1, 4, 4)
@@ -107,4 +124,64 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
         "mean_contour_error_px": registration.GetContourErrorPx(),
         "residual_error_mm": registration.GetResidualErrorMm(),
         "candidates": registration.GetNumberOfCandidates(),
+    }
+
+
+def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first_frame=-1,
+                allow_flagged=False, video=True, on_frame=None):
+    """Follows the endoscope frame by frame after a registration: `vimlop track`, same defaults.
+
+    result: the result folder of `vimlop register` (or of register_video's
+    command-line twin): tracking starts on its last registered frame. frames:
+    a folder of pictures, a video file or a tracked sequence, tracked from the
+    frame after the registered one (first_frame: from this index); or camera,
+    the index N of a V4L2 camera /dev/videoN. intrinsics: the file given to
+    register (the frames are undistorted with its lens). out: a folder for
+    tracked-poses.json and .vtt, tracking.json and (video=True)
+    tracked-video.avi; None writes nothing. allow_flagged: track from a
+    result the registration flagged as a failure (refused otherwise).
+    on_frame(frame_id, state, camera_to_ct): called as each pose is
+    computed; return True from it to stop after that frame.
+
+    Returns a dict: "frame_ids" (n,), "camera_to_ct" (n, 4, 4; camera x
+    right, y down, z forward; mm, CT frame), "states" (n,) of "tracking",
+    "degraded" or "lost" (a lost frame's pose is the prediction: do not show
+    it), "latency_ms" (n,), and the counts "tracking", "degraded", "lost".
+    Raises TrackingError with the reason when tracking cannot start, or
+    when a frame cannot be read mid-way (after tracking the frames before it).
+    """
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    if (frames is None) == (camera < 0):
+        raise ValueError("give exactly one of frames and camera")
+    tracking = vtkVIMLOPVideoTracking()
+    tracking.SetResultFolder(str(result))
+    tracking.SetFramesPath(str(frames) if frames is not None else "")
+    tracking.SetCameraIndex(int(camera))
+    tracking.SetIntrinsicsFileName(str(intrinsics) if intrinsics is not None else "")
+    tracking.SetOutputFolder(str(out) if out is not None else "")
+    tracking.SetWriteVideo(bool(video))
+    tracking.SetFirstFrameIndex(int(first_frame))
+    tracking.SetAllowFlagged(bool(allow_flagged))
+    if on_frame is not None:
+        def on_update(caller, event):
+            matrix = caller.GetCameraTransform().GetMatrix()
+            pose = numpy.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
+            if on_frame(caller.GetLastFrameId(), caller.GetLastFrameState(), pose):
+                caller.SetAbortExecute(1)
+
+        tracking.AddObserver("UpdateEvent", on_update)
+    _run_source(tracking, TrackingError)
+
+    table = tracking.GetTrackedPoses()
+    states = table.GetColumnByName("State")
+    return {
+        "frame_ids": vtk_to_numpy(table.GetColumnByName("FrameId")).copy(),
+        "camera_to_ct": vtk_to_numpy(table.GetColumnByName("CameraToCT")).reshape(-1, 4, 4).copy(),
+        "states": numpy.array([states.GetValue(i) for i in range(states.GetNumberOfValues())]),
+        "latency_ms": vtk_to_numpy(table.GetColumnByName("LatencyMs")).copy(),
+        "tracking": tracking.GetNumberOfTrackingFrames(),
+        "degraded": tracking.GetNumberOfDegradedFrames(),
+        "lost": tracking.GetNumberOfLostFrames(),
     }

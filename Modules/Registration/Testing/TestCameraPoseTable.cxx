@@ -88,3 +88,26 @@ TEST(CameraPoseTable, RejectsMalformedTables)
   }
   EXPECT_THROW(readCameraPoseTable(nullptr), Error);
 }
+
+TEST(CameraPoseTable, TrackedFramesAddTheirStateAndLatencyAfterThePoses)
+{
+  const std::vector<FramePose> poses = makePoses();
+  const std::vector<std::string> states = { "tracking", "degraded", "lost", "tracking",
+    "tracking" };
+  const std::vector<double> latencyMs = { 5.0, 6.5, 7.0, 8.25, 9.0 };
+  const vtkSmartPointer<vtkTable> table = makeTrackedPoseTable(poses, states, latencyMs);
+  ASSERT_EQ(table->GetNumberOfColumns(), 4);
+  EXPECT_EQ(readCameraPoseTable(table)[2].frameId, poses[2].frameId);
+  EXPECT_EQ(table->GetValueByName(2, "State").ToString(), "lost");
+  EXPECT_DOUBLE_EQ(table->GetValueByName(3, "LatencyMs").ToDouble(), 8.25);
+  try
+  {
+    makeTrackedPoseTable(poses, { "tracking" }, latencyMs);
+    FAIL();
+  }
+  catch (const Error& e)
+  {
+    EXPECT_STREQ(
+      e.what(), "tracked pose table: 5 poses, 1 states and 5 latencies: one of each per frame");
+  }
+}

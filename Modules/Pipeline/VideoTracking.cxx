@@ -1,0 +1,370 @@
+#include <vimlop/Pipeline/VideoTracking.h>
+
+#include <vimlop/Core/AtomicFile.h>
+#include <vimlop/Core/Error.h>
+#include <vimlop/Core/FileError.h>
+#include <vimlop/Core/RegistrationMetrics.h>
+#include <vimlop/Core/TextFormat.h>
+#include <vimlop/Imaging/FramePoseIO.h>
+#include <vimlop/Pipeline/TrackedVideoWriter.h>
+#include <vimlop/Pipeline/TrackingStart.h>
+#include <vimlop/Results/TrackedPoseTable.h>
+#include <vimlop/Video/FrameStream.h>
+#include <vimlop/Video/FrameUndistorter.h>
+#include <vimlop/Video/IntrinsicsIO.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+namespace vimlop
+{
+
+void VideoTrackingOptions::validate() const
+{
+  this->tracker.validate();
+  if (this->firstFrameIndex < -1)
+  {
+    throw Error(formatText(
+      "the first frame index must be >= 0, or -1 for the one after the registered frame, not %d",
+      this->firstFrameIndex));
+  }
+  if (!std::isfinite(this->videoFps) || this->videoFps <= 0.0)
+  {
+    throw Error(
+      formatText("the tracked video's rate must be a finite number > 0 frames per second, not %g",
+        this->videoFps));
+  }
+}
+
+struct VideoTracking::Internals
+{
+  VideoTrackingOptions options;
+  VideoTrackingInputs inputs;
+  std::function<void(const TrackedVideoFrame&)> handler;
+  std::function<bool()> stopRequest;
+  std::unique_ptr<TrackingStart> start;
+  std::optional<FrameUndistorter> undistorter;
+  std::optional<FrameStream> stream;
+  std::unique_ptr<EndoscopeTracker> tracker;
+  std::map<int, CameraPose> truth;
+  int first = 0;
+  int seen = 0;
+  std::vector<TrackedVideoFrame> frames;
+  std::string stoppedBy;
+  bool stopRequested = false;
+
+  bool stopAsked() const { return this->stopRequest && this->stopRequest(); }
+  void writeOutputs(const nlohmann::json& report) const;
+};
+
+namespace
+{
+
+/// The camera the frames are undistorted with: the intrinsics file's lens
+/// around the camera the result registered with, which it must be.
+PinholeCamera lensOf(const std::string& intrinsicsPath, const PinholeCamera& registered)
+{
+  if (intrinsicsPath.empty())
+  {
+    return registered;
+  }
+  const PinholeCamera given = readIntrinsics(intrinsicsPath);
+  const PinholeCamera pinhole = FrameUndistorter(given).pinhole();
+  const auto same = [](double a, double b)
+  { return std::abs(a - b) <= 1e-6 * std::max(1.0, std::abs(b)); };
+  if (pinhole.widthPx != registered.widthPx || pinhole.heightPx != registered.heightPx ||
+    !same(pinhole.fx, registered.fx) || !same(pinhole.fy, registered.fy) ||
+    !same(pinhole.cx, registered.cx) || !same(pinhole.cy, registered.cy))
+  {
+    throwFileError(intrinsicsPath,
+      formatText("a %dx%d camera with fx %g, fy %g, cx %g, cy %g, but the result registered a "
+                 "%dx%d camera with fx %g, fy %g, cx %g, cy %g: give the intrinsics the result "
+                 "was registered with",
+        pinhole.widthPx, pinhole.heightPx, pinhole.fx, pinhole.fy, pinhole.cx, pinhole.cy,
+        registered.widthPx, registered.heightPx, registered.fx, registered.fy, registered.cx,
+        registered.cy));
+  }
+  return given;
+}
+
+} // namespace
+
+VideoTracking::VideoTracking(const VideoTrackingOptions& options)
+  : d(std::make_unique<Internals>())
+{
+  d->options = options;
+}
+
+VideoTracking::~VideoTracking() = default;
+
+void VideoTracking::setFrameHandler(std::function<void(const TrackedVideoFrame&)> handler)
+{
+  d->handler = std::move(handler);
+}
+
+void VideoTracking::setStopRequest(std::function<bool()> stopRequested)
+{
+  d->stopRequest = std::move(stopRequested);
+}
+
+void VideoTracking::open(const VideoTrackingInputs& inputs)
+{
+  d->options.validate();
+  if (inputs.framesPath.empty() == (inputs.cameraIndex < 0))
+  {
+    throw Error("give exactly one of a frame path and a camera index");
+  }
+  auto start = std::make_unique<TrackingStart>(TrackingStart::fromResult(inputs.resultFolder));
+  // Tracking carries the registration's error to every frame: a result the
+  // registration itself flagged is no start for navigation.
+  if (!start->failureReason.empty() && !d->options.allowFlagged)
+  {
+    throw Error("refusing to track from a result flagged as a failure (" + start->failureReason +
+      "): every tracked pose would carry its error; pass --allow-flagged to track anyway");
+  }
+  // The frames as the registration saw them: undistorted with the lens of
+  // the intrinsics file (the one given to `register`), or as they are.
+  d->undistorter.emplace(lensOf(inputs.intrinsicsPath, start->intrinsics));
+  d->stream.emplace(inputs.cameraIndex >= 0 ? FrameStream::openCamera(inputs.cameraIndex)
+                                            : FrameStream::open(inputs.framesPath));
+  // By default tracking goes on after the frame the registration ended on.
+  const std::optional<int> registeredAt =
+    start->frameSource.empty() ? std::nullopt : d->stream->indexOfName(start->frameSource);
+  d->first = d->options.firstFrameIndex >= 0 ? d->options.firstFrameIndex
+    : registeredAt                           ? *registeredAt + 1
+                                             : 0;
+  d->truth.clear();
+  if (!inputs.truthPath.empty())
+  {
+    for (const FramePose& p : readFramePoses(inputs.truthPath))
+    {
+      d->truth[p.frameId] = p.cameraToWorld;
+    }
+  }
+  d->tracker =
+    std::make_unique<EndoscopeTracker>(start->modelCT, start->intrinsics, d->options.tracker);
+  d->tracker->start(start->frame, start->cameraToCT, start->fieldOfViewMask);
+  d->start = std::move(start);
+  d->inputs = inputs;
+  d->frames.clear();
+  d->stoppedBy.clear();
+  d->stopRequested = false;
+  d->seen = 0;
+}
+
+void VideoTracking::run()
+{
+  namespace fs = std::filesystem;
+  if (!d->tracker)
+  {
+    throw Error("VideoTracking::run() before open()");
+  }
+  const TrackingStart& start = *d->start;
+  const std::string& out = d->inputs.outputFolder;
+  if (!out.empty())
+  {
+    fs::create_directories(out);
+  }
+  // The tracked video is written as the frames come, after each pose is sent.
+  std::unique_ptr<TrackedVideoWriter> video;
+  if (!out.empty() && d->options.writeVideo)
+  {
+    video = std::make_unique<TrackedVideoWriter>(start.modelCT, start.intrinsics,
+      (fs::path(out) / "tracked-video.avi").string(), d->options.videoFps);
+  }
+  StreamedFrame f;
+  try
+  {
+    for (; !(d->stopRequested = d->stopAsked()) && d->stream->next(f); ++d->seen)
+    {
+      if (f.index < d->first)
+      {
+        continue;
+      }
+      if (f.image.size() != cv::Size(start.intrinsics.widthPx, start.intrinsics.heightPx))
+      {
+        throw Error(formatText("frame '%s' of %s is %dx%d pixels, but the result's camera is "
+                               "%dx%d: these are not the frames it registered",
+          f.name.c_str(), d->stream->source().c_str(), f.image.cols, f.image.rows,
+          start.intrinsics.widthPx, start.intrinsics.heightPx));
+      }
+      // The latency is the whole way from the decoded frame to its pose
+      // (sent, when the handler sends it): undistortion, tracking, handler.
+      const auto decoded = std::chrono::steady_clock::now();
+      const cv::Mat ideal = d->undistorter->undistort(f.image);
+      TrackedVideoFrame frame;
+      frame.frameId = f.id;
+      frame.source = f.name;
+      frame.tracked = d->tracker->track(ideal);
+      const auto known = d->truth.find(f.id);
+      if (known != d->truth.end())
+      {
+        frame.positionErrorMm = cameraPositionError(frame.tracked.cameraToCT, known->second);
+        frame.angleErrorDeg = cameraAngleErrorDeg(frame.tracked.cameraToCT, known->second);
+      }
+      if (d->handler)
+      {
+        d->handler(frame);
+      }
+      frame.latencyMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decoded)
+          .count();
+      d->frames.push_back(frame);
+      if (video)
+      {
+        video->write(ideal, frame.tracked, f.name);
+      }
+    }
+  }
+  catch (const Error& e)
+  {
+    // The frames tracked before it are written all the same. (A camera or
+    // decoder may fail because of the stop itself: that is no error.)
+    d->stopRequested = d->stopRequested || d->stopAsked();
+    d->stoppedBy = d->stopRequested ? std::string() : e.what();
+  }
+  if (d->frames.empty() && !d->stoppedBy.empty())
+  {
+    throw Error(d->stoppedBy);
+  }
+  if (d->frames.empty() && !d->stopRequested)
+  {
+    throw Error(formatText("no frames to track: '%s' has %d frames, and tracking would start at "
+                           "frame %d (after the registered frame '%s'; --from sets it)",
+      d->stream->source().c_str(), d->seen, d->first, start.frameSource.c_str()));
+  }
+  video.reset();
+  if (!out.empty())
+  {
+    d->writeOutputs(this->report());
+  }
+}
+
+void VideoTracking::Internals::writeOutputs(const nlohmann::json& report) const
+{
+  namespace fs = std::filesystem;
+  const fs::path out = this->inputs.outputFolder;
+  // Lost frames have no pose a navigation system should show: they are in
+  // tracking.json with their state, not in the pose file.
+  std::vector<FramePose> poses;
+  std::vector<TrackedPoseRow> rows;
+  for (const TrackedVideoFrame& f : this->frames)
+  {
+    if (f.tracked.state != TrackingState::Lost)
+    {
+      poses.push_back({ f.frameId, f.tracked.cameraToCT });
+    }
+    rows.push_back({ { f.frameId, f.tracked.cameraToCT }, toString(f.tracked.state), f.latencyMs });
+  }
+  writeFramePoses(poses, (out / "tracked-poses.json").string());
+  // Every frame, with its state, for VTK pipelines.
+  writeTrackedPoseTable(rows, (out / "tracked-poses.vtt").string());
+  writeFileAtomically((out / "tracking.json").string(), report.dump(2) + "\n");
+}
+
+const TrackingStart& VideoTracking::start() const
+{
+  if (!d->start)
+  {
+    throw Error("VideoTracking::start() before open()");
+  }
+  return *d->start;
+}
+
+const std::string& VideoTracking::source() const
+{
+  static const std::string none;
+  return d->stream ? d->stream->source() : none;
+}
+
+int VideoTracking::firstFrameIndex() const
+{
+  return d->first;
+}
+
+const std::vector<TrackedVideoFrame>& VideoTracking::frames() const
+{
+  return d->frames;
+}
+
+int VideoTracking::count(TrackingState state) const
+{
+  int n = 0;
+  for (const TrackedVideoFrame& f : d->frames)
+  {
+    n += f.tracked.state == state ? 1 : 0;
+  }
+  return n;
+}
+
+Summary VideoTracking::latencyMs() const
+{
+  std::vector<double> latency;
+  for (const TrackedVideoFrame& f : d->frames)
+  {
+    latency.push_back(f.latencyMs);
+  }
+  return summarize(latency);
+}
+
+const std::string& VideoTracking::stoppedBy() const
+{
+  return d->stoppedBy;
+}
+
+bool VideoTracking::stopRequested() const
+{
+  return d->stopRequested;
+}
+
+nlohmann::json VideoTracking::report() const
+{
+  nlohmann::json records = nlohmann::json::array();
+  std::vector<double> errorMm;
+  for (const TrackedVideoFrame& f : d->frames)
+  {
+    const TrackedFrame& t = f.tracked;
+    nlohmann::json record = { { "frame_id", f.frameId }, { "source", f.source },
+      { "state", toString(t.state) }, { "tracked_features", t.trackedFeatures },
+      { "inliers", t.inliers }, { "reprojection_error_px", t.reprojectionErrorPx },
+      { "new_features", t.newFeatures } };
+    if (f.positionErrorMm)
+    {
+      record["camera_position_error_mm"] = *f.positionErrorMm;
+      record["camera_angle_error_deg"] = *f.angleErrorDeg;
+      if (t.state != TrackingState::Lost)
+      {
+        errorMm.push_back(*f.positionErrorMm);
+      }
+    }
+    if (!t.reason.empty())
+    {
+      record["reason"] = t.reason;
+    }
+    record["latency_ms"] = f.latencyMs;
+    records.push_back(record);
+  }
+  const Summary latency = this->latencyMs();
+  nlohmann::json report = { { "result", d->inputs.resultFolder }, { "frames", this->source() },
+    { "start_frame_id", d->start ? d->start->frameId : 0 }, { "first_tracked_index", d->first },
+    { "tracking", this->count(TrackingState::Tracking) },
+    { "degraded", this->count(TrackingState::Degraded) },
+    { "lost", this->count(TrackingState::Lost) },
+    { "latency_ms", { { "median", latency.median }, { "p99", latency.p99 } } },
+    { "per_frame", records } };
+  if (!errorMm.empty())
+  {
+    const Summary e = summarize(errorMm);
+    report["camera_position_error_mm"] = { { "mean", e.mean }, { "max", e.max } };
+  }
+  if (!d->stoppedBy.empty() || d->stopRequested)
+  {
+    report["stopped_by"] =
+      d->stopRequested ? "interrupted (Ctrl-C, SIGTERM or AbortExecute)" : d->stoppedBy;
+  }
+  return report;
+}
+
+} // namespace vimlop

@@ -1,0 +1,160 @@
+#ifndef vtkVIMLOPVideoTracking_h
+#define vtkVIMLOPVideoTracking_h
+
+#include "VIMLOPPipelineModule.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkNew.h>
+
+#include <memory>
+#include <string>
+
+class vtkLinearTransform;
+class vtkTable;
+class vtkTransform;
+
+namespace vimlop
+{
+class VideoTracking;
+} // namespace vimlop
+
+/**
+ * @brief The endoscope followed frame by frame after a registration, as a
+ * VTK source: `vimlop track` (vimlop::VideoTracking, with its defaults).
+ *
+ * It starts on the last frame a result folder of `vimlop register`
+ * registered and tracks every later frame of FramesPath (a folder, a video
+ * file or a tracked sequence) or of a V4L2 camera.
+ *
+ * Output port 0, vtkTable: one row per tracked frame, in their order:
+ * "FrameId", "CameraToCT" (16 components, the camera-to-CT 4 x 4 matrix,
+ * row-major; camera x right, y down, z forward; mm), "State" ("tracking",
+ * "degraded", "lost": a lost frame's pose is the prediction, not to be
+ * shown) and "LatencyMs" (the layout of tracked-poses.vtt).
+ *
+ * While Update() runs, each frame fires vtkCommand::UpdateEvent once its pose
+ * is computed: GetCameraTransform() is then its camera-to-CT pose (held at
+ * the last frame not lost), GetLastFrameState() its state and
+ * GetLastFrameId() its id, so an observer can follow the scope live.
+ * AbortExecute stops after the frame in hand, and the frames tracked are
+ * output (and written). Errors (not a result, a flagged result without
+ * AllowFlagged, frames of another camera) go through vtkErrorMacro and fail
+ * the execution; a frame that cannot be read mid-way ends it with an error,
+ * after the frames before it are output.
+ */
+class VIMLOPPIPELINE_EXPORT vtkVIMLOPVideoTracking : public vtkAlgorithm
+{
+public:
+  static vtkVIMLOPVideoTracking* New();
+  vtkTypeMacro(vtkVIMLOPVideoTracking, vtkAlgorithm)
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The result folder of `vimlop register` tracking starts from (required).
+  vtkSetStdStringFromCharMacro(ResultFolder);
+  vtkGetCharFromStdStringMacro(ResultFolder);
+  ///@}
+
+  ///@{
+  /// The frames: a folder of pictures, a video file or a tracked sequence,
+  /// or, when CameraIndex is 0 or more, the camera /dev/video<CameraIndex>
+  /// (default -1: FramesPath).
+  vtkSetStdStringFromCharMacro(FramesPath);
+  vtkGetCharFromStdStringMacro(FramesPath);
+  vtkSetClampMacro(CameraIndex, int, -1, 1000);
+  vtkGetMacro(CameraIndex, int);
+  ///@}
+
+  ///@{
+  /// The intrinsics file given to `register` (its lens undistorts the
+  /// frames); empty (default): the frames are used as they are.
+  vtkSetStdStringFromCharMacro(IntrinsicsFileName);
+  vtkGetCharFromStdStringMacro(IntrinsicsFileName);
+  ///@}
+
+  ///@{
+  /// Where tracked-poses.json and .vtt, tracking.json and tracked-video.avi
+  /// are written; empty (default): nothing is written.
+  vtkSetStdStringFromCharMacro(OutputFolder);
+  vtkGetCharFromStdStringMacro(OutputFolder);
+  /// Write tracked-video.avi in OutputFolder (default on).
+  vtkSetMacro(WriteVideo, bool);
+  vtkGetMacro(WriteVideo, bool);
+  vtkBooleanMacro(WriteVideo, bool);
+  ///@}
+
+  ///@{
+  /// Index of the first frame to track; -1 (default): the one after the
+  /// registered frame of the same name, else 0.
+  vtkSetClampMacro(FirstFrameIndex, int, -1, VTK_INT_MAX);
+  vtkGetMacro(FirstFrameIndex, int);
+  /// Track from a result the registration flagged as a failure (default
+  /// off: refused, every tracked pose would carry its error).
+  vtkSetMacro(AllowFlagged, bool);
+  vtkGetMacro(AllowFlagged, bool);
+  vtkBooleanMacro(AllowFlagged, bool);
+  ///@}
+
+  ///@{
+  /// The tracker's main settings (vimlop::EndoscopeTrackerOptions, same
+  /// defaults as `vimlop track`): features tracked at most (300), frames
+  /// wider than MaxTrackingWidthPx tracked halved (480 px), a feature agrees
+  /// with a pose within InlierThresholdPx (2 px).
+  vtkSetClampMacro(MaxFeatures, int, 10, 100000);
+  vtkGetMacro(MaxFeatures, int);
+  vtkSetClampMacro(MaxTrackingWidthPx, int, 64, 100000);
+  vtkGetMacro(MaxTrackingWidthPx, int);
+  vtkSetClampMacro(InlierThresholdPx, double, 0.01, 100.0);
+  vtkGetMacro(InlierThresholdPx, double);
+  ///@}
+
+  ///@{
+  /// The outputs and the outcome of the last execution.
+  vtkTable* GetTrackedPoses();
+  /// The last tracked frame's camera-to-CT pose (held at the last frame not
+  /// lost); live during Update(), updated in place.
+  vtkLinearTransform* GetCameraTransform();
+  /// "tracking", "degraded" or "lost"; empty before the first frame.
+  std::string GetLastFrameState() const;
+  int GetLastFrameId() const;
+  int GetNumberOfTrackingFrames() const;
+  int GetNumberOfDegradedFrames() const;
+  int GetNumberOfLostFrames() const;
+  double GetMedianLatencyMs() const;
+  /// The error that ended the last run early, after its first frames; empty otherwise.
+  std::string GetStoppedBy() const;
+  ///@}
+
+  vtkTypeBool ProcessRequest(
+    vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs) override;
+
+protected:
+  vtkVIMLOPVideoTracking();
+  ~vtkVIMLOPVideoTracking() override;
+
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(
+    vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs);
+
+private:
+  vtkVIMLOPVideoTracking(const vtkVIMLOPVideoTracking&) = delete;
+  void operator=(const vtkVIMLOPVideoTracking&) = delete;
+
+  std::string ResultFolder;
+  std::string FramesPath;
+  int CameraIndex = -1;
+  std::string IntrinsicsFileName;
+  std::string OutputFolder;
+  bool WriteVideo = true;
+  int FirstFrameIndex = -1;
+  bool AllowFlagged = false;
+  int MaxFeatures;
+  int MaxTrackingWidthPx;
+  double InlierThresholdPx;
+  std::string LastFrameState;
+  int LastFrameId = -1;
+  std::unique_ptr<vimlop::VideoTracking> Tracking;
+  vtkNew<vtkTransform> CameraTransform;
+};
+
+#endif
