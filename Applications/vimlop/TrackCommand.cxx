@@ -24,6 +24,7 @@ struct TrackOptions
   VideoTrackingInputs inputs;
   VideoTrackingOptions tracking;
   bool noVideo = false;
+  bool noContourCheck = false;
   bool serve = false;
   double waitForClientS = 0.0;
   PoseStreamServerOptions server;
@@ -39,6 +40,7 @@ void runTrack(const TrackOptions& o)
   }
   VideoTrackingOptions options = o.tracking;
   options.writeVideo = !o.noVideo;
+  options.checkContours = !o.noContourCheck;
   VideoTracking tracking(options);
   tracking.open(o.inputs);
   std::unique_ptr<LivePoseStream> server;
@@ -84,6 +86,13 @@ void runTrack(const TrackOptions& o)
     tracking.count(TrackingState::Lost), latencyMs.median, latencyMs.p99));
   summary.json = tracking.report();
   summary.json.erase("per_frame");
+  if (summary.json.contains("contour_error_px"))
+  {
+    summary.lines.push_back(formatText("contours against the CT: %.2f px median, %.2f px p95 "
+                                       "(each frame's median distance to the model's contours)",
+      summary.json["contour_error_px"]["median"].get<double>(),
+      summary.json["contour_error_px"]["p95"].get<double>()));
+  }
   if (summary.json.contains("camera_position_error_mm"))
   {
     summary.lines.push_back(
@@ -143,6 +152,10 @@ void addTrackCommand(CLI::App& app)
   c->add_flag("--no-video", o->noVideo,
     "do not write tracked-video.avi (each frame with the model's contours at its tracked pose, "
     "under a band with its state)");
+  c->add_flag("--no-contour-check", o->noContourCheck,
+    "do not check each tracked pose against the CT (the frame's occluding contours matched to the "
+    "model's at the pose, after the pose is sent: the median error, px, is in tracking.json and "
+    "the video's band)");
   c->add_option("--fps", o->tracking.videoFps, "the tracked video's rate, frames per second")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);

@@ -7,11 +7,14 @@
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/SimulatedVideoCase.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
+#include <vimlop/Pipeline/FrameContourCheck.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
+#include <vimlop/Video/FrameUndistorter.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <random>
 
 namespace vimlop
@@ -96,6 +99,10 @@ nlohmann::json TrackingProtocolReport::toJson() const
       { "camera_position_mm", f.positionErrorMm }, { "camera_angle_deg", f.angleErrorDeg },
       { "tracked_features", f.trackedFeatures }, { "inliers", f.inliers },
       { "reprojection_error_px", f.reprojectionErrorPx }, { "latency_ms", f.latencyMs } });
+    if (std::isfinite(f.contourErrorPx))
+    {
+      frames.back()["contour_error_px"] = f.contourErrorPx;
+    }
   }
   return { { "protocol", "tracking" }, { "frames", this->frames }, { "seed", this->seed },
     { "registration",
@@ -171,10 +178,16 @@ TrackingProtocolReport runTrackingProtocol(
   EndoscopeTracker tracker(world.model, video.calibratedIntrinsics, o.tracker);
   tracker.start(video.frames[static_cast<std::size_t>(report.startFrame)], startPose,
     c.pipeline->fieldOfViewMask());
+  // Each tracked pose checked against the CT as vimlop track checks it: the
+  // frame undistorted with the intrinsics the user has.
+  const FrameUndistorter undistorter(video.calibratedIntrinsics);
+  const FrameContourCheck contourCheck(
+    makeEmbreeRegistrationModel(world.model), undistorter.pinhole(), c.pipeline->fieldOfViewMask());
   std::vector<double> latency, position, angle;
   for (int f = report.startFrame + 1; f < o.simulation.frames; ++f)
   {
-    const TrackedFrame t = tracker.track(video.frames[static_cast<std::size_t>(f)]);
+    const cv::Mat& frame = video.frames[static_cast<std::size_t>(f)];
+    const TrackedFrame t = tracker.track(frame);
     TrackingProtocolFrame r;
     r.frame = f;
     r.state = toString(t.state);
@@ -186,6 +199,7 @@ TrackingProtocolReport runTrackingProtocol(
     r.inliers = t.inliers;
     r.reprojectionErrorPx = t.reprojectionErrorPx;
     r.latencyMs = t.latencyMs;
+    r.contourErrorPx = contourCheck.check(undistorter.undistort(frame), t.cameraToCT).medianErrorPx;
     report.degradedFrames += t.state == TrackingState::Degraded;
     report.lostFrames += t.state == TrackingState::Lost;
     report.unflaggedFramesOverLimit +=

@@ -59,6 +59,9 @@ struct TrackingProtocolFrame
   int inliers = 0;
   double reprojectionErrorPx = 0.0;
   double latencyMs = 0.0;
+  /// FrameContourAgreement::medianErrorPx at the tracked pose (NaN when no
+  /// contour point matched): the check against the CT, next to the truth.
+  double contourErrorPx = 0.0;
 };
 
 /// @brief The result of the tracking protocol.

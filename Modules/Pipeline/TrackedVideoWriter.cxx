@@ -3,8 +3,6 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Core/TextFormat.h>
-#include <vimlop/Core/VisibleModelContours.h>
-#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Video/FrameBanner.h>
 
 #include <opencv2/imgproc.hpp>
@@ -17,7 +15,6 @@ namespace vimlop
 
 struct TrackedVideoWriter::Internals
 {
-  RegistrationModel Model;
   PinholeCamera Camera;
   std::string Path;
   double Fps = 30.0;
@@ -26,15 +23,14 @@ struct TrackedVideoWriter::Internals
 };
 
 TrackedVideoWriter::TrackedVideoWriter(
-  const TriangleMesh& modelCT, const PinholeCamera& camera, const std::string& path, double fps)
+  const PinholeCamera& camera, const std::string& path, double fps)
 {
   camera.validate();
   if (!(fps > 0.0) || !std::isfinite(fps))
   {
     throw Error(formatText("tracked video: the rate must be positive, not %g fps", fps));
   }
-  this->d = std::unique_ptr<Internals>(
-    new Internals{ makeEmbreeRegistrationModel(modelCT), camera, path, fps, {}, 0 });
+  this->d = std::unique_ptr<Internals>(new Internals{ camera, path, fps, {}, 0 });
 }
 
 TrackedVideoWriter::~TrackedVideoWriter() = default;
@@ -44,8 +40,9 @@ int TrackedVideoWriter::framesWritten() const
   return this->d->Written;
 }
 
-cv::Mat TrackedVideoWriter::write(
-  const cv::Mat& frame, const TrackedFrame& tracked, const std::string& frameName)
+cv::Mat TrackedVideoWriter::write(const cv::Mat& frame, const TrackedFrame& tracked,
+  const std::string& frameName, const std::vector<ModelContourPoint>& modelContours,
+  double contourErrorPx)
 {
   Internals& s = *this->d;
   if (frame.cols != s.Camera.widthPx || frame.rows != s.Camera.heightPx || frame.type() != CV_8UC3)
@@ -62,7 +59,7 @@ cv::Mat TrackedVideoWriter::write(
     : tracked.state == TrackingState::Degraded ? cv::Scalar(0, 200, 255)
                                                : cv::Scalar(60, 60, 255);
   cv::Mat picture = frame.clone();
-  for (const ModelContourPoint& p : visibleModelContours(s.Model, s.Camera, tracked.cameraToCT))
+  for (const ModelContourPoint& p : modelContours)
   {
     cv::circle(picture,
       cv::Point(
@@ -73,6 +70,10 @@ cv::Mat TrackedVideoWriter::write(
   if (!tracked.reason.empty())
   {
     text += " (" + tracked.reason + ")";
+  }
+  if (std::isfinite(contourErrorPx))
+  {
+    text += formatText("; contours %.1f px", contourErrorPx);
   }
   const cv::Mat framed = underBanner(picture, colour, text);
   if (!s.Video.isOpened())

@@ -5,9 +5,12 @@
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/TextFormat.h>
+#include <vimlop/Core/VisibleModelContours.h>
 #include <vimlop/Imaging/FramePoseIO.h>
+#include <vimlop/Pipeline/FrameContourCheck.h>
 #include <vimlop/Pipeline/TrackedVideoWriter.h>
 #include <vimlop/Pipeline/TrackingStart.h>
+#include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Results/TrackedPoseTable.h>
 #include <vimlop/Video/FrameStream.h>
 #include <vimlop/Video/FrameUndistorter.h>
@@ -48,6 +51,9 @@ struct VideoTracking::Internals
   std::optional<FrameUndistorter> undistorter;
   std::optional<FrameStream> stream;
   std::unique_ptr<EndoscopeTracker> tracker;
+  /// The registered model, shared by the contour check and the tracked video.
+  std::optional<RegistrationModel> model;
+  std::unique_ptr<FrameContourCheck> contourCheck;
   std::map<int, CameraPose> truth;
   int first = 0;
   int seen = 0;
@@ -146,6 +152,10 @@ void VideoTracking::open(const VideoTrackingInputs& inputs)
   d->tracker =
     std::make_unique<EndoscopeTracker>(start->modelCT, start->intrinsics, d->options.tracker);
   d->tracker->start(start->frame, start->cameraToCT, start->fieldOfViewMask);
+  d->model.emplace(makeEmbreeRegistrationModel(start->modelCT));
+  d->contourCheck = d->options.checkContours
+    ? std::make_unique<FrameContourCheck>(*d->model, start->intrinsics, start->fieldOfViewMask)
+    : nullptr;
   d->start = std::move(start);
   d->inputs = inputs;
   d->frames.clear();
@@ -171,8 +181,8 @@ void VideoTracking::run()
   std::unique_ptr<TrackedVideoWriter> video;
   if (!out.empty() && d->options.writeVideo)
   {
-    video = std::make_unique<TrackedVideoWriter>(start.modelCT, start.intrinsics,
-      (fs::path(out) / "tracked-video.avi").string(), d->options.videoFps);
+    video = std::make_unique<TrackedVideoWriter>(
+      start.intrinsics, (fs::path(out) / "tracked-video.avi").string(), d->options.videoFps);
   }
   StreamedFrame f;
   try
@@ -211,10 +221,25 @@ void VideoTracking::run()
       frame.latencyMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decoded)
           .count();
+      // The check against the CT and the video come after the pose is
+      // handed on: they do not add to its latency.
+      std::vector<ModelContourPoint> modelContours;
+      if (d->contourCheck)
+      {
+        FrameContourAgreement a = d->contourCheck->check(ideal, frame.tracked.cameraToCT);
+        frame.contourErrorPx = a.medianErrorPx;
+        frame.contourPointsDetected = a.detected;
+        frame.contourPointsMatched = a.matched;
+        modelContours = std::move(a.modelContours);
+      }
+      else if (video)
+      {
+        modelContours = visibleModelContours(*d->model, start.intrinsics, frame.tracked.cameraToCT);
+      }
       d->frames.push_back(frame);
       if (video)
       {
-        video->write(ideal, frame.tracked, f.name);
+        video->write(ideal, frame.tracked, f.name, modelContours, frame.contourErrorPx);
       }
     }
   }
@@ -322,7 +347,7 @@ bool VideoTracking::stopRequested() const
 nlohmann::json VideoTracking::report() const
 {
   nlohmann::json records = nlohmann::json::array();
-  std::vector<double> errorMm;
+  std::vector<double> errorMm, contourPx;
   for (const TrackedVideoFrame& f : d->frames)
   {
     const TrackedFrame& t = f.tracked;
@@ -343,6 +368,16 @@ nlohmann::json VideoTracking::report() const
     {
       record["reason"] = t.reason;
     }
+    if (std::isfinite(f.contourErrorPx))
+    {
+      record["contour_error_px"] = f.contourErrorPx;
+      contourPx.push_back(f.contourErrorPx);
+    }
+    if (d->contourCheck)
+    {
+      record["contour_points"] = { { "detected", f.contourPointsDetected },
+        { "matched", f.contourPointsMatched } };
+    }
     record["latency_ms"] = f.latencyMs;
     records.push_back(record);
   }
@@ -358,6 +393,12 @@ nlohmann::json VideoTracking::report() const
   {
     const Summary e = summarize(errorMm);
     report["camera_position_error_mm"] = { { "mean", e.mean }, { "max", e.max } };
+  }
+  if (!contourPx.empty())
+  {
+    // Each frame's median contour error, over the frames checked.
+    const Summary c = summarize(contourPx);
+    report["contour_error_px"] = { { "median", c.median }, { "p95", c.p95 }, { "max", c.max } };
   }
   if (!d->stoppedBy.empty() || d->stopRequested)
   {

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,6 +55,10 @@ struct VideoTrackingOptions
   bool writeVideo = true;
   /// The tracked video's rate, frames per second (default 30).
   double videoFps = 30.0;
+  /// Check every tracked pose against the CT (default on): the frame's
+  /// occluding contours matched to the model's at the pose
+  /// (FrameContourCheck), after the pose is handed on, so outside its latency.
+  bool checkContours = true;
 
   /// @throws vimlop::Error naming the first value out of range.
   void validate() const;
@@ -68,6 +73,12 @@ struct TrackedVideoFrame
   /// From the decoded frame to its pose, ms: undistortion, tracking and the
   /// frame handler (e.g. sending it to navigation software).
   double latencyMs = 0.0;
+  /// FrameContourAgreement::medianErrorPx of the frame at its pose, px (NaN
+  /// when not checked or when no contour point matched).
+  double contourErrorPx = std::numeric_limits<double>::quiet_NaN();
+  /// Contour points detected in the frame, and matched to the model's.
+  int contourPointsDetected = 0;
+  int contourPointsMatched = 0;
   /// Against the truth, when given.
   std::optional<double> positionErrorMm;
   std::optional<double> angleErrorDeg;

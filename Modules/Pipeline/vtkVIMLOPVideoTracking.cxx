@@ -6,6 +6,7 @@
 
 #include <vtkCommand.h>
 #include <vtkDemandDrivenPipeline.h>
+#include <vtkDoubleArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
@@ -106,6 +107,7 @@ int vtkVIMLOPVideoTracking::RequestData(
   options.firstFrameIndex = this->FirstFrameIndex;
   options.allowFlagged = this->AllowFlagged;
   options.writeVideo = this->WriteVideo;
+  options.checkContours = this->CheckContours;
   auto tracking = std::make_unique<vimlop::VideoTracking>(options);
   tracking->setStopRequest([this] { return this->GetAbortExecute() != 0; });
   tracking->setFrameHandler(
@@ -149,8 +151,15 @@ int vtkVIMLOPVideoTracking::RequestData(
     states.push_back(vimlop::toString(f.tracked.state));
     latencyMs.push_back(f.latencyMs);
   }
-  vtkTable::GetData(outputs, 0)
-    ->ShallowCopy(vimlop::makeTrackedPoseTable(poses, states, latencyMs));
+  vtkSmartPointer<vtkTable> table = vimlop::makeTrackedPoseTable(poses, states, latencyMs);
+  vtkNew<vtkDoubleArray> contourError;
+  contourError->SetName("ContourErrorPx");
+  for (const vimlop::TrackedVideoFrame& f : tracking->frames())
+  {
+    contourError->InsertNextValue(f.contourErrorPx);
+  }
+  table->AddColumn(contourError);
+  vtkTable::GetData(outputs, 0)->ShallowCopy(table);
   this->Tracking = std::move(tracking);
   if (!this->Tracking->stoppedBy().empty())
   {
@@ -171,6 +180,7 @@ void vtkVIMLOPVideoTracking::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OutputFolder: " << this->OutputFolder << "\n";
   os << indent << "WriteVideo: " << (this->WriteVideo ? "On" : "Off") << "\n";
   os << indent << "FirstFrameIndex: " << this->FirstFrameIndex << "\n";
+  os << indent << "CheckContours: " << (this->CheckContours ? "On" : "Off") << "\n";
   os << indent << "AllowFlagged: " << (this->AllowFlagged ? "On" : "Off") << "\n";
   os << indent << "MaxFeatures: " << this->MaxFeatures << "\n";
   os << indent << "MaxTrackingWidthPx: " << this->MaxTrackingWidthPx << "\n";

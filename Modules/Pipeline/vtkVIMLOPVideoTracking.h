@@ -30,7 +30,8 @@ class VideoTracking;
  * "FrameId", "CameraToCT" (16 components, the camera-to-CT 4 x 4 matrix,
  * row-major; camera x right, y down, z forward; mm), "State" ("tracking",
  * "degraded", "lost": a lost frame's pose is the prediction, not to be
- * shown) and "LatencyMs" (the layout of tracked-poses.vtt).
+ * shown), "LatencyMs" (the layout of tracked-poses.vtt) and "ContourErrorPx"
+ * (see CheckContours).
  *
  * While Update() runs, each frame fires vtkCommand::UpdateEvent once its pose
  * is computed: GetCameraTransform() is then its camera-to-CT pose (held at
@@ -88,6 +89,12 @@ public:
   /// registered frame of the same name, else 0.
   vtkSetClampMacro(FirstFrameIndex, int, -1, VTK_INT_MAX);
   vtkGetMacro(FirstFrameIndex, int);
+  /// Check each tracked pose against the CT (default on): the frame's
+  /// occluding contours matched to the model's at the pose; the median
+  /// error, px, is the table's "ContourErrorPx" (NaN when not checked).
+  vtkSetMacro(CheckContours, bool);
+  vtkGetMacro(CheckContours, bool);
+  vtkBooleanMacro(CheckContours, bool);
   /// Track from a result the registration flagged as a failure (default
   /// off: refused, every tracked pose would carry its error).
   vtkSetMacro(AllowFlagged, bool);
@@ -148,6 +155,7 @@ private:
   bool WriteVideo = true;
   int FirstFrameIndex = -1;
   bool AllowFlagged = false;
+  bool CheckContours = true;
   int MaxFeatures;
   int MaxTrackingWidthPx;
   double InlierThresholdPx;

@@ -58,6 +58,10 @@ check(list(tracked["states"]) == ["tracking"] * 12 and tracked["tracking"] == 12
       "every frame tracking (%s)" % list(tracked["states"]))
 check(numpy.mean(errors) < 0.3, "mean camera error %.3f mm < 0.3 mm" % numpy.mean(errors))
 check(all(latency > 0.0 for latency in tracked["latency_ms"]), "every frame has a latency")
+contours = tracked["contour_error_px"]
+check(contours.shape == (12,) and bool(numpy.all(contours < 2.0)),
+      "every frame's contours lie within 2 px of the model's at its pose (%s)"
+      % numpy.round(contours, 2).tolist())
 cli = poses_of(os.path.join(cli_output, "tracked-poses.json"))
 difference = max(numpy.abs(pose - cli[i]).max() for i, pose in zip(ids, tracked["camera_to_ct"]))
 check(sorted(cli) == ids and difference < 1e-6,

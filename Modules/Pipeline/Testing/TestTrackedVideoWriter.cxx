@@ -30,10 +30,10 @@ TEST(TrackedVideoWriter, DrawsTheContoursTheCameraSeesUnderABandInTheStatesColou
     visibleModelContours(makeEmbreeRegistrationModel(tube), k, fixtures::cameraOnTheTubeAxis());
   ASSERT_GT(seen.size(), 50u);
   {
-    TrackedVideoWriter writer(tube, k, path, 30.0);
+    TrackedVideoWriter writer(k, path, 30.0);
     TrackedFrame t;
     t.cameraToCT = fixtures::cameraOnTheTubeAxis();
-    const cv::Mat tracking = writer.write(grey, t, "frame0");
+    const cv::Mat tracking = writer.write(grey, t, "frame0", seen, 1.25);
     ASSERT_EQ(tracking.size(), cv::Size(k.widthPx, k.heightPx + 30));
     // Green band; each contour sample a green dot where the camera sees it.
     EXPECT_EQ(tracking.at<cv::Vec3b>(2, 2), cv::Vec3b(46, 122, 27));
@@ -47,11 +47,13 @@ TEST(TrackedVideoWriter, DrawsTheContoursTheCameraSeesUnderABandInTheStatesColou
     EXPECT_EQ(tracking.at<cv::Vec3b>(k.heightPx + 29, 0), cv::Vec3b(60, 60, 60));
     t.state = TrackingState::Lost;
     t.reason = "no pose agrees with 3 tracked features";
-    EXPECT_EQ(writer.write(grey, t, "frame1").at<cv::Vec3b>(2, 2), cv::Vec3b(27, 22, 179));
+    EXPECT_EQ(writer.write(grey, t, "frame1", seen, std::nan("")).at<cv::Vec3b>(2, 2),
+      cv::Vec3b(27, 22, 179));
     t.state = TrackingState::Degraded;
-    EXPECT_EQ(writer.write(grey, t, "frame2").at<cv::Vec3b>(2, 2), cv::Vec3b(0, 98, 122));
+    EXPECT_EQ(writer.write(grey, t, "frame2", {}, 3.0).at<cv::Vec3b>(2, 2), cv::Vec3b(0, 98, 122));
     EXPECT_EQ(writer.framesWritten(), 3);
-    EXPECT_EQ(fixtures::errorMessageOf([&] { writer.write(cv::Mat(10, 10, CV_8UC3), t, "x"); }),
+    EXPECT_EQ(
+      fixtures::errorMessageOf([&] { writer.write(cv::Mat(10, 10, CV_8UC3), t, "x", seen, 1.0); }),
       "tracked video: a frame of 10 x 10 pixels (type 16), but the camera is 320 x 240 and frames "
       "are 8-bit BGR");
   }
@@ -63,7 +65,7 @@ TEST(TrackedVideoWriter, DrawsTheContoursTheCameraSeesUnderABandInTheStatesColou
     EXPECT_EQ(f.size(), cv::Size(k.widthPx, k.heightPx + 30));
   }
   EXPECT_EQ(frames, 3);
-  EXPECT_EQ(fixtures::errorMessageOf([&] { TrackedVideoWriter(tube, k, path, 0.0); }),
+  EXPECT_EQ(fixtures::errorMessageOf([&] { TrackedVideoWriter(k, path, 0.0); }),
     "tracked video: the rate must be positive, not 0 fps");
 }
 

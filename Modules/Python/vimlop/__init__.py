@@ -146,7 +146,9 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     Returns a dict: "frame_ids" (n,), "camera_to_ct" (n, 4, 4; camera x
     right, y down, z forward; mm, CT frame), "states" (n,) of "tracking",
     "degraded" or "lost" (a lost frame's pose is the prediction: do not show
-    it), "latency_ms" (n,), and the counts "tracking", "degraded", "lost".
+    it), "latency_ms" (n,), "contour_error_px" (n,: each frame's contours
+    checked against the CT at its pose, the median distance to the model's,
+    NaN where none matched), and the counts "tracking", "degraded", "lost".
     Raises TrackingError with the reason when tracking cannot start, or
     when a frame cannot be read mid-way (after tracking the frames before it).
     """
@@ -181,6 +183,7 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
         "camera_to_ct": vtk_to_numpy(table.GetColumnByName("CameraToCT")).reshape(-1, 4, 4).copy(),
         "states": numpy.array([states.GetValue(i) for i in range(states.GetNumberOfValues())]),
         "latency_ms": vtk_to_numpy(table.GetColumnByName("LatencyMs")).copy(),
+        "contour_error_px": vtk_to_numpy(table.GetColumnByName("ContourErrorPx")).copy(),
         "tracking": tracking.GetNumberOfTrackingFrames(),
         "degraded": tracking.GetNumberOfDegradedFrames(),
         "lost": tracking.GetNumberOfLostFrames(),
