@@ -23,6 +23,7 @@ namespace vimlop
 {
 
 struct CTReadOptions;
+struct ContourWindowRefinementOptions;
 struct EndoscopeSimulationOptions;
 struct PinholeCamera;
 struct PoseServingOptions;
@@ -114,6 +115,15 @@ void addWorldPresetOption(CLI::App& command, WorldSettings& settings);
  * the parse): where and how a pose server listens and names its devices.
  */
 void addPoseServerOptions(CLI::App& command, PoseStreamServerOptions& options);
+
+/**
+ * @brief Adds --no-refinement, --refine-window, --refine-above-px,
+ * --max-correction-mm and --max-correction-deg, stored into `refine` and
+ * `options`: the refinement of tracked poses against the CT (`vimlop
+ * track`, `evaluate tracking`).
+ */
+void addTrackingRefinementOptions(
+  CLI::App& command, bool& refine, ContourWindowRefinementOptions& options);
 
 /**
  * @brief addPoseServerOptions(), plus --duration-s and --allow-flagged: the

@@ -1,6 +1,7 @@
 #include "CommandLine.h"
 #include <vimlop/Core/RegistrationOptionTable.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Pipeline/ContourWindowRefinement.h>
 #include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
 #include <vimlop/Server/PoseServing.h>
@@ -72,6 +73,36 @@ void addCTReadOptions(CLI::App& command, CTReadOptions& options)
   command.add_flag("--resample-irregular-series", options.resampleIrregularSeries,
     "resample a DICOM series tilted by the gantry or with missing or uneven slices onto a "
     "regular grid (with a warning) instead of refusing it");
+}
+
+void addTrackingRefinementOptions(
+  CLI::App& command, bool& refine, ContourWindowRefinementOptions& options)
+{
+  command.add_flag_callback(
+    "--no-refinement", [&refine] { refine = false; },
+    "do not correct the tracked poses with the contours of the last frames against the CT (the "
+    "check of each pose is still made)");
+  command
+    .add_option("--refine-window", options.windowFrames,
+      "frames whose contours are registered together to correct the tracked pose")
+    ->capture_default_str()
+    ->check(CLI::Range(1, 1000));
+  command
+    .add_option("--refine-above-px", options.minErrorPx,
+      "the window is corrected only when its contours lie farther than this from the model's "
+      "(median), px")
+    ->capture_default_str()
+    ->check(CLI::Range(0.0, 1000.0));
+  command
+    .add_option("--max-correction-mm", options.maxCorrectionMm,
+      "a correction that moves the camera farther than this is not applied, mm")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  command
+    .add_option("--max-correction-deg", options.maxCorrectionDeg,
+      "nor one that turns it by more than this, degrees")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
 }
 
 void addPoseServerOptions(CLI::App& command, PoseStreamServerOptions& options)

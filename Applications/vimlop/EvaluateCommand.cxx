@@ -316,6 +316,7 @@ CLI::App* addEvaluateCommand(CLI::App& app)
     ->add_option("--inlier-px", trackingOptions.tracker.inlierThresholdPx,
       "a feature agrees with a pose within this reprojection error, px")
     ->capture_default_str();
+  addTrackingRefinementOptions(*track, trackingOptions.refineAgainstCT, trackingOptions.refinement);
   addWorldPresetOption(*track, tracking->world);
   addSimulationOptions(*track, tracking->world.video);
   addWorldOptions(*track, tracking->world.model);

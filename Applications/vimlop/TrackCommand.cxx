@@ -89,9 +89,11 @@ void runTrack(const TrackOptions& o)
   if (summary.json.contains("contour_error_px"))
   {
     summary.lines.push_back(formatText("contours against the CT: %.2f px median, %.2f px p95 "
-                                       "(each frame's median distance to the model's contours)",
+                                       "(each frame's median distance to the model's contours); "
+                                       "check and refinement %.1f ms median after each pose",
       summary.json["contour_error_px"]["median"].get<double>(),
-      summary.json["contour_error_px"]["p95"].get<double>()));
+      summary.json["contour_error_px"]["p95"].get<double>(),
+      summary.json["check_ms"]["median"].get<double>()));
   }
   if (summary.json.contains("camera_position_error_mm"))
   {
@@ -156,6 +158,7 @@ void addTrackCommand(CLI::App& app)
     "do not check each tracked pose against the CT (the frame's occluding contours matched to the "
     "model's at the pose, after the pose is sent: the median error, px, is in tracking.json and "
     "the video's band)");
+  addTrackingRefinementOptions(*c, o->tracking.refineAgainstCT, o->tracking.refinement);
   c->add_option("--fps", o->tracking.videoFps, "the tracked video's rate, frames per second")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);

@@ -103,18 +103,23 @@ nlohmann::json TrackingProtocolReport::toJson() const
     {
       frames.back()["contour_error_px"] = f.contourErrorPx;
     }
+    if (f.correctionMm > 0.0)
+    {
+      frames.back()["correction_mm"] = f.correctionMm;
+    }
   }
   return { { "protocol", "tracking" }, { "frames", this->frames }, { "seed", this->seed },
     { "registration",
       { { "frames", this->registrationFrames }, { "camera_position_mm", this->registrationErrorMm },
         { "runtime_s", this->registrationSeconds },
+        { "contour_error_px", this->registrationContourErrorPx },
         { "flagged", !this->registrationFailure.empty() },
         { "failure_reason", this->registrationFailure } } },
     { "start_frame", this->startFrame }, { "latency_ms", summaryJson(this->latencyMs) },
     { "camera_position_mm", summaryJson(this->positionErrorMm) },
     { "camera_angle_deg", summaryJson(this->angleErrorDeg) }, { "drift_mm", this->driftMm },
     { "tracked_fraction", this->trackedFraction }, { "degraded_frames", this->degradedFrames },
-    { "lost_frames", this->lostFrames },
+    { "lost_frames", this->lostFrames }, { "corrected_frames", this->correctedFrames },
     { "unflagged_frames_over_2mm", this->unflaggedFramesOverLimit },
     { "flag_error_mm", this->flagErrorMm }, { "per_frame", frames } };
 }
@@ -164,6 +169,7 @@ TrackingProtocolReport runTrackingProtocol(
     std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   report.flagErrorMm = o.flagErrorMm;
   report.registrationFailure = failureReason(registered, registration.pipeline.multiStart);
+  report.registrationContourErrorPx = registered.contourErrorPx;
   // Tracking starts on the last frame SfM registered.
   const auto last = std::max_element(c.frameOf.begin(), c.frameOf.end());
   const std::size_t lastData = static_cast<std::size_t>(last - c.frameOf.begin());
@@ -183,6 +189,13 @@ TrackingProtocolReport runTrackingProtocol(
   const FrameUndistorter undistorter(video.calibratedIntrinsics);
   const FrameContourCheck contourCheck(
     makeEmbreeRegistrationModel(world.model), undistorter.pinhole(), c.pipeline->fieldOfViewMask());
+  std::optional<ContourWindowRefinement> refinement;
+  if (o.refineAgainstCT)
+  {
+    ContourWindowRefinementOptions options = o.refinement;
+    options.registeredErrorPx = registered.contourErrorPx;
+    refinement.emplace(options);
+  }
   std::vector<double> latency, position, angle;
   for (int f = report.startFrame + 1; f < o.simulation.frames; ++f)
   {
@@ -199,7 +212,12 @@ TrackingProtocolReport runTrackingProtocol(
     r.inliers = t.inliers;
     r.reprojectionErrorPx = t.reprojectionErrorPx;
     r.latencyMs = t.latencyMs;
-    r.contourErrorPx = contourCheck.check(undistorter.undistort(frame), t.cameraToCT).medianErrorPx;
+    const CheckedTrackedFrame checked = checkTrackedFrame(
+      contourCheck, refinement ? &*refinement : nullptr, tracker, undistorter.undistort(frame), t);
+    r.contourErrorPx = checked.agreement.medianErrorPx;
+    r.correctionMm =
+      checked.corrected ? (checked.corrected->centre - t.cameraToCT.centre).norm() : 0.0;
+    report.correctedFrames += checked.corrected ? 1 : 0;
     report.degradedFrames += t.state == TrackingState::Degraded;
     report.lostFrames += t.state == TrackingState::Lost;
     report.unflaggedFramesOverLimit +=

@@ -4,6 +4,7 @@
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
 #include <vimlop/Evaluation/VideoProtocol.h>
+#include <vimlop/Pipeline/ContourWindowRefinement.h>
 #include <vimlop/Pipeline/EndoscopeTracker.h>
 
 #include <nlohmann/json.hpp>
@@ -34,6 +35,10 @@ struct TrackingProtocolOptions
   VideoProtocolOptions registration;
   /// The tracker.
   EndoscopeTrackerOptions tracker;
+  /// Refine the tracked poses against the CT (ContourWindowRefinement), as
+  /// vimlop track does, and with these settings.
+  bool refineAgainstCT = true;
+  ContourWindowRefinementOptions refinement;
   /// A frame farther than this from the truth is a failure the tracker must
   /// flag (degraded or lost), mm (default 2, issue 16).
   double flagErrorMm = 2.0;
@@ -62,6 +67,8 @@ struct TrackingProtocolFrame
   /// FrameContourAgreement::medianErrorPx at the tracked pose (NaN when no
   /// contour point matched): the check against the CT, next to the truth.
   double contourErrorPx = 0.0;
+  /// How far the refinement against the CT moved the camera after this frame, mm (0: not).
+  double correctionMm = 0.0;
 };
 
 /// @brief The result of the tracking protocol.
@@ -77,6 +84,9 @@ struct TrackingProtocolReport
   /// Why the main job's failure flag (V13) would flag that registration;
   /// empty when it would not. The tracker starts from it either way.
   std::string registrationFailure;
+  /// That registration's contour error (mean over its matched contour
+  /// points, px): the refinement corrects only windows above it.
+  double registrationContourErrorPx = 0.0;
   int startFrame = 0;
   /// Over the tracked frames (all after the start frame).
   Summary latencyMs;
@@ -89,6 +99,8 @@ struct TrackingProtocolReport
   double trackedFraction = 0.0;
   int degradedFrames = 0;
   int lostFrames = 0;
+  /// Frames after which the refinement against the CT corrected the tracker.
+  int correctedFrames = 0;
   /// Frames farther than flagErrorMm from the truth and reported tracking.
   int unflaggedFramesOverLimit = 0;
   double flagErrorMm = 0.0;

@@ -174,6 +174,28 @@ struct EndoscopeTracker::Internals
     return next;
   }
 
+  /// The model point the ray of `pixel` (a pixel of the frames as tracked)
+  /// from `pose` stands for: the first surface it meets within the largest
+  /// depth, squarely enough; none when it misses or grazes the wall.
+  std::optional<Eigen::Vector3d> castFeature(
+    const CameraPose& pose, const Eigen::Vector2d& pixel) const
+  {
+    const Eigen::Vector3d ray = pose.rotation * this->Tracked.rayDirection(pixel);
+    const std::optional<SurfacePoint> hit =
+      this->Scene.castRay(pose.centre, ray, this->Options.maxDepthMm);
+    if (!hit)
+    {
+      return std::nullopt;
+    }
+    const Eigen::Vector3d& normal =
+      this->Scene.mesh().faceNormals()[static_cast<std::size_t>(hit->face)];
+    if (std::abs(normal.dot(ray)) < this->Options.minIncidenceCosine)
+    {
+      return std::nullopt;
+    }
+    return hit->point;
+  }
+
   /// Detects corners where no feature is and adds those whose ray from
   /// `pose` meets the model squarely enough; returns how many were added.
   int addFeatures(const CameraPose& pose)
@@ -188,21 +210,11 @@ struct EndoscopeTracker::Internals
     int added = 0;
     for (const Eigen::Vector2d& pixel : this->Klt.detect(wanted, existing, this->Mask))
     {
-      const Eigen::Vector3d ray = pose.rotation * this->Tracked.rayDirection(pixel);
-      const std::optional<SurfacePoint> hit =
-        this->Scene.castRay(pose.centre, ray, this->Options.maxDepthMm);
-      if (!hit)
+      if (const std::optional<Eigen::Vector3d> point = this->castFeature(pose, pixel))
       {
-        continue;
+        this->Features.push_back({ pixel, *point });
+        ++added;
       }
-      const Eigen::Vector3d& normal =
-        this->Scene.mesh().faceNormals()[static_cast<std::size_t>(hit->face)];
-      if (std::abs(normal.dot(ray)) < this->Options.minIncidenceCosine)
-      {
-        continue;
-      }
-      this->Features.push_back({ pixel, hit->point });
-      ++added;
     }
     return added;
   }
@@ -217,6 +229,33 @@ EndoscopeTracker::EndoscopeTracker(const TriangleMesh& modelCT, const PinholeCam
 }
 
 EndoscopeTracker::~EndoscopeTracker() = default;
+
+int EndoscopeTracker::correct(const CameraPose& cameraToCT, bool anchored)
+{
+  Internals& s = *this->d;
+  if (s.Frame < 0)
+  {
+    throw Error("endoscope tracker: start() on a registered frame first");
+  }
+  // The same rigid move for the pose before, so that the prediction keeps
+  // the scope's own motion.
+  const Eigen::Matrix3d turn = cameraToCT.rotation * s.Last.rotation.transpose();
+  s.BeforeLast.centre = cameraToCT.centre + turn * (s.BeforeLast.centre - s.Last.centre);
+  s.BeforeLast.rotation = nearestRotation(turn * s.BeforeLast.rotation);
+  s.Last = cameraToCT;
+  std::vector<TrackedFeature> kept;
+  kept.reserve(s.Features.size());
+  for (const TrackedFeature& f : s.Features)
+  {
+    if (const std::optional<Eigen::Vector3d> point = s.castFeature(cameraToCT, f.pixel))
+    {
+      kept.push_back({ f.pixel, *point });
+    }
+  }
+  s.Features = std::move(kept);
+  s.Anchored = s.Anchored || anchored;
+  return static_cast<int>(s.Features.size());
+}
 
 const EndoscopeTrackerOptions& EndoscopeTracker::options() const
 {

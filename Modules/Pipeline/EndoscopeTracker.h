@@ -122,9 +122,10 @@ struct TrackedFrame
  * fewer than `minInliers` features are left (after a blank or blurred
  * frame), the next frame is Lost too and its corners are cast from the
  * prediction, so tracking resumes by itself when the scope moved as
- * predicted. Whether it did, nothing here can tell: from then on frames are
- * at best Degraded, until the tracker is started again (on a new
- * registration). Relocalisation against the CT (a multi-start near the last
+ * predicted. Whether it did, the features cannot tell: from then on frames
+ * are at best Degraded, until a check against the CT confirms a pose
+ * (correct(), anchored; see ContourWindowRefinement) or the tracker is
+ * started again. Relocalisation against the CT (a multi-start near the last
  * good pose) is not part of this tracker yet.
  *
  * Frames are of the intrinsics' size; when the intrinsics carry a lens,
@@ -167,6 +168,18 @@ public:
    * @throws vimlop::Error before start(), or for a frame of another size.
    */
   TrackedFrame track(const cv::Mat& frame);
+
+  /**
+   * @brief Moves the last tracked frame's pose to `cameraToCT`, a pose found
+   * against the CT (e.g. by ContourWindowRefinement): the features' model
+   * points are cast again from it (those whose ray now misses the model, or
+   * meets it at a grazing angle, are dropped) and the prediction moves with
+   * it. With `anchored`, the CT has confirmed the pose: frames after a loss
+   * are no longer held Degraded for it.
+   * @return the features kept.
+   * @throws vimlop::Error before start().
+   */
+  int correct(const CameraPose& cameraToCT, bool anchored);
 
   const EndoscopeTrackerOptions& options() const;
 

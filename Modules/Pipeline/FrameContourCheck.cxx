@@ -7,6 +7,7 @@
 #include <vimlop/Core/VisibleModelContours.h>
 #include <vimlop/Video/OccludingContourDetector.h>
 
+#include <algorithm>
 #include <utility>
 
 namespace vimlop
@@ -39,6 +40,11 @@ FrameContourCheck::FrameContourCheck(const RegistrationModel& model, const Pinho
 
 FrameContourCheck::~FrameContourCheck() = default;
 
+const PinholeCamera& FrameContourCheck::camera() const
+{
+  return this->d->Camera;
+}
+
 FrameContourAgreement FrameContourCheck::check(
   const cv::Mat& frame, const CameraPose& cameraToCT) const
 {
@@ -63,8 +69,10 @@ FrameContourAgreement FrameContourCheck::check(
     pixels.push_back(p.pixel);
   }
   const KdTree2D tree(std::move(pixels));
+  const std::vector<ContourMatch> matches =
+    matchContours(detected, agreement.modelContours, tree, s.Matching);
   std::vector<double> errors;
-  for (const ContourMatch& m : matchContours(detected, agreement.modelContours, tree, s.Matching))
+  for (const ContourMatch& m : matches)
   {
     if (m.model >= 0)
     {
@@ -72,9 +80,20 @@ FrameContourAgreement FrameContourCheck::check(
     }
   }
   agreement.matched = static_cast<int>(errors.size());
-  if (!errors.empty())
+  if (errors.empty())
   {
-    agreement.medianErrorPx = summarize(std::move(errors)).median;
+    return agreement;
+  }
+  agreement.medianErrorPx = summarize(std::move(errors)).median;
+  const double limitPx = std::max(2.0, 3.0 * agreement.medianErrorPx);
+  for (const ContourMatch& m : matches)
+  {
+    if (m.model >= 0 && m.errorPx.norm() <= limitPx)
+    {
+      const ModelContourPoint& y = agreement.modelContours[static_cast<std::size_t>(m.model)];
+      const ContourPoint& x = detected[static_cast<std::size_t>(m.video)];
+      agreement.pairs.push_back({ 0, y.point, y.normal, x.pixel, x.normal });
+    }
   }
   return agreement;
 }

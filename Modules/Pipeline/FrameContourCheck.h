@@ -5,6 +5,7 @@
 #include <vimlop/Core/ContourMatcher.h>
 #include <vimlop/Core/ModelContourPoint.h>
 #include <vimlop/Core/PinholeCamera.h>
+#include <vimlop/Core/PoseUpdate.h>
 #include <vimlop/Core/RegistrationModel.h>
 #include <vimlop/Video/ContourDetectionOptions.h>
 
@@ -32,6 +33,11 @@ struct FrameContourAgreement
   double medianErrorPx = std::numeric_limits<double>::quiet_NaN();
   /// The model's visible occluding contours at the pose (V3, V4).
   std::vector<ModelContourPoint> modelContours;
+  /// The matches that are not outliers, as the pose update takes them (V6;
+  /// `frame` 0): those within 3 times the median distance, or 2 px. (The
+  /// matcher pairs every detected point with some model sample; a video edge
+  /// the model lacks pairs with a far one.)
+  std::vector<ContourPair> pairs;
 };
 
 /**
@@ -68,6 +74,9 @@ public:
    * @throws vimlop::Error for a frame of another size.
    */
   FrameContourAgreement check(const cv::Mat& frame, const CameraPose& cameraToCT) const;
+
+  /// @brief The pinhole camera of the frames checked.
+  const PinholeCamera& camera() const;
 
 private:
   struct Internals;

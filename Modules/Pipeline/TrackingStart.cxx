@@ -65,6 +65,7 @@ TrackingStart TrackingStart::fromResult(const std::string& folder)
   start.intrinsics = last->intrinsics;
   start.cameraToCT = record.result.sfmToCT.apply(last->cameraToSfm);
   start.frameId = last->frameId;
+  start.contourErrorPx = record.result.contourErrorPx;
   start.frameSource = j < record.frameSources.size() ? record.frameSources[j] : std::string();
   if (record.confidence && record.confidence->failure)
   {

@@ -30,6 +30,10 @@ struct TrackingStart
   int frameId = 0;
   /// The file (or video frame) the picture came from, when the result says.
   std::string frameSource;
+  /// The registration's contour error (mean over its matched contour
+  /// points, px): how far this video's contours lie from the model's even
+  /// at the registered poses.
+  double contourErrorPx = 0.0;
   /// Why the registration flagged its result as a failure; empty when it did not.
   std::string failureReason;
 

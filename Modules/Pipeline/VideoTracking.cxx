@@ -27,6 +27,7 @@ namespace vimlop
 void VideoTrackingOptions::validate() const
 {
   this->tracker.validate();
+  this->refinement.validate();
   if (this->firstFrameIndex < -1)
   {
     throw Error(formatText(
@@ -54,6 +55,7 @@ struct VideoTracking::Internals
   /// The registered model, shared by the contour check and the tracked video.
   std::optional<RegistrationModel> model;
   std::unique_ptr<FrameContourCheck> contourCheck;
+  std::optional<ContourWindowRefinement> refinement;
   std::map<int, CameraPose> truth;
   int first = 0;
   int seen = 0;
@@ -156,6 +158,13 @@ void VideoTracking::open(const VideoTrackingInputs& inputs)
   d->contourCheck = d->options.checkContours
     ? std::make_unique<FrameContourCheck>(*d->model, start->intrinsics, start->fieldOfViewMask)
     : nullptr;
+  d->refinement.reset();
+  if (d->contourCheck && d->options.refineAgainstCT)
+  {
+    ContourWindowRefinementOptions refinement = d->options.refinement;
+    refinement.registeredErrorPx = start->contourErrorPx;
+    d->refinement.emplace(refinement);
+  }
   d->start = std::move(start);
   d->inputs = inputs;
   d->frames.clear();
@@ -224,13 +233,20 @@ void VideoTracking::run()
       // The check against the CT and the video come after the pose is
       // handed on: they do not add to its latency.
       std::vector<ModelContourPoint> modelContours;
+      const auto checked = std::chrono::steady_clock::now();
       if (d->contourCheck)
       {
-        FrameContourAgreement a = d->contourCheck->check(ideal, frame.tracked.cameraToCT);
-        frame.contourErrorPx = a.medianErrorPx;
-        frame.contourPointsDetected = a.detected;
-        frame.contourPointsMatched = a.matched;
-        modelContours = std::move(a.modelContours);
+        CheckedTrackedFrame c = checkTrackedFrame(*d->contourCheck,
+          d->refinement ? &*d->refinement : nullptr, *d->tracker, ideal, frame.tracked);
+        frame.contourErrorPx = c.agreement.medianErrorPx;
+        frame.contourPointsDetected = c.agreement.detected;
+        frame.contourPointsMatched = c.agreement.matched;
+        frame.correctionMm =
+          c.corrected ? (c.corrected->centre - frame.tracked.cameraToCT.centre).norm() : 0.0;
+        modelContours = std::move(c.agreement.modelContours);
+        frame.checkMs =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - checked)
+            .count();
       }
       else if (video)
       {
@@ -347,7 +363,7 @@ bool VideoTracking::stopRequested() const
 nlohmann::json VideoTracking::report() const
 {
   nlohmann::json records = nlohmann::json::array();
-  std::vector<double> errorMm, contourPx;
+  std::vector<double> errorMm, contourPx, checkMs;
   for (const TrackedVideoFrame& f : d->frames)
   {
     const TrackedFrame& t = f.tracked;
@@ -373,12 +389,21 @@ nlohmann::json VideoTracking::report() const
       record["contour_error_px"] = f.contourErrorPx;
       contourPx.push_back(f.contourErrorPx);
     }
+    if (f.correctionMm > 0.0)
+    {
+      record["correction_mm"] = f.correctionMm;
+    }
     if (d->contourCheck)
     {
       record["contour_points"] = { { "detected", f.contourPointsDetected },
         { "matched", f.contourPointsMatched } };
     }
     record["latency_ms"] = f.latencyMs;
+    if (d->contourCheck)
+    {
+      record["check_ms"] = f.checkMs;
+      checkMs.push_back(f.checkMs);
+    }
     records.push_back(record);
   }
   const Summary latency = this->latencyMs();
@@ -399,6 +424,8 @@ nlohmann::json VideoTracking::report() const
     // Each frame's median contour error, over the frames checked.
     const Summary c = summarize(contourPx);
     report["contour_error_px"] = { { "median", c.median }, { "p95", c.p95 }, { "max", c.max } };
+    const Summary t = summarize(checkMs);
+    report["check_ms"] = { { "median", t.median }, { "p99", t.p99 } };
   }
   if (!d->stoppedBy.empty() || d->stopRequested)
   {

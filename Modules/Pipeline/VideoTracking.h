@@ -2,6 +2,7 @@
 #define vimlop_VideoTracking_h
 
 #include <vimlop/Core/Statistics.h>
+#include <vimlop/Pipeline/ContourWindowRefinement.h>
 #include <vimlop/Pipeline/EndoscopeTracker.h>
 
 #include <nlohmann/json.hpp>
@@ -59,6 +60,10 @@ struct VideoTrackingOptions
   /// occluding contours matched to the model's at the pose
   /// (FrameContourCheck), after the pose is handed on, so outside its latency.
   bool checkContours = true;
+  /// With the check: correct the tracker with the contours of its last
+  /// frames (ContourWindowRefinement), the drift's remedy (default on).
+  bool refineAgainstCT = true;
+  ContourWindowRefinementOptions refinement;
 
   /// @throws vimlop::Error naming the first value out of range.
   void validate() const;
@@ -79,6 +84,13 @@ struct TrackedVideoFrame
   /// Contour points detected in the frame, and matched to the model's.
   int contourPointsDetected = 0;
   int contourPointsMatched = 0;
+  /// How far the refinement against the CT moved the camera after this
+  /// frame, for the frames that follow, mm (0: not moved).
+  double correctionMm = 0.0;
+  /// The check against the CT and the refinement, after the latency, ms: a
+  /// live camera's frame must wait for them (with the latency, under a
+  /// frame's period).
+  double checkMs = 0.0;
   /// Against the truth, when given.
   std::optional<double> positionErrorMm;
   std::optional<double> angleErrorDeg;

@@ -95,6 +95,11 @@ public:
   vtkSetMacro(CheckContours, bool);
   vtkGetMacro(CheckContours, bool);
   vtkBooleanMacro(CheckContours, bool);
+  /// With CheckContours: correct the tracker with the contours of its last
+  /// frames against the CT (vimlop::ContourWindowRefinement; default on).
+  vtkSetMacro(RefineAgainstCT, bool);
+  vtkGetMacro(RefineAgainstCT, bool);
+  vtkBooleanMacro(RefineAgainstCT, bool);
   /// Track from a result the registration flagged as a failure (default
   /// off: refused, every tracked pose would carry its error).
   vtkSetMacro(AllowFlagged, bool);
@@ -156,6 +161,7 @@ private:
   int FirstFrameIndex = -1;
   bool AllowFlagged = false;
   bool CheckContours = true;
+  bool RefineAgainstCT = true;
   int MaxFeatures;
   int MaxTrackingWidthPx;
   double InlierThresholdPx;

@@ -83,6 +83,19 @@ check(len(report["per_frame"]) == 4 and report.get("stopped_by", "").startswith(
       "tracking.json holds the 4 frames and says the run was stopped")
 check(not os.path.exists(os.path.join(out, "tracked-video.avi")), "video=False writes no video")
 
+# Without the refinement, the same poses as vimlop track --no-refinement.
+unrefined = vimlop.track_video(result=registered, frames=frames, intrinsics=intrinsics,
+                               refine=False)
+plain = subprocess.run([program, "track", "--result", registered, "--frames", frames,
+                        "--intrinsics", intrinsics, "--no-refinement", "--no-video",
+                        "--out", "tracked-python-unrefined-cli"], check=True,
+                       capture_output=True, text=True)
+cli_plain = poses_of(os.path.join("tracked-python-unrefined-cli", "tracked-poses.json"))
+difference = max(numpy.abs(pose - cli_plain[int(i)]).max()
+                 for i, pose in zip(unrefined["frame_ids"], unrefined["camera_to_ct"]))
+check(difference < 1e-6, "refine=False gives vimlop track --no-refinement's poses (largest "
+      "difference %.2g)" % difference)
+
 # One set of defaults: vimlop track's options and the VTK source's.
 text = subprocess.run([program, "track", "--help"], check=True, capture_output=True,
                       text=True).stdout

@@ -17,6 +17,9 @@ TEST(EndoscopeTracker, RefusesFramesOfAnotherSizeAndTrackingBeforeItStarted)
   const cv::Mat frame(240, 320, CV_8UC3, cv::Scalar(90, 90, 160));
   EXPECT_EQ(fixtures::errorMessageOf([&] { tracker.track(frame); }),
     "endoscope tracker: start() on a registered frame first");
+  EXPECT_EQ(
+    fixtures::errorMessageOf([&] { tracker.correct(fixtures::cameraOnTheTubeAxis(), true); }),
+    "endoscope tracker: start() on a registered frame first");
   EXPECT_EQ(fixtures::errorMessageOf(
               [&] { tracker.start(cv::Mat(480, 640, CV_8UC3), fixtures::cameraOnTheTubeAxis()); }),
     "endoscope tracker: a frame of 640 x 480 pixels, but the intrinsics are for 320 x 240");

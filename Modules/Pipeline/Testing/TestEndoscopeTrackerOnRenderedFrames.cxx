@@ -222,5 +222,30 @@ TEST(EndoscopeTracker, DoesNotBelieveAPoseThatJumpsOrTurnsMoreThanAllowed)
   }
 }
 
+TEST(EndoscopeTracker, FollowsThePoseItIsCorrectedTo)
+{
+  // Started 0.5 mm off frame 0's true pose, the tracker keeps about that
+  // error (its features stand for points cast from the wrong pose); corrected
+  // to frame 7's true pose, it follows the truth from there.
+  const fixtures::Sequence& s = fixtures::sequence();
+  EndoscopeTracker tracker(s.mesh, s.intrinsics);
+  CameraPose off = s.poses[0];
+  off.centre += off.rotation.col(0) * 0.5;
+  tracker.start(s.frames[0], off);
+  double before = 0.0;
+  for (std::size_t f = 1; f <= 7; ++f)
+  {
+    before = cameraPositionError(tracker.track(s.frames[f]).cameraToCT, s.poses[f]);
+  }
+  EXPECT_GT(before, 0.3);
+  EXPECT_GE(tracker.correct(s.poses[7], true), tracker.options().minInliers);
+  for (std::size_t f = 8; f < s.frames.size(); ++f)
+  {
+    const TrackedFrame r = tracker.track(s.frames[f]);
+    EXPECT_EQ(r.state, TrackingState::Tracking) << f;
+    EXPECT_LT(cameraPositionError(r.cameraToCT, s.poses[f]), 0.15) << f;
+  }
+}
+
 } // namespace
 } // namespace vimlop

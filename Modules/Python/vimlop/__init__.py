@@ -128,7 +128,7 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
 
 
 def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first_frame=-1,
-                allow_flagged=False, video=True, on_frame=None):
+                allow_flagged=False, video=True, refine=True, on_frame=None):
     """Follows the endoscope frame by frame after a registration: `vimlop track`, same defaults.
 
     result: the result folder of `vimlop register` (or of register_video's
@@ -140,6 +140,8 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     tracked-poses.json and .vtt, tracking.json and (video=True)
     tracked-video.avi; None writes nothing. allow_flagged: track from a
     result the registration flagged as a failure (refused otherwise).
+    refine: correct the tracked poses with the contours of the last frames
+    against the CT (as `vimlop track` does; False: `--no-refinement`).
     on_frame(frame_id, state, camera_to_ct): called as each pose is
     computed; return True from it to stop after that frame.
 
@@ -166,6 +168,7 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     tracking.SetWriteVideo(bool(video))
     tracking.SetFirstFrameIndex(int(first_frame))
     tracking.SetAllowFlagged(bool(allow_flagged))
+    tracking.SetRefineAgainstCT(bool(refine))
     if on_frame is not None:
         def on_update(caller, event):
             matrix = caller.GetCameraTransform().GetMatrix()
