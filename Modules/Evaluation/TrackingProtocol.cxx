@@ -215,8 +215,7 @@ TrackingProtocolReport runTrackingProtocol(
     const CheckedTrackedFrame checked = checkTrackedFrame(
       contourCheck, refinement ? &*refinement : nullptr, tracker, undistorter.undistort(frame), t);
     r.contourErrorPx = checked.agreement.medianErrorPx;
-    r.correctionMm =
-      checked.corrected ? (checked.corrected->centre - t.cameraToCT.centre).norm() : 0.0;
+    r.correctionMm = checked.correctionMm;
     report.correctedFrames += checked.corrected ? 1 : 0;
     report.degradedFrames += t.state == TrackingState::Degraded;
     report.lostFrames += t.state == TrackingState::Lost;

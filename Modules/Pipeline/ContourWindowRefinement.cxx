@@ -1,7 +1,7 @@
 #include <vimlop/Pipeline/ContourWindowRefinement.h>
 
 #include <vimlop/Core/Error.h>
-#include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/SimilarityTransform.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TextFormat.h>
@@ -106,10 +106,8 @@ std::optional<CameraPose> ContourWindowRefinement::add(
     return std::nullopt;
   }
   const CameraPose corrected = update.transform.apply(cameraToCT);
-  const double movedMm = (corrected.centre - cameraToCT.centre).norm();
-  const double turnedDeg =
-    rotationAngleBetween(corrected.rotation, cameraToCT.rotation) * 180.0 / M_PI;
-  if (!(movedMm <= this->Options.maxCorrectionMm) || !(turnedDeg <= this->Options.maxCorrectionDeg))
+  if (!(cameraPositionError(corrected, cameraToCT) <= this->Options.maxCorrectionMm) ||
+    !(cameraAngleErrorDeg(corrected, cameraToCT) <= this->Options.maxCorrectionDeg))
   {
     return std::nullopt;
   }
@@ -139,6 +137,7 @@ CheckedTrackedFrame checkTrackedFrame(const FrameContourCheck& check,
   r.anchored = r.agreement.medianErrorPx <= refinement->options().anchorErrorPx;
   if (r.corrected)
   {
+    r.correctionMm = cameraPositionError(*r.corrected, tracked.cameraToCT);
     tracker.correct(*r.corrected, r.anchored);
   }
   return r;

@@ -108,6 +108,8 @@ struct CheckedTrackedFrame
   FrameContourAgreement agreement;
   /// The frame's pose corrected against the CT, when the tracker was corrected.
   std::optional<CameraPose> corrected;
+  /// How far that correction moved the camera, mm (0: not corrected).
+  double correctionMm = 0.0;
   /// Whether the check confirmed the pose (re-anchoring the tracker).
   bool anchored = false;
 };

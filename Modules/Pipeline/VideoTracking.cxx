@@ -154,7 +154,12 @@ void VideoTracking::open(const VideoTrackingInputs& inputs)
   d->tracker =
     std::make_unique<EndoscopeTracker>(start->modelCT, start->intrinsics, d->options.tracker);
   d->tracker->start(start->frame, start->cameraToCT, start->fieldOfViewMask);
-  d->model.emplace(makeEmbreeRegistrationModel(start->modelCT));
+  // One model for the check and the video, built only when one of them needs it.
+  d->model.reset();
+  if (d->options.checkContours || (d->options.writeVideo && !inputs.outputFolder.empty()))
+  {
+    d->model.emplace(makeEmbreeRegistrationModel(start->modelCT));
+  }
   d->contourCheck = d->options.checkContours
     ? std::make_unique<FrameContourCheck>(*d->model, start->intrinsics, start->fieldOfViewMask)
     : nullptr;
@@ -241,8 +246,7 @@ void VideoTracking::run()
         frame.contourErrorPx = c.agreement.medianErrorPx;
         frame.contourPointsDetected = c.agreement.detected;
         frame.contourPointsMatched = c.agreement.matched;
-        frame.correctionMm =
-          c.corrected ? (c.corrected->centre - frame.tracked.cameraToCT.centre).norm() : 0.0;
+        frame.correctionMm = c.correctionMm;
         modelContours = std::move(c.agreement.modelContours);
         frame.checkMs =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - checked)
