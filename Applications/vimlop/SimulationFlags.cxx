@@ -175,6 +175,12 @@ void addSimulationOptions(CLI::App& c, EndoscopeSimulationOptions& s)
     ->capture_default_str();
   c.add_option("--occluder-opacity", a.occluderOpacity, "opacity of an occluder at its centre")
     ->capture_default_str();
+  c.add_option("--wall-contact-frames", a.wallContactFraction,
+     "fraction of frames in stretches where the lens touches the mucosa and sees a red blur "
+     "(0: none)")
+    ->capture_default_str();
+  c.add_option("--wall-contact-length", a.wallContactFrames, "frames of each such stretch")
+    ->capture_default_str();
 }
 
 void addWorldOptions(CLI::App& c, SimulatedWorldOptions& w)

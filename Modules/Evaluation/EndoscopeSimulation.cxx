@@ -154,6 +154,8 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
   const bool optics = distorted || !o.fieldStop.isOff() || artifacts.actsOnLight();
   const std::vector<bool> occluded =
     occludedFrames(o.frames, artifacts.occludedFrameFraction, o.seed * 31337ull + 5ull);
+  const std::vector<bool> touching = wallContactFrames(
+    o.frames, artifacts.wallContactFraction, artifacts.wallContactFrames, o.seed * 7919ull + 17ull);
   PinholeCamera renderCamera = o.intrinsics;
   renderCamera.removeDistortion();
   cv::Mat lensMap;
@@ -228,6 +230,10 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
       if (light.empty())
       {
         bgr.convertTo(light, CV_32FC3);
+      }
+      if (touching[f])
+      {
+        applyWallContact(light);
       }
       if (occluded[f])
       {

@@ -104,6 +104,16 @@ void VideoArtifactOptions::validate() const
     throw Error(
       "the occluders' opacity must lie in (0, 1], not " + formatText("%g", this->occluderOpacity));
   }
+  if (!inRange(this->wallContactFraction, 0.0, 0.5, false))
+  {
+    throw Error("the fraction of frames in wall contact must lie in [0, 0.5], not " +
+      formatText("%g", this->wallContactFraction));
+  }
+  if (this->wallContactFrames < 1 || this->wallContactFrames > 300)
+  {
+    throw Error("a stretch of wall contact must last 1 to 300 frames, not " +
+      std::to_string(this->wallContactFrames));
+  }
 }
 
 std::vector<CameraPose> exposurePoses(const std::vector<CameraPose>& cameras, int frame,

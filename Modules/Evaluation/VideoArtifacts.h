@@ -82,13 +82,26 @@ struct VideoArtifactOptions
   /// Opacity of an occluder at its centre (default 0.8: fluid is
   /// semi-transparent; an estimate). In (0, 1].
   double occluderOpacity = 0.8;
+  /// Fraction of frames in stretches where the lens touches the mucosa
+  /// (default 0: none). The picture is then a red, featureless blur: the
+  /// light passes through the tissue pressed on the window ("red-out"), and
+  /// the scope sees little until it is drawn back. Realistic: 0.02 to 0.05
+  /// (an estimate: a surgeon brushes the wall now and then in the narrow
+  /// nasal cavity and backs off within a second). The pose stays on the
+  /// path: a stretch stands for the pictures lost, while the scope moves on
+  /// as the path does. In [0, 0.5].
+  double wallContactFraction = 0.0;
+  /// Frames of each such stretch (default 10, a third of a second at 30
+  /// fps; 1 to 300).
+  int wallContactFrames = 10;
 
   /// @brief True when the options change no pixel (the defaults).
   bool isOff() const
   {
     return this->exposureTimeS == 0.0 && this->specularStrength == 0.0 &&
       this->exposureGain == 1.0 && this->shotNoise == 0.0 &&
-      this->compression == VideoCompression::None && this->occludedFrameFraction == 0.0;
+      this->compression == VideoCompression::None && this->occludedFrameFraction == 0.0 &&
+      this->wallContactFraction == 0.0;
   }
 
   /// @brief True when an artifact acts on the light before the sensor (all but
@@ -96,7 +109,8 @@ struct VideoArtifactOptions
   bool actsOnLight() const
   {
     return this->exposureTimeS != 0.0 || this->specularStrength != 0.0 ||
-      this->exposureGain != 1.0 || this->shotNoise != 0.0 || this->occludedFrameFraction != 0.0;
+      this->exposureGain != 1.0 || this->shotNoise != 0.0 || this->occludedFrameFraction != 0.0 ||
+      this->wallContactFraction != 0.0;
   }
 
   /**
@@ -171,6 +185,25 @@ cv::Mat occluderCoverage(int widthPx, int heightPx, double areaFraction, std::ui
  * becomes (1 − c) × light + c × dark red, with c = coverage × opacity.
  */
 void applyOccluders(cv::Mat& light, const cv::Mat& coverage, double opacity);
+
+/**
+ * @brief Which of `frames` frames lie in stretches of wall contact:
+ * stretches of `stretchFrames` frames (the last one cut at the sequence's
+ * end), apart from one another, at starts drawn from `seed`, until
+ * round(fraction × frames) frames are covered or no room is left. Frame 0
+ * is never in one.
+ */
+std::vector<bool> wallContactFrames(
+  int frames, double fraction, int stretchFrames, std::uint64_t seed);
+
+/**
+ * @brief The picture of a lens pressed on the mucosa (CV_32FC3): the light
+ * of `light` blurred over a fifth of the frame's width, carried through the
+ * tissue as red light (green and blue at two fifths and a fifth of red),
+ * its red at 1.5 times the picture's mean grey level: no corner and no
+ * contour left.
+ */
+void applyWallContact(cv::Mat& light);
 
 /**
  * @brief Passes 8-bit BGR frames through a lossy codec: writes them to a

@@ -4,6 +4,7 @@
 // from the optical artifacts: their own geometry and sizing.
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -32,6 +33,54 @@ std::vector<bool> occludedFrames(int frames, double fraction, std::uint64_t seed
     occluded[order[i]] = true;
   }
   return occluded;
+}
+
+std::vector<bool> wallContactFrames(
+  int frames, double fraction, int stretchFrames, std::uint64_t seed)
+{
+  std::vector<bool> touching(static_cast<size_t>(std::max(frames, 0)), false);
+  const long wanted = std::lround(std::clamp(fraction, 0.0, 1.0) * frames);
+  if (wanted == 0 || frames < 2 || stretchFrames < 1)
+  {
+    return touching;
+  }
+  std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ull + 211u);
+  long covered = 0;
+  // Starts drawn until enough frames are covered; a start whose stretch
+  // (with a frame either side) meets another is drawn again, a bounded
+  // number of times, so that a crowded sequence ends with fewer.
+  for (int attempt = 0; covered < wanted && attempt < 100 * frames; ++attempt)
+  {
+    const int start = 1 + static_cast<int>(rng() % static_cast<std::uint64_t>(frames - 1));
+    const int end = std::min(frames, start + stretchFrames);
+    const int before = std::max(0, start - 1);
+    const int after = std::min(frames, end + 1);
+    if (std::any_of(touching.begin() + before, touching.begin() + after, [](bool t) { return t; }))
+    {
+      continue;
+    }
+    std::fill(touching.begin() + start, touching.begin() + end, true);
+    covered += end - start;
+  }
+  return touching;
+}
+
+void applyWallContact(cv::Mat& light)
+{
+  const double sigma = std::max(1.0, light.cols / 5.0);
+  cv::Mat blurred;
+  cv::GaussianBlur(light, blurred, cv::Size(), sigma, sigma, cv::BORDER_REFLECT);
+  // Tissue passes red and absorbs green and blue (BGR order).
+  const cv::Scalar mean = cv::mean(light);
+  const double brightness = 1.5 * (mean[0] + mean[1] + mean[2]) / 3.0;
+  std::vector<cv::Mat> channels;
+  cv::split(blurred, channels);
+  cv::Mat grey = (channels[0] + channels[1] + channels[2]) / 3.0;
+  const double scale = brightness / std::max(1e-6, cv::mean(grey)[0]);
+  channels[2] = grey * (scale * 1.0);
+  channels[1] = grey * (scale * 0.4);
+  channels[0] = grey * (scale * 0.2);
+  cv::merge(channels, light);
 }
 
 namespace

@@ -347,4 +347,65 @@ TEST(VideoArtifacts, ValidateNamesTheKnobAndItsBadValue)
     "the occluders' area fraction must lie in (0, 0.9], not 0.95");
   EXPECT_EQ(message([](VideoArtifactOptions& o) { o.occluderOpacity = 0.0; }),
     "the occluders' opacity must lie in (0, 1], not 0");
+  EXPECT_EQ(message([](VideoArtifactOptions& o) { o.wallContactFraction = 0.6; }),
+    "the fraction of frames in wall contact must lie in [0, 0.5], not 0.6");
+  EXPECT_EQ(message([](VideoArtifactOptions& o) { o.wallContactFrames = 0; }),
+    "a stretch of wall contact must last 1 to 300 frames, not 0");
+}
+
+TEST(VideoArtifacts, WallContactComesInSeparateStretchesOfTheRequestedLength)
+{
+  const std::vector<bool> touching = wallContactFrames(600, 0.05, 10, 3);
+  EXPECT_EQ(std::count(touching.begin(), touching.end(), true), 30);
+  EXPECT_FALSE(touching[0]);
+  // Three stretches of 10 frames, apart from one another.
+  std::vector<int> lengths;
+  for (std::size_t f = 0; f < touching.size(); ++f)
+  {
+    if (touching[f] && (f == 0 || !touching[f - 1]))
+    {
+      lengths.push_back(0);
+    }
+    if (touching[f])
+    {
+      ++lengths.back();
+    }
+  }
+  EXPECT_EQ(lengths, std::vector<int>({ 10, 10, 10 }));
+  EXPECT_EQ(wallContactFrames(600, 0.05, 10, 3), touching);
+  EXPECT_NE(wallContactFrames(600, 0.05, 10, 4), touching);
+  const std::vector<bool> none = wallContactFrames(600, 0.0, 10, 3);
+  EXPECT_EQ(std::count(none.begin(), none.end(), true), 0);
+}
+
+TEST(VideoArtifacts, WallContactLeavesARedBlurWithoutCorners)
+{
+  // A textured picture (a checkerboard of 8 px squares) pressed on the lens:
+  // red above green above blue, and no corner left to track.
+  cv::Mat light(240, 320, CV_32FC3);
+  for (int v = 0; v < light.rows; ++v)
+  {
+    for (int u = 0; u < light.cols; ++u)
+    {
+      const float value = ((u / 8 + v / 8) % 2) ? 200.0f : 40.0f;
+      light.at<cv::Vec3f>(v, u) = cv::Vec3f(value, value, value);
+    }
+  }
+  const auto corners = [](const cv::Mat& picture)
+  {
+    cv::Mat grey;
+    cv::cvtColor(picture, grey, cv::COLOR_BGR2GRAY);
+    cv::Mat eight;
+    grey.convertTo(eight, CV_8U);
+    std::vector<cv::Point2f> found;
+    cv::goodFeaturesToTrack(eight, found, 300, 0.01, 5.0);
+    return found.size();
+  };
+  EXPECT_GT(corners(light), 100u);
+  applyWallContact(light);
+  const cv::Scalar mean = cv::mean(light);
+  EXPECT_NEAR(mean[2], 1.5 * 120.0, 1.0);
+  EXPECT_NEAR(mean[1], 0.4 * mean[2], 1.0);
+  EXPECT_NEAR(mean[0], 0.2 * mean[2], 1.0);
+  EXPECT_EQ(corners(light), 0u);
 }
