@@ -24,6 +24,7 @@ namespace vimlop
 
 struct CTReadOptions;
 struct ContourWindowRefinementOptions;
+struct ContourRelocalisationOptions;
 struct EndoscopeSimulationOptions;
 struct PinholeCamera;
 struct PoseServingOptions;
@@ -124,6 +125,15 @@ void addPoseServerOptions(CLI::App& command, PoseStreamServerOptions& options);
  */
 void addTrackingRefinementOptions(
   CLI::App& command, bool& refine, ContourWindowRefinementOptions& options);
+
+/**
+ * @brief Adds --no-relocalisation, --degraded-above-px, --relocalise-search-mm
+ * and --relocalise-search-deg, stored into `relocalise` and `options`: the
+ * trust of tracked poses against the CT and the search after a loss
+ * (`vimlop track`, `evaluate tracking`).
+ */
+void addTrackingRelocalisationOptions(
+  CLI::App& command, bool& relocalise, ContourRelocalisationOptions& options);
 
 /**
  * @brief addPoseServerOptions(), plus --duration-s and --allow-flagged: the

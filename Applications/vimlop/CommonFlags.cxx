@@ -1,6 +1,7 @@
 #include "CommandLine.h"
 #include <vimlop/Core/RegistrationOptionTable.h>
 #include <vimlop/Imaging/CTVolumeIO.h>
+#include <vimlop/Pipeline/ContourRelocalisation.h>
 #include <vimlop/Pipeline/ContourWindowRefinement.h>
 #include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
@@ -101,6 +102,32 @@ void addTrackingRefinementOptions(
   command
     .add_option("--max-correction-deg", options.maxCorrectionDeg,
       "nor one that turns it by more than this, degrees")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+}
+
+void addTrackingRelocalisationOptions(
+  CLI::App& command, bool& relocalise, ContourRelocalisationOptions& options)
+{
+  command.add_flag_callback(
+    "--no-relocalisation", [&relocalise] { relocalise = false; },
+    "do not search for the pose against the CT after the tracker was lost, when the contours "
+    "disagree with the model");
+  command
+    .add_option("--degraded-above-px", options.degradedAbovePx,
+      "a tracked frame whose contours lie farther than this from the model's (median) is "
+      "reported degraded, px (or farther than 4 times the registration's contour error)")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  command
+    .add_option("--relocalise-search-mm", options.searchMm,
+      "the relocalisation starts from the tracked pose and from it moved this far along each "
+      "camera axis, mm")
+    ->capture_default_str()
+    ->check(CLI::PositiveNumber);
+  command
+    .add_option("--relocalise-search-deg", options.searchDeg,
+      "and from it turned by this much about each camera axis, degrees")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
 }

@@ -317,6 +317,8 @@ CLI::App* addEvaluateCommand(CLI::App& app)
       "a feature agrees with a pose within this reprojection error, px")
     ->capture_default_str();
   addTrackingRefinementOptions(*track, trackingOptions.refineAgainstCT, trackingOptions.refinement);
+  addTrackingRelocalisationOptions(
+    *track, trackingOptions.relocalise, trackingOptions.relocalisation);
   addWorldPresetOption(*track, tracking->world);
   addSimulationOptions(*track, tracking->world.video);
   addWorldOptions(*track, tracking->world.model);

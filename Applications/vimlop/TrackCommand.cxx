@@ -159,6 +159,7 @@ void addTrackCommand(CLI::App& app)
     "model's at the pose, after the pose is sent: the median error, px, is in tracking.json and "
     "the video's band)");
   addTrackingRefinementOptions(*c, o->tracking.refineAgainstCT, o->tracking.refinement);
+  addTrackingRelocalisationOptions(*c, o->tracking.relocalise, o->tracking.relocalisation);
   c->add_option("--fps", o->tracking.videoFps, "the tracked video's rate, frames per second")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);

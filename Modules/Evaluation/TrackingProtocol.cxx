@@ -8,6 +8,7 @@
 #include <vimlop/Evaluation/SimulatedVideoCase.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Pipeline/FrameContourCheck.h>
+#include <vimlop/Pipeline/TrackingSupervisor.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Video/FrameUndistorter.h>
@@ -107,6 +108,11 @@ nlohmann::json TrackingProtocolReport::toJson() const
     {
       frames.back()["correction_mm"] = f.correctionMm;
     }
+    if (f.searched)
+    {
+      frames.back()["relocalisation"] = f.relocalised ? "found" : "not found";
+      frames.back()["relocalisation_ms"] = f.searchMs;
+    }
   }
   return { { "protocol", "tracking" }, { "frames", this->frames }, { "seed", this->seed },
     { "registration",
@@ -120,6 +126,8 @@ nlohmann::json TrackingProtocolReport::toJson() const
     { "camera_angle_deg", summaryJson(this->angleErrorDeg) }, { "drift_mm", this->driftMm },
     { "tracked_fraction", this->trackedFraction }, { "degraded_frames", this->degradedFrames },
     { "lost_frames", this->lostFrames }, { "corrected_frames", this->correctedFrames },
+    { "relocalisations",
+      { { "searched", this->relocalisationsSearched }, { "found", this->relocalisationsFound } } },
     { "unflagged_frames_over_2mm", this->unflaggedFramesOverLimit },
     { "flag_error_mm", this->flagErrorMm }, { "per_frame", frames } };
 }
@@ -135,6 +143,8 @@ std::vector<std::string> TrackingProtocolReport::summaryLines() const
     formatText("tracking: camera %.3f mm mean (p95 %.3f, max %.3f), %.3f deg mean; drift %.3f mm",
       this->positionErrorMm.mean, this->positionErrorMm.p95, this->positionErrorMm.max,
       this->angleErrorDeg.mean, this->driftMm),
+    formatText("tracking: %d corrections against the CT; %d relocalisations searched, %d found",
+      this->correctedFrames, this->relocalisationsSearched, this->relocalisationsFound),
     formatText("tracking: latency %.1f ms median, %.1f ms p99; %.1f %% of frames tracked (%d "
                "degraded, %d lost); %d frames over %.1f mm not flagged",
       this->latencyMs.median, this->latencyMs.p99, 100.0 * this->trackedFraction,
@@ -189,18 +199,21 @@ TrackingProtocolReport runTrackingProtocol(
   const FrameUndistorter undistorter(video.calibratedIntrinsics);
   const FrameContourCheck contourCheck(
     makeEmbreeRegistrationModel(world.model), undistorter.pinhole(), c.pipeline->fieldOfViewMask());
-  std::optional<ContourWindowRefinement> refinement;
-  if (o.refineAgainstCT)
-  {
-    ContourWindowRefinementOptions options = o.refinement;
-    options.registeredErrorPx = registered.contourErrorPx;
-    refinement.emplace(options);
-  }
+  TrackingSupervisor supervisor(contourCheck,
+    o.refineAgainstCT ? std::optional(o.refinement) : std::nullopt, o.relocalise, o.relocalisation,
+    registered.contourErrorPx);
   std::vector<double> latency, position, angle;
   for (int f = report.startFrame + 1; f < o.simulation.frames; ++f)
   {
     const cv::Mat& frame = video.frames[static_cast<std::size_t>(f)];
-    const TrackedFrame t = tracker.track(frame);
+    TrackedFrame t = tracker.track(frame);
+    // The check judges the pose before it is handed on (in its latency), as
+    // vimlop track does; its undistortion is the tracker's own work there.
+    const auto judged = std::chrono::steady_clock::now();
+    const cv::Mat ideal = undistorter.undistort(frame);
+    const FrameContourAgreement agreement = supervisor.judge(ideal, t);
+    t.latencyMs +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - judged).count();
     TrackingProtocolFrame r;
     r.frame = f;
     r.state = toString(t.state);
@@ -212,11 +225,15 @@ TrackingProtocolReport runTrackingProtocol(
     r.inliers = t.inliers;
     r.reprojectionErrorPx = t.reprojectionErrorPx;
     r.latencyMs = t.latencyMs;
-    const CheckedTrackedFrame checked = checkTrackedFrame(
-      contourCheck, refinement ? &*refinement : nullptr, tracker, undistorter.undistort(frame), t);
-    r.contourErrorPx = checked.agreement.medianErrorPx;
+    const CheckedTrackedFrame checked = supervisor.follow(tracker, t, agreement);
+    r.contourErrorPx = agreement.medianErrorPx;
     r.correctionMm = checked.correctionMm;
-    report.correctedFrames += checked.corrected ? 1 : 0;
+    r.searched = checked.searched;
+    r.relocalised = checked.relocalised;
+    r.searchMs = checked.searchMs;
+    report.correctedFrames += checked.corrected && !checked.relocalised ? 1 : 0;
+    report.relocalisationsSearched += checked.searched ? 1 : 0;
+    report.relocalisationsFound += checked.relocalised ? 1 : 0;
     report.degradedFrames += t.state == TrackingState::Degraded;
     report.lostFrames += t.state == TrackingState::Lost;
     report.unflaggedFramesOverLimit +=

@@ -4,6 +4,7 @@
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Evaluation/EvaluationProgress.h>
 #include <vimlop/Evaluation/VideoProtocol.h>
+#include <vimlop/Pipeline/ContourRelocalisation.h>
 #include <vimlop/Pipeline/ContourWindowRefinement.h>
 #include <vimlop/Pipeline/EndoscopeTracker.h>
 
@@ -39,6 +40,11 @@ struct TrackingProtocolOptions
   /// vimlop track does, and with these settings.
   bool refineAgainstCT = true;
   ContourWindowRefinementOptions refinement;
+  /// Relocalise against the CT when the last frames are suspect, as vimlop
+  /// track does, and with these settings (which also set the contour error
+  /// above which a frame is Degraded).
+  bool relocalise = true;
+  ContourRelocalisationOptions relocalisation;
   /// A frame farther than this from the truth is a failure the tracker must
   /// flag (degraded or lost), mm (default 2, issue 16).
   double flagErrorMm = 2.0;
@@ -67,8 +73,14 @@ struct TrackingProtocolFrame
   /// FrameContourAgreement::medianErrorPx at the tracked pose (NaN when no
   /// contour point matched): the check against the CT, next to the truth.
   double contourErrorPx = 0.0;
-  /// How far the refinement against the CT moved the camera after this frame, mm (0: not).
+  /// How far the refinement or the relocalisation against the CT moved the
+  /// camera after this frame, mm (0: not).
   double correctionMm = 0.0;
+  /// Whether a relocalisation was searched after this frame, found a pose,
+  /// and how long it took, ms.
+  bool searched = false;
+  bool relocalised = false;
+  double searchMs = 0.0;
 };
 
 /// @brief The result of the tracking protocol.
@@ -101,6 +113,9 @@ struct TrackingProtocolReport
   int lostFrames = 0;
   /// Frames after which the refinement against the CT corrected the tracker.
   int correctedFrames = 0;
+  /// Relocalisations searched, and those that found a pose.
+  int relocalisationsSearched = 0;
+  int relocalisationsFound = 0;
   /// Frames farther than flagErrorMm from the truth and reported tracking.
   int unflaggedFramesOverLimit = 0;
   double flagErrorMm = 0.0;

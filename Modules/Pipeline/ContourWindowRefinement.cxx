@@ -118,29 +118,4 @@ std::optional<CameraPose> ContourWindowRefinement::add(
   return corrected;
 }
 
-CheckedTrackedFrame checkTrackedFrame(const FrameContourCheck& check,
-  ContourWindowRefinement* refinement, EndoscopeTracker& tracker, const cv::Mat& idealFrame,
-  const TrackedFrame& tracked)
-{
-  CheckedTrackedFrame r;
-  r.agreement = check.check(idealFrame, tracked.cameraToCT);
-  if (!refinement)
-  {
-    return r;
-  }
-  if (tracked.state == TrackingState::Lost)
-  {
-    refinement->clear();
-    return r;
-  }
-  r.corrected = refinement->add(check.camera(), tracked.cameraToCT, r.agreement.pairs);
-  r.anchored = r.agreement.medianErrorPx <= refinement->options().anchorErrorPx;
-  if (r.corrected)
-  {
-    r.correctionMm = cameraPositionError(*r.corrected, tracked.cameraToCT);
-    tracker.correct(*r.corrected, r.anchored);
-  }
-  return r;
-}
-
 } // namespace vimlop

@@ -4,7 +4,6 @@
 #include <vimlop/Core/CameraPose.h>
 #include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Core/PoseUpdate.h>
-#include <vimlop/Pipeline/EndoscopeTracker.h>
 #include <vimlop/Pipeline/FrameContourCheck.h>
 
 #include <deque>
@@ -101,30 +100,6 @@ private:
   ContourWindowRefinementOptions Options;
   std::deque<Frame> Window;
 };
-
-/// @brief A tracked frame after its check against the CT.
-struct CheckedTrackedFrame
-{
-  FrameContourAgreement agreement;
-  /// The frame's pose corrected against the CT, when the tracker was corrected.
-  std::optional<CameraPose> corrected;
-  /// How far that correction moved the camera, mm (0: not corrected).
-  double correctionMm = 0.0;
-  /// Whether the check confirmed the pose (re-anchoring the tracker).
-  bool anchored = false;
-};
-
-/**
- * @brief What follows each tracked frame once its pose is handed on: the
- * check of `tracked` (the tracker's last frame, `idealFrame` undistorted)
- * against the CT and, with `refinement`, the window's correction, given to
- * the tracker (EndoscopeTracker::correct(), anchored when the frame's
- * contours lie within the refinement's anchorErrorPx of the model's). A lost
- * frame is checked at its prediction but empties the window.
- */
-CheckedTrackedFrame checkTrackedFrame(const FrameContourCheck& check,
-  ContourWindowRefinement* refinement, EndoscopeTracker& tracker, const cv::Mat& idealFrame,
-  const TrackedFrame& tracked);
 
 } // namespace vimlop
 

@@ -254,6 +254,19 @@ int EndoscopeTracker::correct(const CameraPose& cameraToCT, bool anchored)
   }
   s.Features = std::move(kept);
   s.Anchored = s.Anchored || anchored;
+  if (anchored)
+  {
+    if (s.LostInARow > 0)
+    {
+      // The motion between two predictions is no measured motion.
+      s.BeforeLast = cameraToCT;
+      s.LostInARow = 0;
+    }
+    if (static_cast<int>(s.Features.size()) < s.Options.redetectBelow)
+    {
+      s.addFeatures(cameraToCT);
+    }
+  }
   return static_cast<int>(s.Features.size());
 }
 
@@ -337,6 +350,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
   r.state = TrackingState::Lost;
   auto finish = [&]
   {
+    r.anchored = s.Anchored;
     s.LostInARow = r.state == TrackingState::Lost ? s.LostInARow + 1 : 0;
     s.BeforeLast = s.Last;
     s.Last = r.cameraToCT;

@@ -19,9 +19,10 @@ enum class TrackingState
 {
   Tracking, ///< enough features agree with the pose
   /// A pose was found, but many tracked features disagree with it, or its
-  /// features were cast from a prediction after the tracker was lost:
-  /// nothing has checked them against the CT since, and a wrong prediction
-  /// makes a wrong world that agrees with itself.
+  /// features were cast from a prediction after the tracker was lost
+  /// (nothing has checked them against the CT since, and a wrong prediction
+  /// makes a wrong world that agrees with itself), or the frame's contours
+  /// disagree with the CT's at the pose (TrackingSupervisor::judge()).
   Degraded,
   Lost ///< no pose from this frame: the pose reported is the prediction
 };
@@ -92,6 +93,9 @@ struct TrackedFrame
   /// frames as tracked (see EndoscopeTrackerOptions::maxTrackingWidthPx).
   double reprojectionErrorPx = 0.0;
   int newFeatures = 0; ///< corners added after the pose was found
+  /// False when the features were cast from a prediction after a loss and
+  /// no check against the CT has confirmed a pose since (correct()).
+  bool anchored = true;
   /// Wall-clock time of track(), from the frame to the pose and the new features, ms.
   double latencyMs = 0.0;
   /// Why the frame is Degraded or Lost, for people; empty when Tracking.
@@ -124,9 +128,9 @@ struct TrackedFrame
  * prediction, so tracking resumes by itself when the scope moved as
  * predicted. Whether it did, the features cannot tell: from then on frames
  * are at best Degraded, until a check against the CT confirms a pose
- * (correct(), anchored; see ContourWindowRefinement) or the tracker is
- * started again. Relocalisation against the CT (a multi-start near the last
- * good pose) is not part of this tracker yet.
+ * (correct(), anchored; see ContourWindowRefinement and
+ * relocaliseAgainstCT(), which TrackingSupervisor calls) or the tracker is
+ * started again.
  *
  * Frames are of the intrinsics' size; when the intrinsics carry a lens,
  * each frame is undistorted with it first (FrameUndistorter), and poses are
@@ -175,8 +179,10 @@ public:
    * points are cast again from it (those whose ray now misses the model, or
    * meets it at a grazing angle, are dropped) and the prediction moves with
    * it. With `anchored`, the CT has confirmed the pose: frames after a loss
-   * are no longer held Degraded for it.
-   * @return the features kept.
+   * are no longer held Degraded for it, the prediction starts again from
+   * rest when the frame was lost, and when fewer than `redetectBelow`
+   * features are left, new corners of the last frame are cast from the pose.
+   * @return the features kept or added.
    * @throws vimlop::Error before start().
    */
   int correct(const CameraPose& cameraToCT, bool anchored);

@@ -45,8 +45,18 @@ const PinholeCamera& FrameContourCheck::camera() const
   return this->d->Camera;
 }
 
+const RegistrationModel& FrameContourCheck::model() const
+{
+  return this->d->Model;
+}
+
 FrameContourAgreement FrameContourCheck::check(
   const cv::Mat& frame, const CameraPose& cameraToCT) const
+{
+  return this->agreement(this->detect(frame), cameraToCT);
+}
+
+std::vector<ContourPoint> FrameContourCheck::detect(const cv::Mat& frame) const
 {
   const Internals& s = *this->d;
   if (frame.cols != s.Camera.widthPx || frame.rows != s.Camera.heightPx)
@@ -54,9 +64,15 @@ FrameContourAgreement FrameContourCheck::check(
     throw Error(formatText("contour check: a frame of %d x %d pixels, but the camera is %d x %d",
       frame.cols, frame.rows, s.Camera.widthPx, s.Camera.heightPx));
   }
+  return s.Detector.detect(frame, s.Mask);
+}
+
+FrameContourAgreement FrameContourCheck::agreement(
+  const std::vector<ContourPoint>& detected, const CameraPose& cameraToCT) const
+{
+  const Internals& s = *this->d;
   FrameContourAgreement agreement;
   agreement.modelContours = visibleModelContours(s.Model, s.Camera, cameraToCT);
-  const std::vector<ContourPoint> detected = s.Detector.detect(frame, s.Mask);
   agreement.detected = static_cast<int>(detected.size());
   if (detected.empty() || agreement.modelContours.empty())
   {

@@ -3,6 +3,7 @@
 
 #include <vimlop/Core/CameraPose.h>
 #include <vimlop/Core/ContourMatcher.h>
+#include <vimlop/Core/ContourPoint.h>
 #include <vimlop/Core/ModelContourPoint.h>
 #include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Core/PoseUpdate.h>
@@ -75,8 +76,22 @@ public:
    */
   FrameContourAgreement check(const cv::Mat& frame, const CameraPose& cameraToCT) const;
 
+  /**
+   * @brief The occluding contours of `frame` inside the field stop (V1), as
+   * check() detects them: detected once, they can be matched at many poses.
+   * @throws vimlop::Error for a frame of another size.
+   */
+  std::vector<ContourPoint> detect(const cv::Mat& frame) const;
+
+  /// @brief The agreement of contours detect() found with the model seen from `cameraToCT`.
+  FrameContourAgreement agreement(
+    const std::vector<ContourPoint>& detected, const CameraPose& cameraToCT) const;
+
   /// @brief The pinhole camera of the frames checked.
   const PinholeCamera& camera() const;
+
+  /// @brief The model checked against.
+  const RegistrationModel& model() const;
 
 private:
   struct Internals;

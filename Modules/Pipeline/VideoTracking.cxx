@@ -10,6 +10,7 @@
 #include <vimlop/Pipeline/FrameContourCheck.h>
 #include <vimlop/Pipeline/TrackedVideoWriter.h>
 #include <vimlop/Pipeline/TrackingStart.h>
+#include <vimlop/Pipeline/TrackingSupervisor.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Results/TrackedPoseTable.h>
 #include <vimlop/Video/FrameStream.h>
@@ -28,6 +29,7 @@ void VideoTrackingOptions::validate() const
 {
   this->tracker.validate();
   this->refinement.validate();
+  this->relocalisation.validate();
   if (this->firstFrameIndex < -1)
   {
     throw Error(formatText(
@@ -55,7 +57,7 @@ struct VideoTracking::Internals
   /// The registered model, shared by the contour check and the tracked video.
   std::optional<RegistrationModel> model;
   std::unique_ptr<FrameContourCheck> contourCheck;
-  std::optional<ContourWindowRefinement> refinement;
+  std::unique_ptr<TrackingSupervisor> supervisor;
   std::map<int, CameraPose> truth;
   int first = 0;
   int seen = 0;
@@ -69,6 +71,12 @@ struct VideoTracking::Internals
 
 namespace
 {
+
+double elapsedMs(std::chrono::steady_clock::time_point since)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
+    .count();
+}
 
 /// The camera the frames are undistorted with: the intrinsics file's lens
 /// around the camera the result registered with, which it must be.
@@ -163,13 +171,11 @@ void VideoTracking::open(const VideoTrackingInputs& inputs)
   d->contourCheck = d->options.checkContours
     ? std::make_unique<FrameContourCheck>(*d->model, start->intrinsics, start->fieldOfViewMask)
     : nullptr;
-  d->refinement.reset();
-  if (d->contourCheck && d->options.refineAgainstCT)
-  {
-    ContourWindowRefinementOptions refinement = d->options.refinement;
-    refinement.registeredErrorPx = start->contourErrorPx;
-    d->refinement.emplace(refinement);
-  }
+  d->supervisor = d->contourCheck
+    ? std::make_unique<TrackingSupervisor>(*d->contourCheck,
+        d->options.refineAgainstCT ? std::optional(d->options.refinement) : std::nullopt,
+        d->options.relocalise, d->options.relocalisation, start->contourErrorPx)
+    : nullptr;
   d->start = std::move(start);
   d->inputs = inputs;
   d->frames.clear();
@@ -222,6 +228,14 @@ void VideoTracking::run()
       frame.frameId = f.id;
       frame.source = f.name;
       frame.tracked = d->tracker->track(ideal);
+      // The check against the CT judges the pose before it is handed on.
+      FrameContourAgreement agreement;
+      if (d->supervisor)
+      {
+        const auto checked = std::chrono::steady_clock::now();
+        agreement = d->supervisor->judge(ideal, frame.tracked);
+        frame.checkMs = elapsedMs(checked);
+      }
       const auto known = d->truth.find(f.id);
       if (known != d->truth.end())
       {
@@ -232,25 +246,22 @@ void VideoTracking::run()
       {
         d->handler(frame);
       }
-      frame.latencyMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decoded)
-          .count();
-      // The check against the CT and the video come after the pose is
-      // handed on: they do not add to its latency.
+      frame.latencyMs = elapsedMs(decoded);
+      // The refinement or relocalisation and the video come after the pose
+      // is handed on: they do not add to its latency.
       std::vector<ModelContourPoint> modelContours;
-      const auto checked = std::chrono::steady_clock::now();
-      if (d->contourCheck)
+      if (d->supervisor)
       {
-        CheckedTrackedFrame c = checkTrackedFrame(*d->contourCheck,
-          d->refinement ? &*d->refinement : nullptr, *d->tracker, ideal, frame.tracked);
-        frame.contourErrorPx = c.agreement.medianErrorPx;
-        frame.contourPointsDetected = c.agreement.detected;
-        frame.contourPointsMatched = c.agreement.matched;
+        const auto followed = std::chrono::steady_clock::now();
+        const CheckedTrackedFrame c = d->supervisor->follow(*d->tracker, frame.tracked, agreement);
+        frame.checkMs += elapsedMs(followed);
+        frame.contourErrorPx = agreement.medianErrorPx;
+        frame.contourPointsDetected = agreement.detected;
+        frame.contourPointsMatched = agreement.matched;
         frame.correctionMm = c.correctionMm;
-        modelContours = std::move(c.agreement.modelContours);
-        frame.checkMs =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - checked)
-            .count();
+        frame.searched = c.searched;
+        frame.relocalised = c.relocalised;
+        modelContours = std::move(agreement.modelContours);
       }
       else if (video)
       {
@@ -397,6 +408,10 @@ nlohmann::json VideoTracking::report() const
     {
       record["correction_mm"] = f.correctionMm;
     }
+    if (f.searched)
+    {
+      record["relocalisation"] = f.relocalised ? "found" : "not found";
+    }
     if (d->contourCheck)
     {
       record["contour_points"] = { { "detected", f.contourPointsDetected },
@@ -411,11 +426,19 @@ nlohmann::json VideoTracking::report() const
     records.push_back(record);
   }
   const Summary latency = this->latencyMs();
+  int searched = 0;
+  int relocalised = 0;
+  for (const TrackedVideoFrame& f : d->frames)
+  {
+    searched += f.searched ? 1 : 0;
+    relocalised += f.relocalised ? 1 : 0;
+  }
   nlohmann::json report = { { "result", d->inputs.resultFolder }, { "frames", this->source() },
     { "start_frame_id", d->start ? d->start->frameId : 0 }, { "first_tracked_index", d->first },
     { "tracking", this->count(TrackingState::Tracking) },
     { "degraded", this->count(TrackingState::Degraded) },
     { "lost", this->count(TrackingState::Lost) },
+    { "relocalisations", { { "searched", searched }, { "found", relocalised } } },
     { "latency_ms", { { "median", latency.median }, { "p99", latency.p99 } } },
     { "per_frame", records } };
   if (!errorMm.empty())

@@ -2,6 +2,7 @@
 #define vimlop_VideoTracking_h
 
 #include <vimlop/Core/Statistics.h>
+#include <vimlop/Pipeline/ContourRelocalisation.h>
 #include <vimlop/Pipeline/ContourWindowRefinement.h>
 #include <vimlop/Pipeline/EndoscopeTracker.h>
 
@@ -58,12 +59,18 @@ struct VideoTrackingOptions
   double videoFps = 30.0;
   /// Check every tracked pose against the CT (default on): the frame's
   /// occluding contours matched to the model's at the pose
-  /// (FrameContourCheck), after the pose is handed on, so outside its latency.
+  /// (FrameContourCheck), before the pose is handed on, so that a pose the
+  /// contours disagree with is sent Degraded (TrackingSupervisor).
   bool checkContours = true;
   /// With the check: correct the tracker with the contours of its last
   /// frames (ContourWindowRefinement), the drift's remedy (default on).
   bool refineAgainstCT = true;
   ContourWindowRefinementOptions refinement;
+  /// With the check: relocalise against the CT when the tracker lost its
+  /// anchor (relocaliseAgainstCT(); default on). `relocalisation` also holds
+  /// the contour error above which a frame is Degraded, searched or not.
+  bool relocalise = true;
+  ContourRelocalisationOptions relocalisation;
 
   /// @throws vimlop::Error naming the first value out of range.
   void validate() const;
@@ -84,12 +91,16 @@ struct TrackedVideoFrame
   /// Contour points detected in the frame, and matched to the model's.
   int contourPointsDetected = 0;
   int contourPointsMatched = 0;
-  /// How far the refinement against the CT moved the camera after this
-  /// frame, for the frames that follow, mm (0: not moved).
+  /// How far the refinement or the relocalisation against the CT moved the
+  /// camera after this frame, for the frames that follow, mm (0: not moved).
   double correctionMm = 0.0;
-  /// The check against the CT and the refinement, after the latency, ms: a
-  /// live camera's frame must wait for them (with the latency, under a
-  /// frame's period).
+  /// Whether a relocalisation was searched after this frame, and whether
+  /// it moved the tracker.
+  bool searched = false;
+  bool relocalised = false;
+  /// The check against the CT (inside the latency) and what follows it
+  /// (the refinement or the relocalisation, after), ms: a live camera's
+  /// next frame waits for them.
   double checkMs = 0.0;
   /// Against the truth, when given.
   std::optional<double> positionErrorMm;

@@ -109,6 +109,7 @@ int vtkVIMLOPVideoTracking::RequestData(
   options.writeVideo = this->WriteVideo;
   options.checkContours = this->CheckContours;
   options.refineAgainstCT = this->RefineAgainstCT;
+  options.relocalise = this->Relocalise;
   auto tracking = std::make_unique<vimlop::VideoTracking>(options);
   tracking->setStopRequest([this] { return this->GetAbortExecute() != 0; });
   tracking->setFrameHandler(
@@ -183,6 +184,7 @@ void vtkVIMLOPVideoTracking::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FirstFrameIndex: " << this->FirstFrameIndex << "\n";
   os << indent << "CheckContours: " << (this->CheckContours ? "On" : "Off") << "\n";
   os << indent << "RefineAgainstCT: " << (this->RefineAgainstCT ? "On" : "Off") << "\n";
+  os << indent << "Relocalise: " << (this->Relocalise ? "On" : "Off") << "\n";
   os << indent << "AllowFlagged: " << (this->AllowFlagged ? "On" : "Off") << "\n";
   os << indent << "MaxFeatures: " << this->MaxFeatures << "\n";
   os << indent << "MaxTrackingWidthPx: " << this->MaxTrackingWidthPx << "\n";

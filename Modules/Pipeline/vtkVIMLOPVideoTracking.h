@@ -100,6 +100,13 @@ public:
   vtkSetMacro(RefineAgainstCT, bool);
   vtkGetMacro(RefineAgainstCT, bool);
   vtkBooleanMacro(RefineAgainstCT, bool);
+  /// With CheckContours: search for the pose against the CT when the
+  /// tracker lost its anchor to it (frames lost, or followed from features
+  /// cast from a prediction) and their contours disagree with the model
+  /// (vimlop::relocaliseAgainstCT; default on).
+  vtkSetMacro(Relocalise, bool);
+  vtkGetMacro(Relocalise, bool);
+  vtkBooleanMacro(Relocalise, bool);
   /// Track from a result the registration flagged as a failure (default
   /// off: refused, every tracked pose would carry its error).
   vtkSetMacro(AllowFlagged, bool);
@@ -162,6 +169,7 @@ private:
   bool AllowFlagged = false;
   bool CheckContours = true;
   bool RefineAgainstCT = true;
+  bool Relocalise = true;
   int MaxFeatures;
   int MaxTrackingWidthPx;
   double InlierThresholdPx;

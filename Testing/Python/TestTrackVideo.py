@@ -83,18 +83,19 @@ check(len(report["per_frame"]) == 4 and report.get("stopped_by", "").startswith(
       "tracking.json holds the 4 frames and says the run was stopped")
 check(not os.path.exists(os.path.join(out, "tracked-video.avi")), "video=False writes no video")
 
-# Without the refinement, the same poses as vimlop track --no-refinement.
+# Without the refinement and the relocalisation, the same poses as vimlop
+# track --no-refinement --no-relocalisation.
 unrefined = vimlop.track_video(result=registered, frames=frames, intrinsics=intrinsics,
-                               refine=False)
+                               refine=False, relocalise=False)
 plain = subprocess.run([program, "track", "--result", registered, "--frames", frames,
-                        "--intrinsics", intrinsics, "--no-refinement", "--no-video",
-                        "--out", "tracked-python-unrefined-cli"], check=True,
+                        "--intrinsics", intrinsics, "--no-refinement", "--no-relocalisation",
+                        "--no-video", "--out", "tracked-python-unrefined-cli"], check=True,
                        capture_output=True, text=True)
 cli_plain = poses_of(os.path.join("tracked-python-unrefined-cli", "tracked-poses.json"))
 difference = max(numpy.abs(pose - cli_plain[int(i)]).max()
                  for i, pose in zip(unrefined["frame_ids"], unrefined["camera_to_ct"]))
-check(difference < 1e-6, "refine=False gives vimlop track --no-refinement's poses (largest "
-      "difference %.2g)" % difference)
+check(difference < 1e-6, "refine=False, relocalise=False give vimlop track --no-refinement "
+      "--no-relocalisation's poses (largest difference %.2g)" % difference)
 
 # One set of defaults: vimlop track's options and the VTK source's.
 text = subprocess.run([program, "track", "--help"], check=True, capture_output=True,

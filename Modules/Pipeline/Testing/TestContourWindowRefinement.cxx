@@ -6,6 +6,7 @@
 
 #include "ErrorMessage.h"
 #include "TestMeshes.h"
+#include "TubeCameras.h"
 
 #include <gtest/gtest.h>
 
@@ -15,20 +16,6 @@ namespace vimlop
 {
 namespace
 {
-
-/// Cameras along the folded tube, looking down it and turned a little, as a
-/// scope moving through it sees it.
-std::vector<CameraPose> camerasAlongTheTube(int n)
-{
-  std::vector<CameraPose> cameras;
-  for (int i = 0; i < n; ++i)
-  {
-    const double z = 8.0 + 1.5 * i;
-    cameras.push_back(CameraPose::lookAt(Eigen::Vector3d(0.3 * std::sin(i), 0.2, z),
-      Eigen::Vector3d(0.5, -0.3 * i, z + 20.0), Eigen::Vector3d::UnitY()));
-  }
-  return cameras;
-}
 
 /// A frame's contour pairs as a perfect detector gives them: each visible
 /// model contour sample where the true camera sees it.
@@ -70,7 +57,7 @@ TEST(ContourWindowRefinement, BringsADriftedTrackerBackOntoTheModelsContours)
   // contours alone bring it back to the true poses within a few frames.
   const RegistrationModel model = makeEmbreeRegistrationModel(fixtures::makeTube(4.0, 60.0, 0.35));
   const PinholeCamera k = PinholeCamera::simulatedEndoscope();
-  const std::vector<CameraPose> truth = camerasAlongTheTube(8);
+  const std::vector<CameraPose> truth = fixtures::camerasAlongTheTube(8);
   // The drift, as what it does to a true pose.
   Eigen::Matrix3d driftTurn =
     Eigen::AngleAxisd(0.8 * M_PI / 180.0, Eigen::Vector3d(1, 2, 0).normalized()).matrix();
@@ -108,7 +95,7 @@ TEST(ContourWindowRefinement, LeavesAPoseAloneThatTheContoursAlreadyFit)
   const RegistrationModel model = makeEmbreeRegistrationModel(fixtures::makeTube(4.0, 60.0, 0.35));
   const PinholeCamera k = PinholeCamera::simulatedEndoscope();
   ContourWindowRefinement refinement(correctingEveryWindow());
-  for (const CameraPose& t : camerasAlongTheTube(3))
+  for (const CameraPose& t : fixtures::camerasAlongTheTube(3))
   {
     const std::optional<CameraPose> corrected = refinement.add(k, t, truePairs(model, k, t));
     if (corrected)
@@ -125,7 +112,7 @@ TEST(ContourWindowRefinement, LeavesAWindowAloneWhoseContoursLieWithinTheLeastEr
   // with 0 it is corrected.
   const RegistrationModel model = makeEmbreeRegistrationModel(fixtures::makeTube(4.0, 60.0, 0.35));
   const PinholeCamera k = PinholeCamera::simulatedEndoscope();
-  const CameraPose t = camerasAlongTheTube(1)[0];
+  const CameraPose t = fixtures::camerasAlongTheTube(1)[0];
   const CameraPose near =
     moved(t, t.centre, 0.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d(0.05, 0.0, 0.0));
   EXPECT_EQ(ContourWindowRefinementOptions().minErrorPx, 1.5);
@@ -150,7 +137,7 @@ TEST(ContourWindowRefinement, RefusesACorrectionAboveItsBoundsOrWithTooFewPairs)
   // drift, so nothing is applied; within a bound of 1 mm, it is.
   const RegistrationModel model = makeEmbreeRegistrationModel(fixtures::makeTube(4.0, 60.0, 0.35));
   const PinholeCamera k = PinholeCamera::simulatedEndoscope();
-  const CameraPose t = camerasAlongTheTube(1)[0];
+  const CameraPose t = fixtures::camerasAlongTheTube(1)[0];
   const CameraPose far =
     moved(t, t.centre, 0.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d(0.0, 0.6, 0.0));
   ContourWindowRefinementOptions bounded = correctingEveryWindow();

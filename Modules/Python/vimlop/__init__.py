@@ -128,7 +128,8 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
 
 
 def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first_frame=-1,
-                allow_flagged=False, video=True, refine=True, on_frame=None):
+                allow_flagged=False, video=True, refine=True, relocalise=True,
+                on_frame=None):
     """Follows the endoscope frame by frame after a registration: `vimlop track`, same defaults.
 
     result: the result folder of `vimlop register` (or of register_video's
@@ -142,6 +143,9 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     result the registration flagged as a failure (refused otherwise).
     refine: correct the tracked poses with the contours of the last frames
     against the CT (as `vimlop track` does; False: `--no-refinement`).
+    relocalise: search for the pose against the CT after the tracker was
+    lost, when the contours disagree with the model (False:
+    `--no-relocalisation`).
     on_frame(frame_id, state, camera_to_ct): called as each pose is
     computed; return True from it to stop after that frame.
 
@@ -169,6 +173,7 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     tracking.SetFirstFrameIndex(int(first_frame))
     tracking.SetAllowFlagged(bool(allow_flagged))
     tracking.SetRefineAgainstCT(bool(refine))
+    tracking.SetRelocalise(bool(relocalise))
     if on_frame is not None:
         def on_update(caller, event):
             matrix = caller.GetCameraTransform().GetMatrix()

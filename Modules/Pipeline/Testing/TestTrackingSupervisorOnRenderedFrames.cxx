@@ -1,0 +1,215 @@
+#include <vimlop/Pipeline/TrackingSupervisor.h>
+
+#include "RenderedSequence.h"
+#include <vimlop/Core/RegistrationMetrics.h>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace vimlop
+{
+namespace
+{
+
+TEST(TrackingSupervisor, JudgesAPoseTheContoursDisagreeWithDegradedAndSaysWhy)
+{
+  // A frame the tracker reports tracking, at its true pose and 1.5 mm aside:
+  // the first stays tracking, the second is degraded, with its contour error.
+  const fixtures::Sequence& s = fixtures::sequence();
+  const FrameContourCheck check(*s.model, s.intrinsics, cv::Mat());
+  TrackingSupervisor supervisor(check, std::nullopt, false, {}, 0.0);
+  TrackedFrame atTruth;
+  atTruth.cameraToCT = s.poses[5];
+  const FrameContourAgreement good = supervisor.judge(s.frames[5], atTruth);
+  EXPECT_EQ(atTruth.state, TrackingState::Tracking);
+  EXPECT_LT(good.medianErrorPx, 1.5);
+  TrackedFrame aside = atTruth;
+  aside.cameraToCT.centre += aside.cameraToCT.rotation.col(0) * 1.5;
+  const FrameContourAgreement bad = supervisor.judge(s.frames[5], aside);
+  EXPECT_EQ(aside.state, TrackingState::Degraded);
+  char why[100];
+  std::snprintf(
+    why, sizeof why, "its contours lie %.1f px from the model's, above 6.0 px", bad.medianErrorPx);
+  EXPECT_EQ(aside.reason, why);
+  EXPECT_GT(bad.medianErrorPx, 6.0);
+}
+
+TEST(TrackingSupervisor, FlagsATrackerStartedOffWithoutSearchingOnContoursAlone)
+{
+  // The tracker starts 1.5 mm aside and 4 degrees turned from frame 0's true
+  // pose (a registration that missed): its features stand for points cast
+  // from that pose, so they mostly agree with it, but the frames' contours
+  // do not. Those frames are reported degraded. The tracker is anchored (it
+  // started from a registration): contours alone do not move it, since in a
+  // narrow passage they also fit poses far off.
+  const fixtures::Sequence& s = fixtures::sequence();
+  const FrameContourCheck check(*s.model, s.intrinsics, cv::Mat());
+  TrackingSupervisor supervisor(check, std::nullopt, true, {}, 0.0);
+  EndoscopeTracker tracker(s.mesh, s.intrinsics);
+  CameraPose off = s.poses[0];
+  off.rotation =
+    off.rotation * Eigen::AngleAxisd(4.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).matrix();
+  off.centre += off.rotation.col(0) * 1.5;
+  tracker.start(s.frames[0], off);
+  for (std::size_t f = 1; f < 6; ++f)
+  {
+    TrackedFrame t = tracker.track(s.frames[f]);
+    const FrameContourAgreement a = supervisor.judge(s.frames[f], t);
+    const CheckedTrackedFrame c = supervisor.follow(tracker, t, a);
+    EXPECT_EQ(t.state, TrackingState::Degraded) << f;
+    EXPECT_GT(a.medianErrorPx, supervisor.relocalisation().degradedLimitPx()) << f;
+    EXPECT_GT(cameraPositionError(t.cameraToCT, s.poses[f]), 1.0) << f;
+    EXPECT_FALSE(c.searched) << f;
+  }
+}
+
+TEST(TrackingSupervisor, FindsTheScopeThatMovedOnWhileTheFrameWasBlank)
+{
+  // Frame 8 is black and the scope moves on faster than predicted: the next
+  // frame seen is frame 12, which is lost; its features are cast from the
+  // prediction, which is wrong. After two frames followed so (the sequence
+  // is short: 2, not the default 3), whose contours lie far from the
+  // model's, the supervisor searches for the last one's pose against the
+  // CT and moves the tracker there; the next frame's contours confirm it
+  // (anchored).
+  const fixtures::Sequence& s = fixtures::sequence();
+  const FrameContourCheck check(*s.model, s.intrinsics, cv::Mat());
+  ContourRelocalisationOptions afterTwo;
+  afterTwo.triggerFrames = 2;
+  TrackingSupervisor supervisor(check, ContourWindowRefinementOptions(), true, afterTwo, 0.0);
+  EndoscopeTracker tracker(s.mesh, s.intrinsics);
+  tracker.start(s.frames[0], s.poses[0]);
+  const cv::Mat black = cv::Mat::zeros(s.frames[0].size(), s.frames[0].type());
+  int relocalisedAt = -1;
+  int anchoredAt = -1;
+  double predictedMm = 0.0;
+  for (std::size_t f = 1; f < s.frames.size(); ++f)
+  {
+    if (f >= 9 && f <= 11)
+    {
+      continue;
+    }
+    TrackedFrame t = tracker.track(f == 8 ? black : s.frames[f]);
+    const FrameContourAgreement a = supervisor.judge(f == 8 ? black : s.frames[f], t);
+    const CheckedTrackedFrame c = supervisor.follow(tracker, t, a);
+    const double mm = cameraPositionError(t.cameraToCT, s.poses[f]);
+    std::printf("frame %2zu: %s (%s), %.2f px, %.3f mm%s%s\n", f, toString(t.state),
+      t.reason.c_str(), a.medianErrorPx, mm,
+      c.relocalised  ? ", relocalised"
+        : c.searched ? ", searched"
+                     : "",
+      c.anchored ? ", anchored" : "");
+    if (c.searched)
+    {
+      std::printf("  search: %.2f px at the tracked pose, %.2f px at best, %.0f ms\n",
+        c.searchTrackedErrorPx, c.searchBestErrorPx, c.searchMs);
+      EXPECT_GT(c.searchMs, 0.0);
+    }
+    if (f == 12)
+    {
+      predictedMm = mm;
+    }
+    // One frame's contours find the pose within half a millimetre (the
+    // refinement then takes it further).
+    if (relocalisedAt >= 0)
+    {
+      EXPECT_LT(mm, 0.5) << f;
+    }
+    if (c.relocalised && relocalisedAt < 0)
+    {
+      relocalisedAt = static_cast<int>(f);
+      EXPECT_LT(cameraPositionError(*c.corrected, s.poses[f]), 0.5) << f;
+    }
+    if (c.anchored && f > 8 && anchoredAt < 0)
+    {
+      anchoredAt = static_cast<int>(f);
+    }
+  }
+  EXPECT_GT(predictedMm, 0.5);
+  EXPECT_EQ(relocalisedAt, 14);
+  EXPECT_EQ(anchoredAt, 15);
+}
+
+TEST(TrackingSupervisor, AnchorsTheTrackerAgainAfterABlankFrame)
+{
+  // Frame 8 is black: it and the next are lost, and the frames after would
+  // be followed from features cast from the prediction (degraded,
+  // unanchored). The supervisor finds the pose against the CT and anchors
+  // the tracker within a few frames: from then the frames are tracking.
+  const fixtures::Sequence& s = fixtures::sequence();
+  const FrameContourCheck check(*s.model, s.intrinsics, cv::Mat());
+  TrackingSupervisor supervisor(check, ContourWindowRefinementOptions(), true, {}, 0.0);
+  EndoscopeTracker tracker(s.mesh, s.intrinsics);
+  tracker.start(s.frames[0], s.poses[0]);
+  const cv::Mat black = cv::Mat::zeros(s.frames[0].size(), s.frames[0].type());
+  int anchoredAt = -1;
+  for (std::size_t f = 1; f < s.frames.size(); ++f)
+  {
+    TrackedFrame t = tracker.track(f == 8 ? black : s.frames[f]);
+    const FrameContourAgreement a = supervisor.judge(f == 8 ? black : s.frames[f], t);
+    const CheckedTrackedFrame c = supervisor.follow(tracker, t, a);
+    const double mm = cameraPositionError(t.cameraToCT, s.poses[f]);
+    std::printf("frame %2zu: %s (%s), %.2f px, %.3f mm%s\n", f, toString(t.state), t.reason.c_str(),
+      a.medianErrorPx, mm,
+      c.relocalised  ? ", relocalised"
+        : c.searched ? ", searched"
+                     : "");
+    EXPECT_LT(mm, 0.5) << f;
+    if (f < 8)
+    {
+      EXPECT_EQ(t.state, TrackingState::Tracking) << f;
+    }
+    else if (anchoredAt < 0)
+    {
+      EXPECT_NE(t.state, TrackingState::Tracking) << f;
+      anchoredAt = c.anchored ? static_cast<int>(f) : -1;
+    }
+    else
+    {
+      EXPECT_EQ(t.state, TrackingState::Tracking) << f;
+      EXPECT_TRUE(t.anchored) << f;
+    }
+  }
+  EXPECT_GT(anchoredAt, 0);
+  EXPECT_LE(anchoredAt, 12);
+}
+
+TEST(TrackingSupervisor, DoesNotLetContoursAnchorATrackerLostLongerThanItsPredictionCoasts)
+{
+  // Six black frames after frame 7 (more than the 5 the prediction coasts):
+  // whatever the contours say afterwards, the tracker stays unanchored and
+  // its frames degraded, since one frame's contours also fit poses far off.
+  const fixtures::Sequence& s = fixtures::sequence();
+  const FrameContourCheck check(*s.model, s.intrinsics, cv::Mat());
+  TrackingSupervisor supervisor(check, ContourWindowRefinementOptions(), true, {}, 0.0);
+  EndoscopeTracker tracker(s.mesh, s.intrinsics);
+  ASSERT_EQ(tracker.options().maxCoastFrames, 5);
+  tracker.start(s.frames[0], s.poses[0]);
+  const cv::Mat black = cv::Mat::zeros(s.frames[0].size(), s.frames[0].type());
+  std::vector<cv::Mat> frames(s.frames.begin() + 1, s.frames.begin() + 8);
+  frames.insert(frames.end(), 6, black);
+  frames.insert(frames.end(), s.frames.begin() + 8, s.frames.end());
+  int degradedAfter = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+  {
+    TrackedFrame t = tracker.track(frames[i]);
+    const FrameContourAgreement a = supervisor.judge(frames[i], t);
+    const CheckedTrackedFrame c = supervisor.follow(tracker, t, a);
+    std::printf("input %2zu: %s (%s), %.2f px%s\n", i, toString(t.state), t.reason.c_str(),
+      a.medianErrorPx, c.anchored ? ", anchored" : "");
+    if (i >= 7 + 6 + 1)
+    {
+      EXPECT_FALSE(c.anchored) << i;
+      EXPECT_NE(t.state, TrackingState::Tracking) << i;
+      degradedAfter += t.state == TrackingState::Degraded ? 1 : 0;
+    }
+  }
+  EXPECT_GE(degradedAfter, 5);
+}
+
+} // namespace
+} // namespace vimlop
