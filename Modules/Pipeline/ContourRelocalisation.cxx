@@ -113,8 +113,8 @@ double windowError(const FrameContourCheck& check, const std::vector<Relocalisat
   return summarize(std::move(perFrame)).median;
 }
 
-/// The rigid move that turns the camera at `pose` by `axisAngle` (its own
-/// axes) about its centre, and shifts it by `shift` (its own axes, mm).
+/// The rigid move that turns the camera at `pose` by `turn` (about its own
+/// axes, through its centre), and shifts it by `shift` (its own axes, mm).
 SimilarityTransform moveOfCamera(
   const CameraPose& pose, const Eigen::Vector3d& shift, const Eigen::AngleAxisd& turn)
 {
@@ -172,12 +172,10 @@ RelocalisationResult relocaliseAgainstCT(const FrameContourCheck& check,
     {
       continue;
     }
-    double errorPx = std::numeric_limits<double>::quiet_NaN();
     for (int iteration = 0; iteration < options.iterations; ++iteration)
     {
       PoseUpdateProblem problem;
-      errorPx = windowError(check, window, move, &problem.contours);
-      if (!std::isfinite(errorPx))
+      if (!std::isfinite(windowError(check, window, move, &problem.contours)))
       {
         break;
       }
@@ -194,7 +192,7 @@ RelocalisationResult relocaliseAgainstCT(const FrameContourCheck& check,
       }
       move = next;
     }
-    errorPx = windowError(check, window, move, nullptr);
+    const double errorPx = windowError(check, window, move, nullptr);
     const CameraPose moved = move.apply(current);
     const double mm = cameraPositionError(moved, current);
     const double deg = cameraAngleErrorDeg(moved, current);

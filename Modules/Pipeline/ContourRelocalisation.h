@@ -61,8 +61,9 @@ struct ContourRelocalisationOptions
   /// reached 0.8 px and 0.4 mm.
   int iterations = 15;
   /// A search succeeds when the window's contours lie within this of the
-  /// model's at its best pose, px (default 2: the ideal world's 90th
-  /// percentile within 1 mm of the truth), or within acceptAboveRegistered
+  /// model's at the pose it finds, px (default 2: in the ideal world the
+  /// frames within 0.25 mm of the truth lie at 1.3 px and those 0.25-0.5 mm
+  /// off at 2.2 px, medians on seed 3), or within acceptAboveRegistered
   /// times the registration's error (default 1.5) when that is larger.
   double acceptPx = 2.0;
   double acceptAboveRegistered = 1.5;
@@ -111,8 +112,9 @@ struct RelocalisationResult
  * The starts are the tracked pose and the 12 poses around it: moved by
  * searchMm along each axis of the last frame's camera (forward and back
  * along the airway, sideways), and turned by searchDeg about each. The
- * window's frames keep their poses relative to one another (the tracker's
- * motion is right over a few frames even when its pose has drifted).
+ * window's frames move together, keeping their poses relative to one
+ * another (TrackingSupervisor passes one frame: after a loss the tracker's
+ * relative poses are bent, see ContourRelocalisationOptions::windowFrames).
  *
  * @param window the frames, the last one the current (at least one)
  * @throws vimlop::Error for an empty window or invalid options.
