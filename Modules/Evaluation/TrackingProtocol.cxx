@@ -191,12 +191,12 @@ TrackingProtocolReport runTrackingProtocol(
   // The whole sequence, from the same truth.
   const RegistrationModel truth = makeEmbreeRegistrationModel(world.truth);
   const SimulatedVideo video = simulateEndoscopeVideo(truth, o.simulation, progress);
-  EndoscopeTracker tracker(world.model, video.calibratedIntrinsics, o.tracker);
-  tracker.start(video.frames[static_cast<std::size_t>(report.startFrame)], startPose,
-    c.pipeline->fieldOfViewMask());
-  // Each tracked pose checked against the CT as vimlop track checks it: the
-  // frame undistorted with the intrinsics the user has.
+  // Each frame undistorted once, with the intrinsics the user has, for the
+  // tracker and the check against the CT, as vimlop track does.
   const FrameUndistorter undistorter(video.calibratedIntrinsics);
+  EndoscopeTracker tracker(world.model, undistorter.pinhole(), o.tracker);
+  tracker.start(undistorter.undistort(video.frames[static_cast<std::size_t>(report.startFrame)]),
+    startPose, c.pipeline->fieldOfViewMask());
   const FrameContourCheck contourCheck(
     makeEmbreeRegistrationModel(world.model), undistorter.pinhole(), c.pipeline->fieldOfViewMask());
   TrackingSupervisor supervisor(contourCheck,
@@ -205,15 +205,14 @@ TrackingProtocolReport runTrackingProtocol(
   std::vector<double> latency, position, angle;
   for (int f = report.startFrame + 1; f < o.simulation.frames; ++f)
   {
-    const cv::Mat& frame = video.frames[static_cast<std::size_t>(f)];
-    TrackedFrame t = tracker.track(frame);
-    // The check judges the pose before it is handed on (in its latency), as
-    // vimlop track does; its undistortion is the tracker's own work there.
-    const auto judged = std::chrono::steady_clock::now();
-    const cv::Mat ideal = undistorter.undistort(frame);
+    // The latency runs from the decoded frame to the judged pose, as in
+    // vimlop track: undistortion, tracking and the check against the CT.
+    const auto decoded = std::chrono::steady_clock::now();
+    const cv::Mat ideal = undistorter.undistort(video.frames[static_cast<std::size_t>(f)]);
+    TrackedFrame t = tracker.track(ideal);
     const FrameContourAgreement agreement = supervisor.judge(ideal, t);
-    t.latencyMs +=
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - judged).count();
+    t.latencyMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decoded).count();
     TrackingProtocolFrame r;
     r.frame = f;
     r.state = toString(t.state);
