@@ -102,7 +102,7 @@ int main(int argc, char** argv)
     else if (!std::strcmp(argv[i], "--frames"))
       simulation.frames = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--seed"))
-      simulation.seed = static_cast<unsigned>(std::atoi(argv[i + 1]));
+      simulation.seed = std::strtoull(argv[i + 1], nullptr, 10);
     else if (!std::strcmp(argv[i], "--json"))
       jsonPath = argv[i + 1];
     else if (!std::strcmp(argv[i], "--frame-scale"))
@@ -136,10 +136,10 @@ int main(int argc, char** argv)
       passes.push_back(trackAll(mesh, video, cores, fullSize));
     }
     const double frameMs = 1000.0 / 30.0;
-    std::printf("tracking %zu frames of %d x %d pixels (seed %u, ideal world), mesh of %d "
+    std::printf("tracking %zu frames of %d x %d pixels (seed %llu, ideal world), mesh of %d "
                 "triangles\n",
-      video.frames.size() - 1, video.intrinsics.widthPx, video.intrinsics.heightPx, simulation.seed,
-      mesh.numberOfFaces());
+      video.frames.size() - 1, video.intrinsics.widthPx, video.intrinsics.heightPx,
+      static_cast<unsigned long long>(simulation.seed), mesh.numberOfFaces());
     for (const Pass& p : passes)
     {
       std::printf("  OpenCV on %d thread(s), tracked %d px wide: latency median %.2f ms, p99 "
