@@ -2,14 +2,13 @@
 
 #include "VideoRegistrationPipelineInternals.h"
 #include <vimlop/Core/CanonicalStarts.h>
-#include <vimlop/Core/CoordinateFrames.h>
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Core/Registration.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
-#include <vimlop/Imaging/LinearTransformIO.h>
 #include <vimlop/Imaging/ModelLoading.h>
+#include <vimlop/Pipeline/TrackerRecording.h>
 #include <vimlop/Pipeline/VideoRegistrationData.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
 #include <vimlop/Results/InputIdentity.h>
@@ -410,33 +409,8 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
 {
   Internals& d = *this->Impl;
   // The small files first, so that a bad one fails before the long work.
-  d.Tracker.reset();
-  if (!in.trackerTransform.empty())
-  {
-    const std::string& file = in.trackerPath.empty() ? in.framesPath : in.trackerPath;
-    std::vector<std::string> warnings;
-    d.Tracker = TrackerTrajectory::readTrackedSequence(file, in.trackerTransform, &warnings);
-    for (const std::string& w : warnings)
-    {
-      d.Warn(w);
-    }
-  }
-  else if (!in.trackerPath.empty())
-  {
-    if (FrameSequence::isTrackedSequenceName(in.trackerPath))
-    {
-      throw Error("'" + in.trackerPath +
-        "' is a tracked sequence: name the transform that "
-        "carries the scope (--tracker-transform, e.g. ProbeToTracker)");
-    }
-    std::vector<std::string> warnings;
-    d.Tracker = TrackerTrajectory::readCsv(in.trackerPath, &warnings);
-    for (const std::string& w : warnings)
-    {
-      d.Warn(w);
-    }
-  }
-  else if (!(in.initialScale > 0.0))
+  d.Tracker = readTrackerRecording(in.trackerPath, in.trackerTransform, in.framesPath, d.Warn);
+  if (!d.Tracker && !(in.initialScale > 0.0))
   {
     throw Error("give a tracker recording or an initial scale: SfM alone has no metric scale");
   }
@@ -449,9 +423,7 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
         "a tracker registered to the CT turns the starts only with a tracked sequence's "
         "transform (--tracker-transform): a CSV tracker records positions only");
     }
-    const AffineMatrix4 m = readLinearTransformFile(in.trackerToCTPath);
-    d.TrackerToCT = intoLpsFromSlicerFile(
-      Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(m.data()));
+    d.TrackerToCT = readTrackerToCT(in.trackerToCTPath);
   }
   d.StartPoses.clear();
   if (!in.startPosesPath.empty())
