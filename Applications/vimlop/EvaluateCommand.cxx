@@ -316,6 +316,9 @@ CLI::App* addEvaluateCommand(CLI::App& app)
     ->add_option("--inlier-px", trackingOptions.tracker.inlierThresholdPx,
       "a feature agrees with a pose within this reprojection error, px")
     ->capture_default_str();
+  track->add_flag("--tracker-prior", trackingOptions.trackerPrior,
+    "give the tracker the simulated electromagnetic tracker's tip at each frame (the prediction "
+    "after a lost frame, and frames farther from it than 3 mm degraded)");
   addTrackingRefinementOptions(*track, trackingOptions.refineAgainstCT, trackingOptions.refinement);
   addTrackingRelocalisationOptions(
     *track, trackingOptions.relocalise, trackingOptions.relocalisation);

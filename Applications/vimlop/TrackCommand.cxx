@@ -160,7 +160,23 @@ void addTrackCommand(CLI::App& app)
     "the video's band)");
   addTrackingRefinementOptions(*c, o->tracking.refineAgainstCT, o->tracking.refinement);
   addTrackingRelocalisationOptions(*c, o->tracking.relocalise, o->tracking.relocalisation);
-  c->add_option("--fps", o->tracking.videoFps, "the tracked video's rate, frames per second")
+  c->add_option("--tracker", o->inputs.trackerPath,
+    "the electromagnetic tracker's recording of the scope's tip: a CSV (time_s,x_mm,y_mm,z_mm), "
+    "or a tracked sequence with --tracker-transform; its tip at each frame's time is the "
+    "prediction after a lost frame, and a pose more than 3 mm from it is degraded (needs "
+    "--tracker-to-ct)");
+  c->add_option("--tracker-transform", o->inputs.trackerTransform,
+    "the transform of a tracked sequence that carries the scope, e.g. ProbeToTracker: read from "
+    "--tracker, or from --frames when it is a tracked sequence and --tracker is not given");
+  c->add_option("--tracker-to-ct", o->inputs.trackerToCTPath,
+    "the tracker registered to the patient, as 3D Slicer saves its TrackerToRAS transform (ITK "
+    ".tfm/.h5)");
+  c->add_option("--time-offset", o->inputs.timeOffsetS,
+     "time of the first frame of --frames on the tracker's clock, s")
+    ->capture_default_str();
+  c->add_option("--fps", o->tracking.videoFps,
+     "the frames' rate, frames per second: the tracked video's, and the frames' times on the "
+     "tracker's clock")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
   c->add_flag("--serve", o->serve,

@@ -121,7 +121,8 @@ nlohmann::json TrackingProtocolReport::toJson() const
         { "contour_error_px", this->registrationContourErrorPx },
         { "flagged", !this->registrationFailure.empty() },
         { "failure_reason", this->registrationFailure } } },
-    { "start_frame", this->startFrame }, { "latency_ms", summaryJson(this->latencyMs) },
+    { "start_frame", this->startFrame }, { "tracker_prior", this->trackerPrior },
+    { "latency_ms", summaryJson(this->latencyMs) },
     { "camera_position_mm", summaryJson(this->positionErrorMm) },
     { "camera_angle_deg", summaryJson(this->angleErrorDeg) }, { "drift_mm", this->driftMm },
     { "tracked_fraction", this->trackedFraction }, { "degraded_frames", this->degradedFrames },
@@ -136,10 +137,10 @@ std::vector<std::string> TrackingProtocolReport::summaryLines() const
 {
   return {
     formatText("tracking: %d frames, registered on the first %d (camera %.3f mm, %.1f s%s), "
-               "tracked from frame %d",
+               "tracked from frame %d%s",
       this->frames, this->registrationFrames, this->registrationErrorMm, this->registrationSeconds,
       this->registrationFailure.empty() ? "" : ("; flagged: " + this->registrationFailure).c_str(),
-      this->startFrame),
+      this->startFrame, this->trackerPrior ? ", with the tracker's tip" : ""),
     formatText("tracking: camera %.3f mm mean (p95 %.3f, max %.3f), %.3f deg mean; drift %.3f mm",
       this->positionErrorMm.mean, this->positionErrorMm.p95, this->positionErrorMm.max,
       this->angleErrorDeg.mean, this->driftMm),
@@ -184,6 +185,7 @@ TrackingProtocolReport runTrackingProtocol(
   const auto last = std::max_element(c.frameOf.begin(), c.frameOf.end());
   const std::size_t lastData = static_cast<std::size_t>(last - c.frameOf.begin());
   report.startFrame = *last;
+  report.trackerPrior = o.trackerPrior;
   const CameraPose startPose = registered.sfmToCT.apply(c.data.frames[lastData].cameraToSfm);
   say(formatText("registered %d frames: camera %.3f mm; tracking from frame %d",
     o.registrationFrames, report.registrationErrorMm, report.startFrame));
@@ -209,7 +211,9 @@ TrackingProtocolReport runTrackingProtocol(
     // vimlop track: undistortion, tracking and the check against the CT.
     const auto decoded = std::chrono::steady_clock::now();
     const cv::Mat ideal = undistorter.undistort(video.frames[static_cast<std::size_t>(f)]);
-    TrackedFrame t = tracker.track(ideal);
+    TrackedFrame t = tracker.track(ideal,
+      o.trackerPrior ? video.tracker.positionAt(video.frameTimesS[static_cast<std::size_t>(f)])
+                     : std::nullopt);
     const FrameContourAgreement agreement = supervisor.judge(ideal, t);
     t.latencyMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decoded).count();

@@ -45,6 +45,12 @@ struct TrackingProtocolOptions
   /// above which a frame is Degraded).
   bool relocalise = true;
   ContourRelocalisationOptions relocalisation;
+  /// Give the tracker the simulated electromagnetic tracker's tip at each
+  /// frame's time (EndoscopeTracker::track()'s prior; default off). The
+  /// simulation records it in the CT frame, with trackerNoiseMm per axis
+  /// and the simulation's latency and clock offset: a perfect navigation
+  /// registration of the tracker to the CT.
+  bool trackerPrior = false;
   /// A frame farther than this from the truth is a failure the tracker must
   /// flag (degraded or lost), mm (default 2, issue 16).
   double flagErrorMm = 2.0;
@@ -100,6 +106,9 @@ struct TrackingProtocolReport
   /// points, px): the refinement corrects only windows above it.
   double registrationContourErrorPx = 0.0;
   int startFrame = 0;
+  /// Whether the tracker had the simulated electromagnetic tracker's tip
+  /// (TrackingProtocolOptions::trackerPrior).
+  bool trackerPrior = false;
   /// Over the tracked frames (all after the start frame).
   Summary latencyMs;
   Summary positionErrorMm;

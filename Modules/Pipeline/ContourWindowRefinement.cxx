@@ -38,6 +38,11 @@ void ContourWindowRefinementOptions::validate() const
   {
     refuse("the registration's contour error must not be negative (px)", this->registeredErrorPx);
   }
+  if (!(this->anchorTipDistanceMm > 0.0))
+  {
+    refuse("the anchoring distance from the tracker's tip must be positive (mm)",
+      this->anchorTipDistanceMm);
+  }
   if (!(this->anchorErrorPx >= 0.0))
   {
     refuse("the anchoring contour error must not be negative (px)", this->anchorErrorPx);

@@ -51,6 +51,13 @@ struct ContourWindowRefinementOptions
   /// in the ideal world 0.5 px at the true pose, 2-3 px at 0.25-1 mm from
   /// it), which re-anchors a tracker that was lost.
   double anchorErrorPx = 1.5;
+  /// After a loss longer than the prediction carries the scope, contours
+  /// within anchorErrorPx anchor the tracker only when its pose also lies
+  /// within this distance of the electromagnetic tracker's tip, mm (default
+  /// 1: one frame's contours also fit poses 3 mm off on the bundled CT, and
+  /// the simulated tracker's tip lies 0.35 mm from the truth, root mean
+  /// square).
+  double anchorTipDistanceMm = 1.0;
 
   /// @throws vimlop::Error naming the first value out of range.
   void validate() const;

@@ -79,6 +79,11 @@ void EndoscopeTrackerOptions::validate() const
   {
     refuse("the least incidence cosine must lie in [0, 1)", this->minIncidenceCosine);
   }
+  if (!(this->maxTipDistanceMm > 0.0))
+  {
+    refuse(
+      "the largest distance from the tracker's tip must be positive (mm)", this->maxTipDistanceMm);
+  }
   this->features.validate();
 }
 
@@ -153,10 +158,22 @@ struct EndoscopeTracker::Internals
     }
   }
 
+  /// coast(), centred on the tracker's tip after a lost frame when there is
+  /// one: a lost frame measured no motion to go on with.
+  CameraPose predict(const std::optional<Eigen::Vector3d>& tipCT) const
+  {
+    CameraPose next = this->coast();
+    if (tipCT && this->LostInARow > 0)
+    {
+      next.centre = *tipCT;
+    }
+    return next;
+  }
+
   /// The next pose at constant velocity: the last motion, in the camera's
   /// own frame, applied once more; the last pose itself once the scope has
   /// been lost for maxCoastFrames frames in a row.
-  CameraPose predict() const
+  CameraPose coast() const
   {
     if (this->LostInARow >= this->Options.maxCoastFrames)
     {
@@ -332,7 +349,8 @@ TrackedFrame EndoscopeTracker::start(
   return r;
 }
 
-TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
+TrackedFrame EndoscopeTracker::track(
+  const cv::Mat& frame, const std::optional<Eigen::Vector3d>& tipCT)
 {
   const auto began = std::chrono::steady_clock::now();
   Internals& s = *this->d;
@@ -342,7 +360,11 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
   }
   s.checkSize(frame);
   const cv::Mat ideal = s.prepare(frame);
-  const CameraPose predicted = s.predict();
+  if (tipCT && !tipCT->allFinite())
+  {
+    throw Error("endoscope tracker: the tracker's tip position is not finite");
+  }
+  const CameraPose predicted = s.predict(tipCT);
   TrackedFrame r;
   r.frame = ++s.Frame;
   // Until a pose is found: lost, at the prediction.
@@ -433,15 +455,26 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame)
     r.cameraToCT = pose->cameraToWorld;
     r.inliers = static_cast<int>(pose->inliers.size());
     r.reprojectionErrorPx = pose->rmsErrorPx;
-    r.state = s.Anchored && r.inliers >= s.Options.degradedInlierFraction * r.trackedFeatures
-      ? TrackingState::Tracking
-      : TrackingState::Degraded;
-    if (r.state == TrackingState::Degraded)
+    if (tipCT)
     {
-      r.reason = s.Anchored
-        ? formatText("%d of %d tracked features agree with the pose", r.inliers, r.trackedFeatures)
-        : std::string("its features were cast from a prediction after the tracker was lost");
+      r.tipDistanceMm = (r.cameraToCT.centre - *tipCT).norm();
     }
+    const double tipMm = r.tipDistanceMm.value_or(0.0);
+    if (!s.Anchored)
+    {
+      r.reason = "its features were cast from a prediction after the tracker was lost";
+    }
+    else if (r.inliers < s.Options.degradedInlierFraction * r.trackedFeatures)
+    {
+      r.reason =
+        formatText("%d of %d tracked features agree with the pose", r.inliers, r.trackedFeatures);
+    }
+    else if (tipMm > s.Options.maxTipDistanceMm)
+    {
+      r.reason = formatText("the pose is %.1f mm from the tracker's tip, more than %.1f mm", tipMm,
+        s.Options.maxTipDistanceMm);
+    }
+    r.state = r.reason.empty() ? TrackingState::Tracking : TrackingState::Degraded;
     // Only the features that agree with the pose are worth following.
     std::vector<TrackedFeature> agreeing;
     agreeing.reserve(pose->inliers.size());

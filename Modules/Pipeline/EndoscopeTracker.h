@@ -9,6 +9,7 @@
 #include <opencv2/core/mat.hpp>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace vimlop
@@ -74,6 +75,12 @@ struct EndoscopeTrackerOptions
   /// 1280 x 960 frames 143, at 55 ms a frame (VIMLOPBenchmarkTracking, seed
   /// 1, ideal world). Poses are those of the full frames' camera either way.
   int maxTrackingWidthPx = 480;
+  /// A pose whose optical centre lies farther than this from the
+  /// electromagnetic tracker's tip (track()'s `tipCT`), mm, is Degraded
+  /// (default 3: clinical sinus navigation is off by 0.9 mm on average, so
+  /// a larger disagreement means the video's pose, or the tracker's
+  /// registration, is wrong).
+  double maxTipDistanceMm = 3.0;
   /// Frame-to-frame tracking and corner detection.
   KltFeatureTrackerOptions features;
 
@@ -96,6 +103,9 @@ struct TrackedFrame
   /// False when the features were cast from a prediction after a loss and
   /// no check against the CT has confirmed a pose since (correct()).
   bool anchored = true;
+  /// How far the pose found lies from the electromagnetic tracker's tip,
+  /// mm; none without a tip, or when no pose was found (Lost).
+  std::optional<double> tipDistanceMm;
   /// Wall-clock time of track(), from the frame to the pose and the new features, ms.
   double latencyMs = 0.0;
   /// Why the frame is Degraded or Lost, for people; empty when Tracking.
@@ -110,12 +120,13 @@ struct TrackedFrame
  * feature stands for the point of the registered model surface that its
  * ray hits when it is detected, so the map it tracks against is the CT
  * model itself, seen through the registration. For every new frame it
- *   1. predicts the pose at constant velocity from the last two poses,
+ *   1. predicts the pose at constant velocity from the last two poses (after
+ *      a lost frame, centred on the electromagnetic tracker's tip when given),
  *   2. tracks the features into the frame (KltFeatureTracker),
  *   3. finds the pose from them (resectCamera(): RANSAC from the
  *      prediction, then Levenberg-Marquardt on the inliers),
  *   4. judges it (TrackingState: inliers, their fraction, the jump from
- *      the prediction),
+ *      the prediction, the distance from the tip),
  *   5. drops the outliers and, when few features are left, detects new
  *      corners and casts their rays into the model from the new pose.
  *
@@ -169,9 +180,19 @@ public:
 
   /**
    * @brief The pose of the next frame.
-   * @throws vimlop::Error before start(), or for a frame of another size.
+   * @param tipCT where an electromagnetic tracker puts the scope's tip (its
+   * optical centre) at the frame's time, mm, CT frame (the tracker's
+   * position through the navigation system's tracker-to-CT registration);
+   * none without a tracker. A prior, not a measurement of the pose: after
+   * a lost frame the prediction takes its centre from it rather than from
+   * a motion no longer measured, a pose farther from it than
+   * maxTipDistanceMm is Degraded, and TrackingSupervisor lets a pose near
+   * it be confirmed after a long loss.
+   * @throws vimlop::Error before start(), for a frame of another size, or
+   * for a tip that is not finite.
    */
-  TrackedFrame track(const cv::Mat& frame);
+  TrackedFrame track(
+    const cv::Mat& frame, const std::optional<Eigen::Vector3d>& tipCT = std::nullopt);
 
   /**
    * @brief Moves the last tracked frame's pose to `cameraToCT`, a pose found

@@ -133,8 +133,12 @@ CheckedTrackedFrame TrackingSupervisor::follow(
     return r;
   }
   r.corrected = this->Refinement->add(this->Check.camera(), tracked.cameraToCT, agreement.pairs);
-  r.anchored =
-    !this->LongLoss && agreement.medianErrorPx <= this->Refinement->options().anchorErrorPx;
+  // After a long loss the electromagnetic tracker's tip, when there is one,
+  // tells the poses the contours also fit apart.
+  const ContourWindowRefinementOptions& refinement = this->Refinement->options();
+  const bool nearTip =
+    tracked.tipDistanceMm && *tracked.tipDistanceMm <= refinement.anchorTipDistanceMm;
+  r.anchored = (!this->LongLoss || nearTip) && agreement.medianErrorPx <= refinement.anchorErrorPx;
   if (r.corrected)
   {
     r.correctionMm = cameraPositionError(*r.corrected, tracked.cameraToCT);

@@ -49,12 +49,16 @@ struct CheckedTrackedFrame
  *      features cast from a prediction (the tracker lost its anchor to the
  *      CT) and the contours clearly disagree, a relocalisation against the CT
  *      (relocaliseAgainstCT()) moves the tracker to the pose it finds (the
- *      next frames' contours anchor it when they agree); otherwise the window refinement
- * (ContourWindowRefinement), when on, corrects the small drift and anchors the tracker when the
- *      contours agree (unless it was lost for longer than its prediction
- *      coasts, EndoscopeTrackerOptions::maxCoastFrames: then only a new
- *      start anchors it). Frames that only their contours distrust are flagged,
- *      not searched for (ContourRelocalisationOptions::triggerFrames says why).
+ *      next frames' contours anchor it when they agree); otherwise the
+ *      window refinement (ContourWindowRefinement), when on, corrects the
+ *      small drift and anchors the tracker when the contours agree (unless
+ *      it was lost for longer than its prediction coasts,
+ *      EndoscopeTrackerOptions::maxCoastFrames: then only a pose near the
+ *      electromagnetic tracker's tip, TrackedFrame::tipDistanceMm within
+ *      ContourWindowRefinementOptions::anchorTipDistanceMm, or a new start
+ *      anchors it). Frames that only their contours distrust are flagged,
+ *      not searched for (ContourRelocalisationOptions::triggerFrames says
+ *      why).
  * vimlop track (VideoTracking) and evaluate tracking (TrackingProtocol)
  * both run it. Not thread-safe: one per tracker.
  */

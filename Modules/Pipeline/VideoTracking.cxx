@@ -9,6 +9,7 @@
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Pipeline/FrameContourCheck.h>
 #include <vimlop/Pipeline/TrackedVideoWriter.h>
+#include <vimlop/Pipeline/TrackerRecording.h>
 #include <vimlop/Pipeline/TrackingStart.h>
 #include <vimlop/Pipeline/TrackingSupervisor.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
@@ -58,6 +59,15 @@ struct VideoTracking::Internals
   std::optional<RegistrationModel> model;
   std::unique_ptr<FrameContourCheck> contourCheck;
   std::unique_ptr<TrackingSupervisor> supervisor;
+  /// The electromagnetic tracker's recording and its map into the CT.
+  std::optional<TrackerTrajectory> trackerRecording;
+  Eigen::Matrix4d trackerToCT = Eigen::Matrix4d::Identity();
+  /// The id of the stream's first frame, time timeOffsetS on the tracker's clock.
+  std::optional<int> firstId;
+  /// Frames outside the tracker's recording, tracked without its tip.
+  int framesWithoutTip = 0;
+  /// What reading the recording dropped (rows, glitches).
+  std::vector<std::string> trackerWarnings;
   std::map<int, CameraPose> truth;
   int first = 0;
   int seen = 0;
@@ -66,6 +76,24 @@ struct VideoTracking::Internals
   bool stopRequested = false;
 
   bool stopAsked() const { return this->stopRequest && this->stopRequest(); }
+
+  /// The tracker's tip at frame `id`'s time, in the CT; none without a
+  /// tracker, or outside its recording.
+  std::optional<Eigen::Vector3d> tipAt(int id)
+  {
+    if (!this->trackerRecording)
+    {
+      return std::nullopt;
+    }
+    const std::optional<Eigen::Vector3d> tip = this->trackerRecording->positionAt(
+      this->inputs.timeOffsetS + (id - *this->firstId) / this->options.videoFps);
+    if (!tip)
+    {
+      ++this->framesWithoutTip;
+      return std::nullopt;
+    }
+    return (this->trackerToCT * tip->homogeneous()).head<3>();
+  }
   void writeOutputs(const nlohmann::json& report) const;
 };
 
@@ -132,6 +160,17 @@ void VideoTracking::open(const VideoTrackingInputs& inputs)
   {
     throw Error("give exactly one of a frame path and a camera index");
   }
+  const bool withTracker = !inputs.trackerPath.empty() || !inputs.trackerTransform.empty();
+  if (withTracker && inputs.trackerToCTPath.empty())
+  {
+    throw Error("a tracker's positions are in its own frame: give the tracker registered to the "
+                "CT (--tracker-to-ct) to use them");
+  }
+  if (!withTracker && !inputs.trackerToCTPath.empty())
+  {
+    throwFileError(
+      inputs.trackerToCTPath, "a tracker registered to the CT, but no tracker (--tracker)");
+  }
   auto start = std::make_unique<TrackingStart>(TrackingStart::fromResult(inputs.resultFolder));
   // Tracking carries the registration's error to every frame: a result the
   // registration itself flagged is no start for navigation.
@@ -143,6 +182,14 @@ void VideoTracking::open(const VideoTrackingInputs& inputs)
   // The frames as the registration saw them: undistorted with the lens of
   // the intrinsics file (the one given to `register`), or as they are.
   d->undistorter.emplace(lensOf(inputs.intrinsicsPath, start->intrinsics));
+  // The tracker's small files before the frames.
+  d->trackerWarnings.clear();
+  d->trackerRecording = readTrackerRecording(inputs.trackerPath, inputs.trackerTransform,
+    inputs.framesPath, [&](const std::string& warning) { d->trackerWarnings.push_back(warning); });
+  d->trackerToCT =
+    d->trackerRecording ? readTrackerToCT(inputs.trackerToCTPath) : Eigen::Matrix4d::Identity();
+  d->firstId.reset();
+  d->framesWithoutTip = 0;
   d->stream.emplace(inputs.cameraIndex >= 0 ? FrameStream::openCamera(inputs.cameraIndex)
                                             : FrameStream::open(inputs.framesPath));
   // By default tracking goes on after the frame the registration ended on.
@@ -209,6 +256,10 @@ void VideoTracking::run()
   {
     for (; !(d->stopRequested = d->stopAsked()) && d->stream->next(f); ++d->seen)
     {
+      if (!d->firstId)
+      {
+        d->firstId = f.id;
+      }
       if (f.index < d->first)
       {
         continue;
@@ -227,7 +278,7 @@ void VideoTracking::run()
       TrackedVideoFrame frame;
       frame.frameId = f.id;
       frame.source = f.name;
-      frame.tracked = d->tracker->track(ideal);
+      frame.tracked = d->tracker->track(ideal, d->tipAt(f.id));
       // The check against the CT judges the pose before it is handed on.
       FrameContourAgreement agreement;
       if (d->supervisor)
@@ -417,6 +468,10 @@ nlohmann::json VideoTracking::report() const
       record["contour_points"] = { { "detected", f.contourPointsDetected },
         { "matched", f.contourPointsMatched } };
     }
+    if (t.tipDistanceMm)
+    {
+      record["tip_distance_mm"] = *t.tipDistanceMm;
+    }
     record["latency_ms"] = f.latencyMs;
     if (d->contourCheck)
     {
@@ -453,6 +508,14 @@ nlohmann::json VideoTracking::report() const
     report["contour_error_px"] = { { "median", c.median }, { "p95", c.p95 }, { "max", c.max } };
     const Summary t = summarize(checkMs);
     report["check_ms"] = { { "median", t.median }, { "p99", t.p99 } };
+  }
+  if (d->trackerRecording)
+  {
+    report["tracker"] = {
+      { "recording", d->inputs.trackerPath.empty() ? d->inputs.framesPath : d->inputs.trackerPath },
+      { "tracker_to_ct", d->inputs.trackerToCTPath }, { "frames_without_tip", d->framesWithoutTip },
+      { "warnings", d->trackerWarnings }
+    };
   }
   if (!d->stoppedBy.empty() || d->stopRequested)
   {

@@ -37,6 +37,22 @@ struct VideoTrackingInputs
   /// True camera poses (FramePose JSON): each frame's error is reported
   /// (empty: none).
   std::string truthPath;
+  /// The electromagnetic tracker's recording of the scope's tip: a CSV
+  /// (time_s, x_mm, y_mm, z_mm), or a tracked sequence with
+  /// `trackerTransform` (readTrackerRecording()); empty: none. Its tip at
+  /// each frame's time is the tracker's prior (EndoscopeTracker::track()).
+  std::string trackerPath;
+  /// The transform of a tracked sequence that carries the scope (e.g.
+  /// "ProbeToTracker"), read from `trackerPath`, or from the frames when
+  /// they are that sequence and `trackerPath` is empty.
+  std::string trackerTransform;
+  /// The tracker registered to the patient (3D Slicer's tracker-to-RAS
+  /// transform, an ITK transform file): needed with a tracker, whose
+  /// positions are in its own frame.
+  std::string trackerToCTPath;
+  /// The time of the frames' first frame on the tracker's clock, s; frame
+  /// id i is at timeOffsetS + (i - the first id) / videoFps.
+  double timeOffsetS = 0.0;
   /// Where the outputs go (tracked-poses.json and .vtt, tracking.json,
   /// tracked-video.avi); empty: nothing is written.
   std::string outputFolder;
@@ -55,7 +71,8 @@ struct VideoTrackingOptions
   /// Write tracked-video.avi (default on): each frame with the model's
   /// contours at its tracked pose, under a band with its state.
   bool writeVideo = true;
-  /// The tracked video's rate, frames per second (default 30).
+  /// The frames' rate, frames per second (default 30): the tracked video's,
+  /// and the frame times on the electromagnetic tracker's clock.
   double videoFps = 30.0;
   /// Check every tracked pose against the CT (default on): the frame's
   /// occluding contours matched to the model's at the pose

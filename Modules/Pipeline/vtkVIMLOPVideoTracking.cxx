@@ -27,6 +27,7 @@ vtkVIMLOPVideoTracking::vtkVIMLOPVideoTracking()
   this->MaxFeatures = defaults.maxFeatures;
   this->MaxTrackingWidthPx = defaults.maxTrackingWidthPx;
   this->InlierThresholdPx = defaults.inlierThresholdPx;
+  this->FramesPerSecond = vimlop::VideoTrackingOptions().videoFps;
 }
 
 vtkVIMLOPVideoTracking::~vtkVIMLOPVideoTracking() = default;
@@ -110,6 +111,7 @@ int vtkVIMLOPVideoTracking::RequestData(
   options.checkContours = this->CheckContours;
   options.refineAgainstCT = this->RefineAgainstCT;
   options.relocalise = this->Relocalise;
+  options.videoFps = this->FramesPerSecond;
   auto tracking = std::make_unique<vimlop::VideoTracking>(options);
   tracking->setStopRequest([this] { return this->GetAbortExecute() != 0; });
   tracking->setFrameHandler(
@@ -136,6 +138,10 @@ int vtkVIMLOPVideoTracking::RequestData(
     inputs.cameraIndex = this->CameraIndex;
     inputs.intrinsicsPath = this->IntrinsicsFileName;
     inputs.outputFolder = this->OutputFolder;
+    inputs.trackerPath = this->TrackerFileName;
+    inputs.trackerTransform = this->TrackerTransformName;
+    inputs.trackerToCTPath = this->TrackerToCTFileName;
+    inputs.timeOffsetS = this->TrackerTimeOffset;
     tracking->open(inputs);
     tracking->run();
   }
@@ -179,6 +185,11 @@ void vtkVIMLOPVideoTracking::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FramesPath: " << this->FramesPath << "\n";
   os << indent << "CameraIndex: " << this->CameraIndex << "\n";
   os << indent << "IntrinsicsFileName: " << this->IntrinsicsFileName << "\n";
+  os << indent << "TrackerFileName: " << this->TrackerFileName << "\n";
+  os << indent << "TrackerTransformName: " << this->TrackerTransformName << "\n";
+  os << indent << "TrackerToCTFileName: " << this->TrackerToCTFileName << "\n";
+  os << indent << "TrackerTimeOffset: " << this->TrackerTimeOffset << "\n";
+  os << indent << "FramesPerSecond: " << this->FramesPerSecond << "\n";
   os << indent << "OutputFolder: " << this->OutputFolder << "\n";
   os << indent << "WriteVideo: " << (this->WriteVideo ? "On" : "Off") << "\n";
   os << indent << "FirstFrameIndex: " << this->FirstFrameIndex << "\n";

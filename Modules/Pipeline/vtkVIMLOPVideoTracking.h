@@ -74,6 +74,27 @@ public:
   ///@}
 
   ///@{
+  /// The electromagnetic tracker's recording of the scope's tip (a CSV
+  /// time_s,x_mm,y_mm,z_mm, or a tracked sequence with
+  /// TrackerTransformName) and the tracker registered to the CT (3D
+  /// Slicer's TrackerToRAS transform file), both or neither (default): its
+  /// tip at each frame's time is the tracker's prior
+  /// (vimlop::EndoscopeTracker::track()). Frame id i is at TrackerTimeOffset
+  /// + (i - the first id) / FramesPerSecond on the tracker's clock.
+  vtkSetStdStringFromCharMacro(TrackerFileName);
+  vtkGetCharFromStdStringMacro(TrackerFileName);
+  vtkSetStdStringFromCharMacro(TrackerTransformName);
+  vtkGetCharFromStdStringMacro(TrackerTransformName);
+  vtkSetStdStringFromCharMacro(TrackerToCTFileName);
+  vtkGetCharFromStdStringMacro(TrackerToCTFileName);
+  vtkSetMacro(TrackerTimeOffset, double);
+  vtkGetMacro(TrackerTimeOffset, double);
+  /// The frames' rate (default 30): the tracked video's, and the frame times.
+  vtkSetClampMacro(FramesPerSecond, double, 0.01, 10000.0);
+  vtkGetMacro(FramesPerSecond, double);
+  ///@}
+
+  ///@{
   /// Where tracked-poses.json and .vtt, tracking.json and tracked-video.avi
   /// are written; empty (default): nothing is written.
   vtkSetStdStringFromCharMacro(OutputFolder);
@@ -164,6 +185,11 @@ private:
   int CameraIndex = -1;
   std::string IntrinsicsFileName;
   std::string OutputFolder;
+  std::string TrackerFileName;
+  std::string TrackerTransformName;
+  std::string TrackerToCTFileName;
+  double TrackerTimeOffset = 0.0;
+  double FramesPerSecond;
   bool WriteVideo = true;
   int FirstFrameIndex = -1;
   bool AllowFlagged = false;

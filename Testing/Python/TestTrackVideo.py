@@ -3,8 +3,9 @@
 The inputs are those of the CLI tests vimlop.track.*: a 24-frame simulated
 sequence of the bundled CT (ideal world), its first 12 frames registered
 (track-registered), and `vimlop track`'s own output on the other 12
-(tracked). Checks: the 12 frames are tracked near the truth with the same
-poses as the command line; each pose reaches on_frame as it is computed,
+(tracked), and with the simulation's tracker (tracked-tip). Checks: the 12
+frames are tracked near the truth with the same poses as the command line,
+with and without the tracker; each pose reaches on_frame as it is computed,
 and asking to stop there ends the run after that frame with its outputs
 written; the settings are those of `vimlop track`; bad input raises an error
 that says what is wrong. Exits non-zero on any failure.
@@ -96,6 +97,32 @@ difference = max(numpy.abs(pose - cli_plain[int(i)]).max()
                  for i, pose in zip(unrefined["frame_ids"], unrefined["camera_to_ct"]))
 check(difference < 1e-6, "refine=False, relocalise=False give vimlop track --no-refinement "
       "--no-relocalisation's poses (largest difference %.2g)" % difference)
+
+# With the electromagnetic tracker, the same poses as vimlop track --tracker
+# (tracked-tip, vimlop.track.with-tracker), and a registration of it that is
+# 5 mm off degrades every frame, as on the command line.
+tip = vimlop.track_video(result=registered, frames=frames, intrinsics=intrinsics,
+                         tracker=os.path.join(simulation, "tracker.csv"),
+                         tracker_to_ct="track-tracker-in-lps.tfm")
+cli_tip = poses_of(os.path.join("tracked-tip", "tracked-poses.json"))
+difference = max(numpy.abs(pose - cli_tip[int(i)]).max()
+                 for i, pose in zip(tip["frame_ids"], tip["camera_to_ct"]))
+check(difference < 1e-6 and tip["tracking"] == 12,
+      "tracker= and tracker_to_ct= give vimlop track --tracker's poses (largest difference "
+      "%.2g), all 12 tracking" % difference)
+off = vimlop.track_video(result=registered, frames=frames, intrinsics=intrinsics,
+                         tracker=os.path.join(simulation, "tracker.csv"),
+                         tracker_to_ct="track-tracker-off.tfm")
+check(off["degraded"] == 12, "a tracker registered 5 mm off degrades all 12 frames (%d)"
+      % off["degraded"])
+try:
+    vimlop.track_video(result=registered, frames=frames,
+                       tracker=os.path.join(simulation, "tracker.csv"))
+    check(False, "a tracker without its registration to the CT is refused")
+except vimlop.TrackingError as e:
+    check(str(e) == "a tracker's positions are in its own frame: give the tracker registered to "
+          "the CT (--tracker-to-ct) to use them",
+          "a tracker without its registration to the CT is refused: %s" % e)
 
 # One set of defaults: vimlop track's options and the VTK source's.
 text = subprocess.run([program, "track", "--help"], check=True, capture_output=True,

@@ -59,6 +59,10 @@ TEST(EndoscopeTracker, NamesEachStateAndRefusesOptionsOutOfRange)
   o.minIncidenceCosine = 1.0;
   EXPECT_EQ(refusal(o), "endoscope tracker: the least incidence cosine must lie in [0, 1), not 1");
   o = {};
+  o.maxTipDistanceMm = 0.0;
+  EXPECT_EQ(refusal(o),
+    "endoscope tracker: the largest distance from the tracker's tip must be positive (mm), not 0");
+  o = {};
   o.features.windowPx = 4;
   EXPECT_EQ(
     refusal(o), "feature tracking: the window must be an odd number of pixels, at least 5, not 4");

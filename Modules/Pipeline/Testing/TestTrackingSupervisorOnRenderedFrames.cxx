@@ -211,5 +211,59 @@ TEST(TrackingSupervisor, DoesNotLetContoursAnchorATrackerLostLongerThanItsPredic
   EXPECT_GE(degradedAfter, 5);
 }
 
+/// The first input frame after three black ones (the scope held at frame
+/// 7) at which the supervisor anchors the tracker again, given the
+/// electromagnetic tracker's tip at every frame: the true optical centre
+/// moved `offsetMm` along the camera's x axis. The prediction holds where
+/// the scope was lost (maxCoastFrames 0), so that the loss is a long one,
+/// after which contours alone anchor nothing. -1 when it never anchors.
+int anchoredAfterALongLossWithTheTip(double offsetMm)
+{
+  const fixtures::Sequence& s = fixtures::sequence();
+  const FrameContourCheck check(*s.model, s.intrinsics, cv::Mat());
+  TrackingSupervisor supervisor(check, ContourWindowRefinementOptions(), true, {}, 0.0);
+  EndoscopeTrackerOptions holding;
+  holding.maxCoastFrames = 0;
+  EndoscopeTracker tracker(s.mesh, s.intrinsics, holding);
+  tracker.start(s.frames[0], s.poses[0]);
+  const cv::Mat black = cv::Mat::zeros(s.frames[0].size(), s.frames[0].type());
+  const int blackFrames = 3;
+  std::vector<cv::Mat> frames(s.frames.begin() + 1, s.frames.begin() + 8);
+  std::vector<CameraPose> truth(s.poses.begin() + 1, s.poses.begin() + 8);
+  frames.insert(frames.end(), blackFrames, black);
+  truth.insert(truth.end(), blackFrames, s.poses[7]);
+  frames.insert(frames.end(), s.frames.begin() + 8, s.frames.end());
+  truth.insert(truth.end(), s.poses.begin() + 8, s.poses.end());
+  for (std::size_t i = 0; i < frames.size(); ++i)
+  {
+    const Eigen::Vector3d tip = truth[i].centre + offsetMm * truth[i].rotation.col(0);
+    TrackedFrame t = tracker.track(frames[i], tip);
+    const FrameContourAgreement a = supervisor.judge(frames[i], t);
+    const CheckedTrackedFrame c = supervisor.follow(tracker, t, a);
+    std::printf("input %2zu: %s (%s), %.2f px, %.2f mm from the tip%s\n", i, toString(t.state),
+      t.reason.c_str(), a.medianErrorPx, t.tipDistanceMm.value_or(-1.0),
+      c.anchored ? ", anchored" : "");
+    if (i >= 7 + blackFrames && c.anchored)
+    {
+      EXPECT_LT(cameraPositionError(t.cameraToCT, truth[i]), 0.5) << i;
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+TEST(TrackingSupervisor, LetsContoursAnchorATrackerAfterALongLossWhereTheTrackersTipAgrees)
+{
+  // With the electromagnetic tracker's tip at the true centre, a pose within
+  // 1 mm of it whose contours agree is anchored again after the loss. With
+  // the tip 2 mm off (a poorly registered tracker: near enough not to
+  // degrade the poses, too far to confirm one), the tracker stays
+  // unanchored, as without a tracker.
+  const int withTip = anchoredAfterALongLossWithTheTip(0.0);
+  EXPECT_GE(withTip, 7 + 3);
+  EXPECT_LE(withTip, 7 + 3 + 4);
+  EXPECT_EQ(anchoredAfterALongLossWithTheTip(2.0), -1);
+}
+
 } // namespace
 } // namespace vimlop

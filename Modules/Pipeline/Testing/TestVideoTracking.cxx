@@ -43,6 +43,30 @@ TEST(VideoTracking, NeedsExactlyOneFrameSource)
     "give exactly one of a frame path and a camera index");
 }
 
+TEST(VideoTracking, NeedsTheTrackerAndItsRegistrationToTheCTTogether)
+{
+  // The tracker records its tip in its own frame: without the navigation
+  // system's registration of it to the CT its positions mean nothing here,
+  // and that registration without a tracker is a mistake too. Both are
+  // refused before anything is read.
+  VideoTrackingInputs inputs;
+  inputs.resultFolder = "result";
+  inputs.framesPath = "frames";
+  inputs.trackerPath = "tracker.csv";
+  EXPECT_EQ(fixtures::errorMessageOf([&] { VideoTracking().open(inputs); }),
+    "a tracker's positions are in its own frame: give the tracker registered to the CT "
+    "(--tracker-to-ct) to use them");
+  inputs.trackerPath.clear();
+  inputs.trackerTransform = "ProbeToTracker";
+  EXPECT_EQ(fixtures::errorMessageOf([&] { VideoTracking().open(inputs); }),
+    "a tracker's positions are in its own frame: give the tracker registered to the CT "
+    "(--tracker-to-ct) to use them");
+  inputs.trackerTransform.clear();
+  inputs.trackerToCTPath = "TrackerToRAS.tfm";
+  EXPECT_EQ(fixtures::errorMessageOf([&] { VideoTracking().open(inputs); }),
+    "'TrackerToRAS.tfm': a tracker registered to the CT, but no tracker (--tracker)");
+}
+
 TEST(VideoTracking, RunsOnlyAfterOpeningAndReportsNothingBefore)
 {
   VideoTracking tracking;

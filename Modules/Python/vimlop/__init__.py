@@ -129,7 +129,8 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
 
 def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first_frame=-1,
                 allow_flagged=False, video=True, refine=True, relocalise=True,
-                on_frame=None):
+                tracker=None, tracker_transform=None, tracker_to_ct=None, time_offset=0.0,
+                fps=30.0, on_frame=None):
     """Follows the endoscope frame by frame after a registration: `vimlop track`, same defaults.
 
     result: the result folder of `vimlop register` (or of register_video's
@@ -146,6 +147,12 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     relocalise: search for the pose against the CT after the tracker was
     lost, when the contours disagree with the model (False:
     `--no-relocalisation`).
+    tracker: the electromagnetic tracker's recording of the scope's tip (a
+    CSV, or a tracked sequence with tracker_transform), with tracker_to_ct,
+    the tracker registered to the CT (3D Slicer's TrackerToRAS file): its tip
+    at each frame's time is the prediction after a lost frame, and a pose
+    more than 3 mm from it is degraded (`--tracker`, `--tracker-to-ct`).
+    Frame id i is at time_offset + (i - the first id) / fps on its clock.
     on_frame(frame_id, state, camera_to_ct): called as each pose is
     computed; return True from it to stop after that frame.
 
@@ -174,6 +181,11 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     tracking.SetAllowFlagged(bool(allow_flagged))
     tracking.SetRefineAgainstCT(bool(refine))
     tracking.SetRelocalise(bool(relocalise))
+    tracking.SetTrackerFileName(str(tracker) if tracker is not None else "")
+    tracking.SetTrackerTransformName(str(tracker_transform) if tracker_transform is not None else "")
+    tracking.SetTrackerToCTFileName(str(tracker_to_ct) if tracker_to_ct is not None else "")
+    tracking.SetTrackerTimeOffset(float(time_offset))
+    tracking.SetFramesPerSecond(float(fps))
     if on_frame is not None:
         def on_update(caller, event):
             matrix = caller.GetCameraTransform().GetMatrix()
