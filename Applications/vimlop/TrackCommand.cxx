@@ -95,6 +95,20 @@ void runTrack(const TrackOptions& o)
       summary.json["contour_error_px"]["p95"].get<double>(),
       summary.json["check_ms"]["median"].get<double>()));
   }
+  if (summary.json.contains("tracker"))
+  {
+    const nlohmann::json& tracker = summary.json["tracker"];
+    for (const nlohmann::json& warning : tracker["warnings"])
+    {
+      std::cerr << "vimlop: warning: " << warning.get<std::string>() << "\n";
+    }
+    const int without = tracker["frames_without_tip"].get<int>();
+    summary.lines.push_back(without == 0
+        ? std::string("the tracker's tip was given for every frame")
+        : formatText("%d frames lie outside the tracker's recording and were tracked without "
+                     "its tip (--time-offset, --fps)",
+            without));
+  }
   if (summary.json.contains("camera_position_error_mm"))
   {
     summary.lines.push_back(

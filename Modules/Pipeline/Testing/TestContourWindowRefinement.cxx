@@ -155,6 +155,11 @@ TEST(ContourWindowRefinement, RefusesACorrectionAboveItsBoundsOrWithTooFewPairs)
   bad.windowFrames = 0;
   EXPECT_EQ(fixtures::errorMessageOf([&] { ContourWindowRefinement{ bad }; }),
     "contour refinement: the window needs at least 1 frame, not 0");
+  bad = {};
+  bad.anchorTipDistanceMm = 0.0;
+  EXPECT_EQ(fixtures::errorMessageOf([&] { ContourWindowRefinement{ bad }; }),
+    "contour refinement: the anchoring distance from the tracker's tip must be positive (mm), "
+    "not 0");
 }
 
 } // namespace
