@@ -130,8 +130,9 @@ text = subprocess.run([program, "track", "--help"], check=True, capture_output=T
 source = vimlop.vtkVIMLOPVideoTracking()
 for flag, value in (("--max-features", source.GetMaxFeatures()),
                     ("--max-tracking-width-px", source.GetMaxTrackingWidthPx()),
-                    ("--inlier-px", source.GetInlierThresholdPx())):
-    match = re.search(re.escape(flag) + r" [A-Z]+=([0-9.]+)", text)
+                    ("--inlier-px", source.GetInlierThresholdPx()),
+                    ("--fps", source.GetFramesPerSecond())):
+    match = re.search(re.escape(flag) + r" [A-Z:]+=([0-9.]+)", text)
     check(match is not None and float(match.group(1)) == float(value),
           "%s: vimlop track's default is the VTK source's (%s)" % (flag, value))
 

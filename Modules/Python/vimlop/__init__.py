@@ -130,7 +130,7 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
 def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first_frame=-1,
                 allow_flagged=False, video=True, refine=True, relocalise=True,
                 tracker=None, tracker_transform=None, tracker_to_ct=None, time_offset=0.0,
-                fps=30.0, on_frame=None):
+                fps=None, on_frame=None):
     """Follows the endoscope frame by frame after a registration: `vimlop track`, same defaults.
 
     result: the result folder of `vimlop register` (or of register_video's
@@ -152,7 +152,8 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     the tracker registered to the CT (3D Slicer's TrackerToRAS file): its tip
     at each frame's time is the prediction after a lost frame, and a pose
     more than 3 mm from it is degraded (`--tracker`, `--tracker-to-ct`).
-    Frame id i is at time_offset + (i - the first id) / fps on its clock.
+    Frame id i is at time_offset + (i - the first id) / fps on its clock
+    (fps: the frames' rate, `--fps`; None: vimlop track's default).
     on_frame(frame_id, state, camera_to_ct): called as each pose is
     computed; return True from it to stop after that frame.
 
@@ -185,7 +186,8 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     tracking.SetTrackerTransformName(str(tracker_transform) if tracker_transform is not None else "")
     tracking.SetTrackerToCTFileName(str(tracker_to_ct) if tracker_to_ct is not None else "")
     tracking.SetTrackerTimeOffset(float(time_offset))
-    tracking.SetFramesPerSecond(float(fps))
+    if fps is not None:
+        tracking.SetFramesPerSecond(float(fps))
     if on_frame is not None:
         def on_update(caller, event):
             matrix = caller.GetCameraTransform().GetMatrix()
