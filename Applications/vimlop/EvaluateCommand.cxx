@@ -318,7 +318,8 @@ CLI::App* addEvaluateCommand(CLI::App& app)
     ->capture_default_str();
   track->add_flag("--tracker-prior", trackingOptions.trackerPrior,
     "give the tracker the simulated electromagnetic tracker's tip at each frame (the prediction "
-    "after a lost frame, and frames farther from it than 3 mm degraded)");
+    "after a lost frame, and frames farther from it than 3 mm degraded); with --tracker-rotation, "
+    "its rotation too (frames turned from it by more than 5 degrees degraded)");
   addTrackingRefinementOptions(*track, trackingOptions.refineAgainstCT, trackingOptions.refinement);
   addTrackingRelocalisationOptions(
     *track, trackingOptions.relocalise, trackingOptions.relocalisation);

@@ -129,6 +129,12 @@ void addSimulationOptions(CLI::App& c, EndoscopeSimulationOptions& s)
   c.add_option(
      "--tracker-offset-s", s.trackerClockOffsetS, "tracker clock minus video clock, seconds")
     ->capture_default_str();
+  c.add_flag("--tracker-rotation", s.trackerRotation,
+    "the tracker is a 6-DOF sensor: it records the camera's rotation too (tracker.csv's qw, qx, "
+    "qy, qz columns)");
+  c.add_option("--tracker-rotation-noise-deg", s.trackerRotationNoiseDeg,
+     "the 6-DOF tracker's rotation noise, degrees per axis")
+    ->capture_default_str();
   // The video artifacts: no range checks here, so that validate() names the
   // bad value in one message for the library and the command line alike.
   VideoArtifactOptions& a = s.artifacts;

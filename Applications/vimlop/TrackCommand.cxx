@@ -175,10 +175,11 @@ void addTrackCommand(CLI::App& app)
   addTrackingRefinementOptions(*c, o->tracking.refineAgainstCT, o->tracking.refinement);
   addTrackingRelocalisationOptions(*c, o->tracking.relocalise, o->tracking.relocalisation);
   c->add_option("--tracker", o->inputs.trackerPath,
-    "the electromagnetic tracker's recording of the scope's tip: a CSV (time_s,x_mm,y_mm,z_mm), "
-    "or a tracked sequence with --tracker-transform; its tip at each frame's time is the "
-    "prediction after a lost frame, and a pose more than 3 mm from it is degraded (needs "
-    "--tracker-to-ct)");
+    "the electromagnetic tracker's recording of the scope's tip: a CSV (time_s,x_mm,y_mm,z_mm, "
+    "with qw,qx,qy,qz for a 6-DOF sensor), or a tracked sequence with --tracker-transform; its "
+    "tip (and a 6-DOF sensor's rotation) at each frame's time is the prediction after a lost "
+    "frame, and a pose more than 3 mm from it (or turned more than 5 degrees) is degraded "
+    "(needs --tracker-to-ct)");
   c->add_option("--tracker-transform", o->inputs.trackerTransform,
     "the transform of a tracked sequence that carries the scope, e.g. ProbeToTracker: read from "
     "--tracker, or from --frames when it is a tracked sequence and --tracker is not given");

@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
+#include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/LensDistortionRendering.h>
 #include <vimlop/Rendering/MucosaTexture.h>
@@ -10,6 +11,7 @@
 
 #include <vtkNew.h>
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -104,6 +106,11 @@ void EndoscopeSimulationOptions::validate() const
   {
     throw Error("the tracker latency must be a finite number >= 0 s, not " +
       formatText("%g", this->trackerLatencyS));
+  }
+  if (!(this->trackerRotationNoiseDeg >= 0.0 && std::isfinite(this->trackerRotationNoiseDeg)))
+  {
+    throw Error("the tracker's rotation noise must be a finite number >= 0 degrees, not " +
+      formatText("%g", this->trackerRotationNoiseDeg));
   }
   if (!std::isfinite(this->trackerClockOffsetS))
   {
@@ -279,6 +286,10 @@ TrackerTrajectory simulateTrackerRecording(
   const int frames = static_cast<int>(camerasCT.size());
   std::mt19937_64 rng(o.seed * 7919ull + 17ull);
   std::normal_distribution<double> noise(0.0, o.trackerNoiseMm);
+  // Drawn from a generator of its own, so that a position-only recording is
+  // the same with the rotation on.
+  std::mt19937_64 turnRng(o.seed * 7919ull + 29ull);
+  std::normal_distribution<double> unitNoise(0.0, 1.0);
   std::vector<TrackerTrajectory::Sample> samples;
   const double start = -o.trackerMarginS;
   const double end = (frames - 1) / o.framesPerSecond + o.trackerMarginS;
@@ -292,6 +303,15 @@ TrackerTrajectory simulateTrackerRecording(
     const double w = frame - a;
     const Eigen::Vector3d tip = (1.0 - w) * camerasCT[a].centre + w * camerasCT[a + 1].centre;
     samples.push_back({ t, tip + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)) });
+    if (o.trackerRotation)
+    {
+      const double turn = std::clamp(w, 0.0, 1.0);
+      const Eigen::Quaterniond q = Eigen::Quaterniond(camerasCT[a].rotation)
+                                     .slerp(turn, Eigen::Quaterniond(camerasCT[a + 1].rotation));
+      const Eigen::Vector3d errorDeg = o.trackerRotationNoiseDeg *
+        Eigen::Vector3d(unitNoise(turnRng), unitNoise(turnRng), unitNoise(turnRng));
+      samples.back().rotation = rotationFromVector(errorDeg * M_PI / 180.0) * q.toRotationMatrix();
+    }
   }
   return TrackerTrajectory(samples);
 }

@@ -84,6 +84,17 @@ struct EndoscopeSimulationOptions
   double trackerRateHz = 40.0;
   double trackerNoiseMm = 0.2;
   double trackerMarginS = 0.3;
+  /// The simulated tracker is a 6-DOF sensor: it records the camera's
+  /// rotation too, as the sensor's (default off: positions only, as a 5-DOF
+  /// sensor's position or a CSV of tips). The sensor is taken to be
+  /// calibrated to the camera exactly (no hand-eye error).
+  bool trackerRotation = false;
+  /// Its rotation noise: each sample turned about a random axis by an angle
+  /// whose components are Gaussian with this std per axis, degrees (default
+  /// 0.3: an estimate, 6-DOF electromagnetic sensors are specified at a few
+  /// tenths of a degree RMS in a clean field, Documentation/Simulation.md).
+  /// At least 0.
+  double trackerRotationNoiseDeg = 0.3;
   /// Tracker latency, s: each sample reports where the tip was this long
   /// before its time stamp (default 0; electromagnetic trackers: tens of ms,
   /// Documentation/Simulation.md). At least 0.
@@ -170,7 +181,10 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
  * the last, stamped on the tracker's clock, each the tip where it was at
  * video time (stamp - trackerClockOffsetS - trackerLatencyS), linear between
  * frames and extrapolated at constant velocity beyond them, plus Gaussian
- * noise of trackerNoiseMm per axis (seeded from `seed`).
+ * noise of trackerNoiseMm per axis (seeded from `seed`). With
+ * trackerRotation, each sample has the camera's rotation at that time too
+ * (interpolated along the shorter arc between frames, held beyond them),
+ * turned by a random rotation vector with trackerRotationNoiseDeg per axis.
  */
 TrackerTrajectory simulateTrackerRecording(
   const std::vector<CameraPose>& camerasCT, const EndoscopeSimulationOptions& options);

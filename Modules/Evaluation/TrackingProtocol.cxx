@@ -8,6 +8,7 @@
 #include <vimlop/Evaluation/SimulatedVideoCase.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Pipeline/FrameContourCheck.h>
+#include <vimlop/Pipeline/TrackerRecording.h>
 #include <vimlop/Pipeline/TrackingSupervisor.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
@@ -122,7 +123,7 @@ nlohmann::json TrackingProtocolReport::toJson() const
         { "flagged", !this->registrationFailure.empty() },
         { "failure_reason", this->registrationFailure } } },
     { "start_frame", this->startFrame }, { "tracker_prior", this->trackerPrior },
-    { "latency_ms", summaryJson(this->latencyMs) },
+    { "tracker_rotation", this->trackerRotation }, { "latency_ms", summaryJson(this->latencyMs) },
     { "camera_position_mm", summaryJson(this->positionErrorMm) },
     { "camera_angle_deg", summaryJson(this->angleErrorDeg) }, { "drift_mm", this->driftMm },
     { "tracked_fraction", this->trackedFraction }, { "degraded_frames", this->degradedFrames },
@@ -140,7 +141,10 @@ std::vector<std::string> TrackingProtocolReport::summaryLines() const
                "tracked from frame %d%s",
       this->frames, this->registrationFrames, this->registrationErrorMm, this->registrationSeconds,
       this->registrationFailure.empty() ? "" : ("; flagged: " + this->registrationFailure).c_str(),
-      this->startFrame, this->trackerPrior ? ", with the tracker's tip" : ""),
+      this->startFrame,
+      this->trackerPrior ? (this->trackerRotation ? ", with the tracker's tip and rotation"
+                                                  : ", with the tracker's tip")
+                         : ""),
     formatText("tracking: camera %.3f mm mean (p95 %.3f, max %.3f), %.3f deg mean; drift %.3f mm",
       this->positionErrorMm.mean, this->positionErrorMm.p95, this->positionErrorMm.max,
       this->angleErrorDeg.mean, this->driftMm),
@@ -186,6 +190,7 @@ TrackingProtocolReport runTrackingProtocol(
   const std::size_t lastData = static_cast<std::size_t>(last - c.frameOf.begin());
   report.startFrame = *last;
   report.trackerPrior = o.trackerPrior;
+  report.trackerRotation = o.trackerPrior && o.simulation.trackerRotation;
   const CameraPose startPose = registered.sfmToCT.apply(c.data.frames[lastData].cameraToSfm);
   say(formatText("registered %d frames: camera %.3f mm; tracking from frame %d",
     o.registrationFrames, report.registrationErrorMm, report.startFrame));
@@ -211,8 +216,10 @@ TrackingProtocolReport runTrackingProtocol(
     // vimlop track: undistortion, tracking and the check against the CT.
     const auto decoded = std::chrono::steady_clock::now();
     const cv::Mat ideal = undistorter.undistort(video.frames[static_cast<std::size_t>(f)]);
+    // The simulated tracker records in the CT frame.
     TrackedFrame t = tracker.track(ideal,
-      o.trackerPrior ? video.tracker.positionAt(video.frameTimesS[static_cast<std::size_t>(f)])
+      o.trackerPrior ? trackerPriorAt(video.tracker, Eigen::Matrix4d::Identity(),
+                         video.frameTimesS[static_cast<std::size_t>(f)])
                      : std::nullopt);
     const FrameContourAgreement agreement = supervisor.judge(ideal, t);
     t.latencyMs =

@@ -49,7 +49,8 @@ struct TrackingProtocolOptions
   /// frame's time (EndoscopeTracker::track()'s prior; default off). The
   /// simulation records it in the CT frame, with trackerNoiseMm per axis
   /// and the simulation's latency and clock offset: a perfect navigation
-  /// registration of the tracker to the CT.
+  /// registration of the tracker to the CT. With the simulation's
+  /// trackerRotation, the tracker's rotation too (a 6-DOF sensor).
   bool trackerPrior = false;
   /// A frame farther than this from the truth is a failure the tracker must
   /// flag (degraded or lost), mm (default 2, issue 16).
@@ -107,8 +108,9 @@ struct TrackingProtocolReport
   double registrationContourErrorPx = 0.0;
   int startFrame = 0;
   /// Whether the tracker had the simulated electromagnetic tracker's tip
-  /// (TrackingProtocolOptions::trackerPrior).
+  /// (TrackingProtocolOptions::trackerPrior), and its rotation.
   bool trackerPrior = false;
+  bool trackerRotation = false;
   /// Over the tracked frames (all after the start frame).
   Summary latencyMs;
   Summary positionErrorMm;

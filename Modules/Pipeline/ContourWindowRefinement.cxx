@@ -43,6 +43,11 @@ void ContourWindowRefinementOptions::validate() const
     refuse("the anchoring distance from the tracker's tip must be positive (mm)",
       this->anchorTipDistanceMm);
   }
+  if (!(this->anchorTrackerTurnDeg > 0.0))
+  {
+    refuse("the anchoring turn from the tracker's rotation must be positive (degrees)",
+      this->anchorTrackerTurnDeg);
+  }
   if (!(this->anchorErrorPx >= 0.0))
   {
     refuse("the anchoring contour error must not be negative (px)", this->anchorErrorPx);

@@ -58,6 +58,12 @@ struct ContourWindowRefinementOptions
   /// the simulated tracker's tip lies 0.35 mm from the truth, root mean
   /// square).
   double anchorTipDistanceMm = 1.0;
+  /// With a 6-DOF tracker, its rotation must agree too: the pose turned
+  /// from it by at most this, degrees (default 2: the simulated sensor's
+  /// rotation lies 0.5 degrees from the truth on average, a real one's
+  /// calibration to the camera adds a degree or so, and poses the contours
+  /// also fit are turned by several degrees).
+  double anchorTrackerTurnDeg = 2.0;
 
   /// @throws vimlop::Error naming the first value out of range.
   void validate() const;

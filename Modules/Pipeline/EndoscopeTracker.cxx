@@ -84,6 +84,11 @@ void EndoscopeTrackerOptions::validate() const
     refuse(
       "the largest distance from the tracker's tip must be positive (mm)", this->maxTipDistanceMm);
   }
+  if (!(this->maxTrackerTurnDeg > 0.0))
+  {
+    refuse("the largest turn from the tracker's rotation must be positive (degrees)",
+      this->maxTrackerTurnDeg);
+  }
   this->features.validate();
 }
 
@@ -158,14 +163,16 @@ struct EndoscopeTracker::Internals
     }
   }
 
-  /// coast(), centred on the tracker's tip after a lost frame when there is
-  /// one: a lost frame measured no motion to go on with.
-  CameraPose predict(const std::optional<Eigen::Vector3d>& tipCT) const
+  /// coast(), after a lost frame centred on the tracker's tip and turned as
+  /// a 6-DOF tracker says when there is one: a lost frame measured no
+  /// motion to go on with.
+  CameraPose predict(const std::optional<TrackerPrior>& prior) const
   {
     CameraPose next = this->coast();
-    if (tipCT && this->LostInARow > 0)
+    if (prior && this->LostInARow > 0)
     {
-      next.centre = *tipCT;
+      next.centre = prior->tipCT;
+      next.rotation = prior->rotationCT.value_or(next.rotation);
     }
     return next;
   }
@@ -349,8 +356,7 @@ TrackedFrame EndoscopeTracker::start(
   return r;
 }
 
-TrackedFrame EndoscopeTracker::track(
-  const cv::Mat& frame, const std::optional<Eigen::Vector3d>& tipCT)
+TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<TrackerPrior>& prior)
 {
   const auto began = std::chrono::steady_clock::now();
   Internals& s = *this->d;
@@ -360,11 +366,15 @@ TrackedFrame EndoscopeTracker::track(
   }
   s.checkSize(frame);
   const cv::Mat ideal = s.prepare(frame);
-  if (tipCT && !tipCT->allFinite())
+  if (prior && !prior->tipCT.allFinite())
   {
     throw Error("endoscope tracker: the tracker's tip position is not finite");
   }
-  const CameraPose predicted = s.predict(tipCT);
+  if (prior && prior->rotationCT && !isRotation(*prior->rotationCT, 1e-6))
+  {
+    throw Error("endoscope tracker: the tracker's rotation is not a rotation matrix");
+  }
+  const CameraPose predicted = s.predict(prior);
   TrackedFrame r;
   r.frame = ++s.Frame;
   // Until a pose is found: lost, at the prediction.
@@ -455,11 +465,17 @@ TrackedFrame EndoscopeTracker::track(
     r.cameraToCT = pose->cameraToWorld;
     r.inliers = static_cast<int>(pose->inliers.size());
     r.reprojectionErrorPx = pose->rmsErrorPx;
-    if (tipCT)
+    if (prior)
     {
-      r.tipDistanceMm = (r.cameraToCT.centre - *tipCT).norm();
+      r.tipDistanceMm = (r.cameraToCT.centre - prior->tipCT).norm();
+    }
+    if (prior && prior->rotationCT)
+    {
+      r.trackerTurnDeg =
+        rotationAngleBetween(*prior->rotationCT, r.cameraToCT.rotation) * 180.0 / M_PI;
     }
     const double tipMm = r.tipDistanceMm.value_or(0.0);
+    const double trackerTurnDeg = r.trackerTurnDeg.value_or(0.0);
     if (!s.Anchored)
     {
       r.reason = "its features were cast from a prediction after the tracker was lost";
@@ -473,6 +489,12 @@ TrackedFrame EndoscopeTracker::track(
     {
       r.reason = formatText("the pose is %.1f mm from the tracker's tip, more than %.1f mm", tipMm,
         s.Options.maxTipDistanceMm);
+    }
+    else if (trackerTurnDeg > s.Options.maxTrackerTurnDeg)
+    {
+      r.reason =
+        formatText("the pose is turned %.1f degrees from the tracker's, more than %.1f degrees",
+          trackerTurnDeg, s.Options.maxTrackerTurnDeg);
     }
     r.state = r.reason.empty() ? TrackingState::Tracking : TrackingState::Degraded;
     // Only the features that agree with the pose are worth following.

@@ -4,6 +4,7 @@
 #include <vimlop/Core/CameraPose.h>
 #include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Pipeline/TrackerPrior.h>
 #include <vimlop/Video/KltFeatureTracker.h>
 
 #include <opencv2/core/mat.hpp>
@@ -81,6 +82,12 @@ struct EndoscopeTrackerOptions
   /// a larger disagreement means the video's pose, or the tracker's
   /// registration, is wrong).
   double maxTipDistanceMm = 3.0;
+  /// A pose turned by more than this from a 6-DOF tracker's rotation
+  /// (TrackerPrior::rotationCT), degrees, is Degraded (default 5: a 6-DOF
+  /// sensor's orientation is good to a few tenths of a degree, its
+  /// calibration to the camera to a degree or two, so a larger disagreement
+  /// means a wrong pose or a slipped sensor).
+  double maxTrackerTurnDeg = 5.0;
   /// Frame-to-frame tracking and corner detection.
   KltFeatureTrackerOptions features;
 
@@ -106,6 +113,9 @@ struct TrackedFrame
   /// How far the pose found lies from the electromagnetic tracker's tip,
   /// mm; none without a tip, or when no pose was found (Lost).
   std::optional<double> tipDistanceMm;
+  /// The angle between the pose found and a 6-DOF tracker's rotation,
+  /// degrees; none without one, or when no pose was found (Lost).
+  std::optional<double> trackerTurnDeg;
   /// Wall-clock time of track(), from the frame to the pose and the new features, ms.
   double latencyMs = 0.0;
   /// Why the frame is Degraded or Lost, for people; empty when Tracking.
@@ -121,12 +131,14 @@ struct TrackedFrame
  * ray hits when it is detected, so the map it tracks against is the CT
  * model itself, seen through the registration. For every new frame it
  *   1. predicts the pose at constant velocity from the last two poses (after
- *      a lost frame, centred on the electromagnetic tracker's tip when given),
+ *      a lost frame, centred on the electromagnetic tracker's tip when given,
+ *      and turned as a 6-DOF tracker says),
  *   2. tracks the features into the frame (KltFeatureTracker),
  *   3. finds the pose from them (resectCamera(): RANSAC from the
  *      prediction, then Levenberg-Marquardt on the inliers),
  *   4. judges it (TrackingState: inliers, their fraction, the jump from
- *      the prediction, the distance from the tip),
+ *      the prediction, the distance from the tip, the turn from a 6-DOF
+ *      tracker's rotation),
  *   5. drops the outliers and, when few features are left, detects new
  *      corners and casts their rays into the model from the new pose.
  *
@@ -180,19 +192,18 @@ public:
 
   /**
    * @brief The pose of the next frame.
-   * @param tipCT where an electromagnetic tracker puts the scope's tip (its
-   * optical centre) at the frame's time, mm, CT frame (the tracker's
-   * position through the navigation system's tracker-to-CT registration);
-   * none without a tracker. A prior, not a measurement of the pose: after
-   * a lost frame the prediction takes its centre from it rather than from
-   * a motion no longer measured, a pose farther from it than
-   * maxTipDistanceMm is Degraded, and TrackingSupervisor lets a pose near
-   * it be confirmed after a long loss.
+   * @param prior what an electromagnetic tracker says of the camera at the
+   * frame's time; none without a tracker. After a lost frame the
+   * prediction takes its centre from the tip, and its rotation from a
+   * 6-DOF tracker's, rather than from a motion no longer measured; a pose
+   * farther from the tip than maxTipDistanceMm, or turned from the
+   * tracker's rotation by more than maxTrackerTurnDeg, is Degraded; and
+   * TrackingSupervisor lets a pose that agrees with it be confirmed after a
+   * long loss.
    * @throws vimlop::Error before start(), for a frame of another size, or
-   * for a tip that is not finite.
+   * for a tip that is not finite or a rotation that is not one.
    */
-  TrackedFrame track(
-    const cv::Mat& frame, const std::optional<Eigen::Vector3d>& tipCT = std::nullopt);
+  TrackedFrame track(const cv::Mat& frame, const std::optional<TrackerPrior>& prior = std::nullopt);
 
   /**
    * @brief Moves the last tracked frame's pose to `cameraToCT`, a pose found

@@ -2,9 +2,11 @@
 
 #include <vimlop/Core/CoordinateFrames.h>
 #include <vimlop/Core/Error.h>
+#include <vimlop/Core/Rotation.h>
 #include <vimlop/Imaging/LinearTransformIO.h>
 #include <vimlop/Video/FrameSequence.h>
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include <vector>
@@ -45,6 +47,22 @@ Eigen::Matrix4d readTrackerToCT(const std::string& path)
   const AffineMatrix4 m = readLinearTransformFile(path);
   return intoLpsFromSlicerFile(
     Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(m.data()));
+}
+
+std::optional<TrackerPrior> trackerPriorAt(
+  const TrackerTrajectory& recording, const Eigen::Matrix4d& trackerToCT, double timeS)
+{
+  const std::optional<Eigen::Vector3d> tip = recording.positionAt(timeS);
+  if (!tip)
+  {
+    return std::nullopt;
+  }
+  TrackerPrior prior((trackerToCT * tip->homogeneous()).head<3>());
+  if (const std::optional<Eigen::Matrix4d> sensor = recording.poseAt(timeS))
+  {
+    prior.rotationCT = nearestRotation((trackerToCT * *sensor).topLeftCorner<3, 3>().eval());
+  }
+  return prior;
 }
 
 } // namespace vimlop

@@ -1,6 +1,7 @@
 #ifndef vimlop_TrackerRecording_h
 #define vimlop_TrackerRecording_h
 
+#include <vimlop/Pipeline/TrackerPrior.h>
 #include <vimlop/Video/TrackerTrajectory.h>
 
 #include <Eigen/Core>
@@ -32,6 +33,16 @@ std::optional<TrackerTrajectory> readTrackerRecording(const std::string& tracker
  * @throws vimlop::Error naming the file when it cannot be read.
  */
 Eigen::Matrix4d readTrackerToCT(const std::string& path);
+
+/**
+ * @brief What `recording` says of the camera at `timeS` (its clock), carried
+ * into the CT by `trackerToCT`: the tip, and the camera's rotation when the
+ * recording has the sensor's (the nearest rotation to the registration's
+ * linear part times the sensor's: a registration with scale or shear turns
+ * no camera into a non-rotation); none outside the recording.
+ */
+std::optional<TrackerPrior> trackerPriorAt(
+  const TrackerTrajectory& recording, const Eigen::Matrix4d& trackerToCT, double timeS);
 
 } // namespace vimlop
 

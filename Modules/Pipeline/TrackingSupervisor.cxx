@@ -133,12 +133,15 @@ CheckedTrackedFrame TrackingSupervisor::follow(
     return r;
   }
   r.corrected = this->Refinement->add(this->Check.camera(), tracked.cameraToCT, agreement.pairs);
-  // After a long loss the electromagnetic tracker's tip, when there is one,
-  // tells the poses the contours also fit apart.
+  // After a long loss the electromagnetic tracker, when there is one, tells
+  // the poses the contours also fit apart: by its tip, and by its rotation
+  // when it has one.
   const ContourWindowRefinementOptions& refinement = this->Refinement->options();
-  const bool nearTip =
-    tracked.tipDistanceMm && *tracked.tipDistanceMm <= refinement.anchorTipDistanceMm;
-  r.anchored = (!this->LongLoss || nearTip) && agreement.medianErrorPx <= refinement.anchorErrorPx;
+  const bool asTracked = tracked.tipDistanceMm &&
+    *tracked.tipDistanceMm <= refinement.anchorTipDistanceMm &&
+    tracked.trackerTurnDeg.value_or(0.0) <= refinement.anchorTrackerTurnDeg;
+  r.anchored =
+    (!this->LongLoss || asTracked) && agreement.medianErrorPx <= refinement.anchorErrorPx;
   if (r.corrected)
   {
     r.correctionMm = cameraPositionError(*r.corrected, tracked.cameraToCT);

@@ -55,12 +55,12 @@ struct CheckedTrackedFrame
  *      it was lost for longer than its prediction coasts,
  *      EndoscopeTrackerOptions::maxCoastFrames: then only a pose near the
  *      electromagnetic tracker's tip, TrackedFrame::tipDistanceMm within
- *      ContourWindowRefinementOptions::anchorTipDistanceMm, or a new start
- *      anchors it). Frames that only their contours distrust are flagged,
- *      not searched for (ContourRelocalisationOptions::triggerFrames says
- *      why).
- * vimlop track (VideoTracking) and evaluate tracking (TrackingProtocol)
- * both run it. Not thread-safe: one per tracker.
+ *      ContourWindowRefinementOptions::anchorTipDistanceMm, and turned as a
+ *      6-DOF tracker says, TrackedFrame::trackerTurnDeg within
+ *      anchorTrackerTurnDeg, or a new start anchors it). Frames that only their contours distrust
+ * are flagged, not searched for (ContourRelocalisationOptions::triggerFrames says why). vimlop
+ * track (VideoTracking) and evaluate tracking (TrackingProtocol) both run it. Not thread-safe: one
+ * per tracker.
  */
 class TrackingSupervisor
 {

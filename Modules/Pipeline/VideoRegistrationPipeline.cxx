@@ -5,6 +5,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
 #include <vimlop/Core/Registration.h>
+#include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Imaging/ModelLoading.h>
@@ -214,10 +215,8 @@ std::vector<CameraPose> VideoRegistrationPipeline::Internals::turnedAsTracked(
   }
   const Eigen::Matrix4d cameraToCT = *this->TrackerToCT * *sensor;
   // A registration with scale or shear is not a rotation: its nearest one.
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(
-    cameraToCT.topLeftCorner<3, 3>(), Eigen::ComputeFullU | Eigen::ComputeFullV);
   CameraPose tracked;
-  tracked.rotation = svd.matrixU() * svd.matrixV().transpose();
+  tracked.rotation = nearestRotation(cameraToCT.topLeftCorner<3, 3>().eval());
   tracked.centre = cameraToCT.topRightCorner<3, 1>();
   std::vector<CameraPose> poses = vimlop::turnedAsTracked(canonical, tracked);
   const bool inside = this->Model->isInside(tracked.centre);

@@ -17,6 +17,7 @@
 #include <vimlop/Video/FrameStream.h>
 #include <vimlop/Video/FrameUndistorter.h>
 #include <vimlop/Video/IntrinsicsIO.h>
+#include <vimlop/Video/VideoInput.h>
 
 #include <chrono>
 #include <cmath>
@@ -60,8 +61,12 @@ struct VideoTracking::Internals
   std::unique_ptr<FrameContourCheck> contourCheck;
   std::unique_ptr<TrackingSupervisor> supervisor;
   /// The electromagnetic tracker's recording and its map into the CT.
-  std::optional<TrackerTrajectory> trackerRecording;
-  Eigen::Matrix4d trackerToCT = Eigen::Matrix4d::Identity();
+  struct RegisteredTracker
+  {
+    TrackerTrajectory recording;
+    Eigen::Matrix4d toCT;
+  };
+  std::optional<RegisteredTracker> emTracker;
   /// The id of the stream's first frame, time timeOffsetS on the tracker's clock.
   std::optional<int> firstId;
   /// Frames outside the tracker's recording, tracked without its tip.
@@ -77,22 +82,21 @@ struct VideoTracking::Internals
 
   bool stopAsked() const { return this->stopRequest && this->stopRequest(); }
 
-  /// The tracker's tip at frame `id`'s time, in the CT; none without a
-  /// tracker, or outside its recording.
-  std::optional<Eigen::Vector3d> tipAt(int id)
+  /// What the tracker says at frame `id`'s time, in the CT: its tip, and
+  /// the camera's rotation when the recording has the sensor's; none
+  /// without a tracker, or outside its recording.
+  std::optional<TrackerPrior> priorAt(int id)
   {
-    if (!this->trackerRecording)
+    if (!this->emTracker)
     {
       return std::nullopt;
     }
-    const std::optional<Eigen::Vector3d> tip = this->trackerRecording->positionAt(
-      this->inputs.timeOffsetS + (id - *this->firstId) / this->options.videoFps);
-    if (!tip)
-    {
-      ++this->framesWithoutTip;
-      return std::nullopt;
-    }
-    return (this->trackerToCT * tip->homogeneous()).head<3>();
+    const double timeS =
+      frameTimeS(id, *this->firstId, this->options.videoFps, this->inputs.timeOffsetS);
+    std::optional<TrackerPrior> prior =
+      trackerPriorAt(this->emTracker->recording, this->emTracker->toCT, timeS);
+    this->framesWithoutTip += prior ? 0 : 1;
+    return prior;
   }
   void writeOutputs(const nlohmann::json& report) const;
 };
@@ -184,10 +188,13 @@ void VideoTracking::open(const VideoTrackingInputs& inputs)
   d->undistorter.emplace(lensOf(inputs.intrinsicsPath, start->intrinsics));
   // The tracker's small files before the frames.
   d->trackerWarnings.clear();
-  d->trackerRecording = readTrackerRecording(inputs.trackerPath, inputs.trackerTransform,
-    inputs.framesPath, [&](const std::string& warning) { d->trackerWarnings.push_back(warning); });
-  d->trackerToCT =
-    d->trackerRecording ? readTrackerToCT(inputs.trackerToCTPath) : Eigen::Matrix4d::Identity();
+  d->emTracker.reset();
+  if (std::optional<TrackerTrajectory> recording =
+        readTrackerRecording(inputs.trackerPath, inputs.trackerTransform, inputs.framesPath,
+          [&](const std::string& warning) { d->trackerWarnings.push_back(warning); }))
+  {
+    d->emTracker = { std::move(*recording), readTrackerToCT(inputs.trackerToCTPath) };
+  }
   d->firstId.reset();
   d->framesWithoutTip = 0;
   d->stream.emplace(inputs.cameraIndex >= 0 ? FrameStream::openCamera(inputs.cameraIndex)
@@ -278,7 +285,7 @@ void VideoTracking::run()
       TrackedVideoFrame frame;
       frame.frameId = f.id;
       frame.source = f.name;
-      frame.tracked = d->tracker->track(ideal, d->tipAt(f.id));
+      frame.tracked = d->tracker->track(ideal, d->priorAt(f.id));
       // The check against the CT judges the pose before it is handed on.
       FrameContourAgreement agreement;
       if (d->supervisor)
@@ -472,6 +479,10 @@ nlohmann::json VideoTracking::report() const
     {
       record["tip_distance_mm"] = *t.tipDistanceMm;
     }
+    if (t.trackerTurnDeg)
+    {
+      record["tracker_turn_deg"] = *t.trackerTurnDeg;
+    }
     record["latency_ms"] = f.latencyMs;
     if (d->contourCheck)
     {
@@ -509,7 +520,7 @@ nlohmann::json VideoTracking::report() const
     const Summary t = summarize(checkMs);
     report["check_ms"] = { { "median", t.median }, { "p99", t.p99 } };
   }
-  if (d->trackerRecording)
+  if (d->emTracker)
   {
     report["tracker"] = {
       { "recording", d->inputs.trackerPath.empty() ? d->inputs.framesPath : d->inputs.trackerPath },

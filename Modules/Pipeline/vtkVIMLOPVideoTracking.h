@@ -75,11 +75,12 @@ public:
 
   ///@{
   /// The electromagnetic tracker's recording of the scope's tip (a CSV
-  /// time_s,x_mm,y_mm,z_mm, or a tracked sequence with
-  /// TrackerTransformName) and the tracker registered to the CT (3D
-  /// Slicer's TrackerToRAS transform file), both or neither (default): its
-  /// tip at each frame's time is the tracker's prior
-  /// (vimlop::EndoscopeTracker::track()). Frame id i is at TrackerTimeOffset
+  /// time_s,x_mm,y_mm,z_mm with qw,qx,qy,qz for a 6-DOF sensor, or a
+  /// tracked sequence with TrackerTransformName) and the tracker registered
+  /// to the CT (3D Slicer's TrackerToRAS transform file), both or neither
+  /// (default): its tip, and a 6-DOF sensor's rotation, at each frame's
+  /// time is the tracker's prior (vimlop::EndoscopeTracker::track()). Frame id i is at
+  /// TrackerTimeOffset
   /// + (i - the first id) / FramesPerSecond on the tracker's clock.
   vtkSetStdStringFromCharMacro(TrackerFileName);
   vtkGetCharFromStdStringMacro(TrackerFileName);

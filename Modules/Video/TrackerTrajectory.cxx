@@ -218,6 +218,23 @@ TrackerTrajectory TrackerTrajectory::readCsv(
   };
   const int columns[4] = { find({ "time_s", "t", "time", "timestamp" }, "time_s"),
     find({ "x_mm", "x" }, "x_mm"), find({ "y_mm", "y" }, "y_mm"), find({ "z_mm", "z" }, "z_mm") };
+  // A 6-DOF sensor's rotation, as a unit quaternion: all four columns or none.
+  const char* const quaternionNames[4] = { "qw", "qx", "qy", "qz" };
+  int quaternionColumns[4];
+  int quaternionsFound = 0;
+  for (int c = 0; c < 4; ++c)
+  {
+    const auto found = columnOf.find(quaternionNames[c]);
+    quaternionColumns[c] = found == columnOf.end() ? -1 : found->second;
+    quaternionsFound += found == columnOf.end() ? 0 : 1;
+  }
+  if (quaternionsFound > 0 && quaternionsFound < 4)
+  {
+    throwFileError(path,
+      "the header has only " + std::to_string(quaternionsFound) +
+        " of the rotation's columns qw,qx,qy,qz (all four or none)");
+  }
+  const bool rotations = quaternionsFound == 4;
 
   std::vector<Sample> samples;
   std::vector<int> malformed;
@@ -230,19 +247,35 @@ TrackerTrajectory TrackerTrajectory::readCsv(
       continue;
     }
     const std::vector<std::string> fields = splitCsv(t);
-    double values[4];
-    bool ok = true;
-    for (int c = 0; c < 4 && ok; ++c)
+    const auto read = [&](const int* at, double* values)
     {
-      ok = columns[c] < static_cast<int>(fields.size()) &&
-        parseNumber(fields[static_cast<size_t>(columns[c])], values[c]);
-    }
+      bool ok = true;
+      for (int c = 0; c < 4 && ok; ++c)
+      {
+        ok = at[c] < static_cast<int>(fields.size()) &&
+          parseNumber(fields[static_cast<size_t>(at[c])], values[c]);
+      }
+      return ok;
+    };
+    double values[4];
+    double q[4];
+    // A quaternion a tracker wrote with a few digits is a little off unit
+    // length; one far from it is no rotation.
+    const bool ok = read(columns, values) &&
+      (!rotations ||
+        (read(quaternionColumns, q) &&
+          std::abs(Eigen::Vector4d(q[0], q[1], q[2], q[3]).norm() - 1.0) <= 0.01));
     if (!ok)
     {
       malformed.push_back(lineNumber);
       continue;
     }
-    samples.push_back({ values[0], Eigen::Vector3d(values[1], values[2], values[3]) });
+    std::optional<Eigen::Matrix3d> rotation;
+    if (rotations)
+    {
+      rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+    }
+    samples.push_back({ values[0], Eigen::Vector3d(values[1], values[2], values[3]), rotation });
   }
   if (!malformed.empty() && warnings)
   {
@@ -278,11 +311,19 @@ void TrackerTrajectory::writeCsv(const std::string& path) const
   std::ofstream out(path);
   // Every digit: a reader gets the very samples back (a rounded time stamp can move
   // a sample across the edge of the window that a position is fitted over).
-  out << "time_s,x_mm,y_mm,z_mm\n" << std::setprecision(std::numeric_limits<double>::max_digits10);
+  const bool rotations = std::all_of(this->Samples.begin(), this->Samples.end(),
+    [](const Sample& s) { return s.rotation.has_value(); });
+  out << (rotations ? "time_s,x_mm,y_mm,z_mm,qw,qx,qy,qz\n" : "time_s,x_mm,y_mm,z_mm\n")
+      << std::setprecision(std::numeric_limits<double>::max_digits10);
   for (const Sample& s : this->Samples)
   {
-    out << s.timeS << "," << s.positionMm.x() << "," << s.positionMm.y() << "," << s.positionMm.z()
-        << "\n";
+    out << s.timeS << "," << s.positionMm.x() << "," << s.positionMm.y() << "," << s.positionMm.z();
+    if (rotations)
+    {
+      const Eigen::Quaterniond q(*s.rotation);
+      out << "," << q.w() << "," << q.x() << "," << q.y() << "," << q.z();
+    }
+    out << "\n";
   }
   if (!out)
   {

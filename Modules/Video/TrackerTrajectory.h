@@ -58,12 +58,16 @@ public:
   /**
    * @brief Reads a CSV file: a header line naming the columns, then one
    * sample per line. The columns `time_s`, `x_mm`, `y_mm`, `z_mm` are
-   * required (also accepted: `t`/`time`/`timestamp` and `x`/`y`/`z`); any
-   * other column (e.g. a quaternion) is ignored. Blank lines and lines
-   * starting with `#` are skipped. Malformed rows are dropped with a warning
-   * naming the line.
+   * required (also accepted: `t`/`time`/`timestamp` and `x`/`y`/`z`). A
+   * 6-DOF sensor's rotation (into the tracker's frame) is read from the
+   * columns `qw`, `qx`, `qy`, `qz`, a unit quaternion, when the header has
+   * them; any other column is ignored. Blank lines and lines starting with
+   * `#` are skipped. Malformed rows (with rotation columns: also a row
+   * without a quaternion, or with one whose length is not 1 within 0.01)
+   * are dropped with a warning naming the line.
    * @throws vimlop::Error naming the file for a missing file, a missing
-   * column, or fewer than 2 usable rows.
+   * column, a header with some but not all of the rotation's columns, or
+   * fewer than 2 usable rows.
    */
   static TrackerTrajectory readCsv(
     const std::string& path, std::vector<std::string>* warnings = nullptr);
@@ -79,7 +83,8 @@ public:
    */
   static TrackerTrajectory readTrackedSequence(const std::string& path,
     const std::string& transformName, std::vector<std::string>* warnings = nullptr);
-  /// @brief Writes the samples in the layout readCsv() reads.
+  /// @brief Writes the samples in the layout readCsv() reads, with the
+  /// rotation's columns when every sample has a rotation.
   void writeCsv(const std::string& path) const;
 
   const std::vector<Sample>& samples() const { return this->Samples; }

@@ -74,12 +74,17 @@ SfmReconstruction reconstructFrames(const std::vector<cv::Mat>& frames,
   return sfm;
 }
 
+double frameTimeS(int frameId, int firstFrameId, double fps, double offsetS)
+{
+  return offsetS + static_cast<double>(frameId - firstFrameId) / fps;
+}
+
 std::vector<double> frameTimesS(const std::vector<int>& frameIds, double fps, double offsetS)
 {
   std::vector<double> times;
   for (int id : frameIds)
   {
-    times.push_back(offsetS + static_cast<double>(id - frameIds.front()) / fps);
+    times.push_back(frameTimeS(id, frameIds.front(), fps, offsetS));
   }
   return times;
 }

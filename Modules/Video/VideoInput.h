@@ -47,9 +47,12 @@ SfmReconstruction reconstructFrames(const std::vector<cv::Mat>& frames,
   const std::string& colmapFolder, int threads, std::ostream* log,
   const cv::Mat& featureMask = cv::Mat());
 
-/// @brief Time of each frame on the tracker's clock: offset + (id - first
-/// id) / fps, so that the first frame is at the offset and a missing frame
-/// (a gap in FrameSequence::ids()) is a gap in time.
+/// @brief Time of frame `frameId` on the tracker's clock: offset + (id -
+/// first id) / fps, so that the first frame is at the offset and a missing
+/// frame (a gap in FrameSequence::ids()) is a gap in time.
+double frameTimeS(int frameId, int firstFrameId, double fps, double offsetS);
+
+/// @brief frameTimeS() of each frame, the first id being the first.
 std::vector<double> frameTimesS(const std::vector<int>& frameIds, double fps, double offsetS);
 
 /// @brief The frame rate assumed when neither the frames nor the user give one.

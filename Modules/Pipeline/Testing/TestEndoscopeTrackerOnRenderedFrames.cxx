@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -142,13 +143,29 @@ TEST(EndoscopeTracker, IsLostOnABlankFrameThenFollowsAgainDegraded)
   }
 }
 
-/// The largest camera error over frames 11-15 after frames 5-9 were black,
+/// What the electromagnetic tracker gives in largestErrorAfterABlackStretch().
+enum class GivenPrior
+{
+  None,
+  Tip,
+  TipAndRotation
+};
+
+/// The largest camera errors over frames 11-15.
+struct LargestErrors
+{
+  double mm = 0.0;
+  double deg = 0.0;
+};
+
+/// The largest camera errors over frames 11-15 after frames 5-9 were black,
 /// the tracker given the true optical centre as the electromagnetic
-/// tracker's tip at every frame, or not; the prediction holds the last pose
-/// from the first lost frame on (maxCoastFrames 0), as it does after a long
-/// loss. Also checks that each lost frame after the first is reported at the
-/// tip when there is one.
-double largestErrorAfterABlackStretch(bool withTip)
+/// tracker's tip at every frame (and the true rotation as a 6-DOF
+/// tracker's), or not; the prediction holds the last pose from the first
+/// lost frame on (maxCoastFrames 0), as it does after a long loss. Also
+/// checks that each lost frame after the first is reported at the tip, and
+/// turned as the tracker says when it has a rotation.
+LargestErrors largestErrorAfterABlackStretch(GivenPrior given)
 {
   const fixtures::Sequence& s = fixtures::sequence();
   EndoscopeTrackerOptions o;
@@ -156,27 +173,40 @@ double largestErrorAfterABlackStretch(bool withTip)
   EndoscopeTracker tracker(s.mesh, s.intrinsics, o);
   tracker.start(s.frames[0], s.poses[0]);
   const cv::Mat black = cv::Mat::zeros(s.frames[0].size(), s.frames[0].type());
-  double largestMm = 0.0;
+  LargestErrors largest;
   for (std::size_t f = 1; f < s.frames.size(); ++f)
   {
     const bool blank = f >= 5 && f <= 9;
-    const std::optional<Eigen::Vector3d> tip =
-      withTip ? std::optional(s.poses[f].centre) : std::nullopt;
-    const TrackedFrame r = tracker.track(blank ? black : s.frames[f], tip);
+    std::optional<TrackerPrior> prior;
+    if (given == GivenPrior::Tip)
+    {
+      prior = TrackerPrior(s.poses[f].centre);
+    }
+    else if (given == GivenPrior::TipAndRotation)
+    {
+      prior = TrackerPrior(s.poses[f].centre, s.poses[f].rotation);
+    }
+    const TrackedFrame r = tracker.track(blank ? black : s.frames[f], prior);
     const double mm = cameraPositionError(r.cameraToCT, s.poses[f]);
-    std::printf("frame %2zu: %s, %.3f mm\n", f, toString(r.state), mm);
-    if (blank && f > 5 && withTip)
+    const double deg = cameraAngleErrorDeg(r.cameraToCT, s.poses[f]);
+    std::printf("frame %2zu: %s, %.3f mm, %.3f deg\n", f, toString(r.state), mm, deg);
+    if (blank && f > 5 && prior)
     {
       EXPECT_EQ(r.state, TrackingState::Lost) << f;
       EXPECT_LT(mm, 1e-12) << f;
+      if (given == GivenPrior::TipAndRotation)
+      {
+        EXPECT_LT(deg, 1e-6) << f;
+      }
     }
     if (f > 10)
     {
       EXPECT_NE(r.state, TrackingState::Lost) << f;
-      largestMm = std::max(largestMm, mm);
+      largest.mm = std::max(largest.mm, mm);
+      largest.deg = std::max(largest.deg, deg);
     }
   }
-  return largestMm;
+  return largest;
 }
 
 TEST(EndoscopeTracker, TakesTheCentreOfALostFrameFromTheTrackersTip)
@@ -188,12 +218,26 @@ TEST(EndoscopeTracker, TakesTheCentreOfALostFrameFromTheTrackersTip)
   // cast from where the scope is (with the orientation it was lost with):
   // 3.04 mm at most without the tip and 0.22 mm with it when this test was
   // written.
-  const double without = largestErrorAfterABlackStretch(false);
-  const double with = largestErrorAfterABlackStretch(true);
+  const double without = largestErrorAfterABlackStretch(GivenPrior::None).mm;
+  const double with = largestErrorAfterABlackStretch(GivenPrior::Tip).mm;
   std::printf(
     "largest error after the stretch: %.3f mm without the tip, %.3f mm with it\n", without, with);
   EXPECT_LT(with, 0.25 * without);
   EXPECT_LT(with, 0.4);
+}
+
+TEST(EndoscopeTracker, TakesTheRotationOfALostFrameFromASixDofTracker)
+{
+  // The same stretch with a 6-DOF tracker: the lost frames are reported at
+  // its pose, and the features after the stretch are cast from the pose the
+  // scope has rather than from the orientation it was lost with.
+  const LargestErrors tip = largestErrorAfterABlackStretch(GivenPrior::Tip);
+  const LargestErrors pose = largestErrorAfterABlackStretch(GivenPrior::TipAndRotation);
+  std::printf("largest error after the stretch: %.3f mm, %.3f deg with the tip; %.3f mm, %.3f deg "
+              "with its rotation too\n",
+    tip.mm, tip.deg, pose.mm, pose.deg);
+  EXPECT_LT(pose.deg, tip.deg);
+  EXPECT_LT(pose.mm, 0.4);
 }
 
 TEST(EndoscopeTracker, DegradesAPoseFartherThanAllowedFromTheTrackersTip)
@@ -205,9 +249,11 @@ TEST(EndoscopeTracker, DegradesAPoseFartherThanAllowedFromTheTrackersTip)
   EndoscopeTracker tracker(s.mesh, s.intrinsics);
   tracker.start(s.frames[0], s.poses[0]);
   const Eigen::Vector3d sideways = s.poses[1].rotation.col(0);
-  const TrackedFrame near = tracker.track(s.frames[1], s.poses[1].centre + 2.0 * sideways);
+  const TrackedFrame near =
+    tracker.track(s.frames[1], TrackerPrior(s.poses[1].centre + 2.0 * sideways));
   EXPECT_EQ(near.state, TrackingState::Tracking);
-  const TrackedFrame far = tracker.track(s.frames[2], s.poses[2].centre + 5.0 * sideways);
+  const TrackedFrame far =
+    tracker.track(s.frames[2], TrackerPrior(s.poses[2].centre + 5.0 * sideways));
   EXPECT_EQ(far.state, TrackingState::Degraded);
   EXPECT_EQ(far.reason, "the pose is 5.0 mm from the tracker's tip, more than 3.0 mm");
   // The pose is the video's: the tip only judges it.
@@ -215,6 +261,39 @@ TEST(EndoscopeTracker, DegradesAPoseFartherThanAllowedFromTheTrackersTip)
   EXPECT_EQ(fixtures::errorMessageOf(
               [&] { tracker.track(s.frames[3], Eigen::Vector3d(0.0, std::nan(""), 0.0)); }),
     "endoscope tracker: the tracker's tip position is not finite");
+}
+
+TEST(EndoscopeTracker, DegradesAPoseTurnedFromASixDofTrackersRotationByMoreThanAllowed)
+{
+  // A 6-DOF tracker whose rotation is the truth turned about the view axis:
+  // 3 degrees is within the 5 allowed, 8 degrees is not. Either way the
+  // pose is the video's.
+  const fixtures::Sequence& s = fixtures::sequence();
+  EndoscopeTracker tracker(s.mesh, s.intrinsics);
+  tracker.start(s.frames[0], s.poses[0]);
+  const auto turned = [&](std::size_t f, double deg)
+  {
+    const Eigen::Vector3d view = s.poses[f].rotation.col(2);
+    return TrackerPrior(s.poses[f].centre,
+      Eigen::AngleAxisd(deg * M_PI / 180.0, view).toRotationMatrix() * s.poses[f].rotation);
+  };
+  const TrackedFrame near = tracker.track(s.frames[1], turned(1, 3.0));
+  EXPECT_EQ(near.state, TrackingState::Tracking) << near.reason;
+  ASSERT_TRUE(near.trackerTurnDeg.has_value());
+  EXPECT_NEAR(*near.trackerTurnDeg, 3.0, 0.5);
+  const TrackedFrame far = tracker.track(s.frames[2], turned(2, 8.0));
+  EXPECT_EQ(far.state, TrackingState::Degraded);
+  EXPECT_EQ(far.reason.substr(0, 18), "the pose is turned");
+  EXPECT_NE(far.reason.find("degrees from the tracker's, more than 5.0 degrees"), std::string::npos)
+    << far.reason;
+  EXPECT_LT(cameraAngleErrorDeg(far.cameraToCT, s.poses[2]), 0.5);
+  // A position-only tracker says nothing of the turn.
+  EXPECT_FALSE(tracker.track(s.frames[3], TrackerPrior(s.poses[3].centre)).trackerTurnDeg);
+  Eigen::Matrix3d sheared = s.poses[4].rotation;
+  sheared(0, 1) += 0.1;
+  EXPECT_EQ(fixtures::errorMessageOf(
+              [&] { tracker.track(s.frames[4], TrackerPrior(s.poses[4].centre, sheared)); }),
+    "endoscope tracker: the tracker's rotation is not a rotation matrix");
 }
 
 TEST(EndoscopeTracker, HoldsAFiniteRotationThroughALongLostStretch)

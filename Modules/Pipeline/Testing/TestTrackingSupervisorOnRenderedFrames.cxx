@@ -216,8 +216,12 @@ TEST(TrackingSupervisor, DoesNotLetContoursAnchorATrackerLostLongerThanItsPredic
 /// electromagnetic tracker's tip at every frame: the true optical centre
 /// moved `offsetMm` along the camera's x axis. The prediction holds where
 /// the scope was lost (maxCoastFrames 0), so that the loss is a long one,
-/// after which contours alone anchor nothing. -1 when it never anchors.
-int anchoredAfterALongLossWithTheTip(double offsetMm)
+/// after which contours alone anchor nothing. With `turnDeg`, the tracker
+/// has a rotation too: the true one turned by that about the view axis,
+/// from the second frame after the stretch on (so that the first one's
+/// features are cast as with the tip alone, and the pose found is the
+/// same). -1 when it never anchors.
+int anchoredAfterALongLossWithTheTip(double offsetMm, std::optional<double> turnDeg = std::nullopt)
 {
   const fixtures::Sequence& s = fixtures::sequence();
   const FrameContourCheck check(*s.model, s.intrinsics, cv::Mat());
@@ -236,13 +240,20 @@ int anchoredAfterALongLossWithTheTip(double offsetMm)
   truth.insert(truth.end(), s.poses.begin() + 8, s.poses.end());
   for (std::size_t i = 0; i < frames.size(); ++i)
   {
-    const Eigen::Vector3d tip = truth[i].centre + offsetMm * truth[i].rotation.col(0);
-    TrackedFrame t = tracker.track(frames[i], tip);
+    TrackerPrior prior(truth[i].centre + offsetMm * truth[i].rotation.col(0));
+    if (turnDeg && i > 7 + blackFrames)
+    {
+      prior.rotationCT =
+        Eigen::AngleAxisd(*turnDeg * M_PI / 180.0, truth[i].rotation.col(2)).toRotationMatrix() *
+        truth[i].rotation;
+    }
+    TrackedFrame t = tracker.track(frames[i], prior);
     const FrameContourAgreement a = supervisor.judge(frames[i], t);
     const CheckedTrackedFrame c = supervisor.follow(tracker, t, a);
-    std::printf("input %2zu: %s (%s), %.2f px, %.2f mm from the tip%s\n", i, toString(t.state),
-      t.reason.c_str(), a.medianErrorPx, t.tipDistanceMm.value_or(-1.0),
-      c.anchored ? ", anchored" : "");
+    std::printf("input %2zu: %s (%s), %.2f px, %.2f mm from the tip, turned %.2f deg from the "
+                "tracker%s\n",
+      i, toString(t.state), t.reason.c_str(), a.medianErrorPx, t.tipDistanceMm.value_or(-1.0),
+      t.trackerTurnDeg.value_or(-1.0), c.anchored ? ", anchored" : "");
     if (i >= 7 + blackFrames && c.anchored)
     {
       EXPECT_LT(cameraPositionError(t.cameraToCT, truth[i]), 0.5) << i;
@@ -263,6 +274,19 @@ TEST(TrackingSupervisor, LetsContoursAnchorATrackerAfterALongLossWhereTheTracker
   EXPECT_GE(withTip, 7 + 3);
   EXPECT_LE(withTip, 7 + 3 + 4);
   EXPECT_EQ(anchoredAfterALongLossWithTheTip(2.0), -1);
+}
+
+TEST(TrackingSupervisor,
+  LetsContoursAnchorATrackerAfterALongLossOnlyWhereASixDofTrackersRotationAgrees)
+{
+  // A 6-DOF tracker at the true pose anchors as the tip does; one whose
+  // rotation is 3 degrees off the pose found (within the 5 that degrade a
+  // pose, beyond the 2 that confirm one) keeps the tracker unanchored,
+  // although the pose is the same and the contours agree with it.
+  const int withPose = anchoredAfterALongLossWithTheTip(0.0, 0.0);
+  EXPECT_GE(withPose, 7 + 3);
+  EXPECT_LE(withPose, 7 + 3 + 4);
+  EXPECT_EQ(anchoredAfterALongLossWithTheTip(0.0, 3.0), -1);
 }
 
 } // namespace

@@ -70,7 +70,8 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
     frames: a folder of pictures, a video file or a tracked sequence (PLUS or
     Slicer .igs.mha, with its timestamps); intrinsics: OpenCV YAML/JSON/XML;
     ct (a CT volume whose airway is segmented) or mesh (the airway surface, CT
-    frame, normals into the air); tracker (CSV time_s,x_mm,y_mm,z_mm, or a
+    frame, normals into the air); tracker (CSV time_s,x_mm,y_mm,z_mm, with
+    qw,qx,qy,qz for a 6-DOF sensor, or a
     tracked sequence with tracker_transform, e.g. "ProbeToTracker", which
     alone reads the tracker from the frames' file) or scale (mm per SfM unit)
     for the initial scale; tracker_to_ct: the tracker registered to the
@@ -148,10 +149,12 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     lost, when the contours disagree with the model (False:
     `--no-relocalisation`).
     tracker: the electromagnetic tracker's recording of the scope's tip (a
-    CSV, or a tracked sequence with tracker_transform), with tracker_to_ct,
-    the tracker registered to the CT (3D Slicer's TrackerToRAS file): its tip
-    at each frame's time is the prediction after a lost frame, and a pose
-    more than 3 mm from it is degraded (`--tracker`, `--tracker-to-ct`).
+    CSV, with qw,qx,qy,qz for a 6-DOF sensor's rotation, or a tracked
+    sequence with tracker_transform), with tracker_to_ct, the tracker
+    registered to the CT (3D Slicer's TrackerToRAS file): its tip (and a
+    6-DOF sensor's rotation) at each frame's time is the prediction after a
+    lost frame, and a pose more than 3 mm from it (or turned more than 5
+    degrees from the sensor) is degraded (`--tracker`, `--tracker-to-ct`).
     Frame id i is at time_offset + (i - the first id) / fps on its clock
     (fps: the frames' rate, `--fps`; None: vimlop track's default).
     on_frame(frame_id, state, camera_to_ct): called as each pose is

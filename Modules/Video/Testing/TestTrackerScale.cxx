@@ -196,15 +196,52 @@ TEST(TrackerTrajectory, ReadsCsvAndWarnsAboutWhatItDrops)
     "0.3,2.5,2,3\n");
   std::vector<std::string> warnings;
   const TrackerTrajectory t = TrackerTrajectory::readCsv(path, &warnings);
-  ASSERT_EQ(t.samples().size(), 4u);
+  ASSERT_EQ(t.samples().size(), 3u);
   EXPECT_EQ(t.samples()[2].timeS, 0.15);                            // sorted by time
   EXPECT_EQ(t.samples()[1].positionMm, Eigen::Vector3d(1.5, 2, 3)); // the first of two at 0.1 s
+  // The last row has no rotation in a file whose header promises one.
   ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_EQ(warnings[0], "'" + path + "': dropped 1 malformed row(s) (line 5)");
+  EXPECT_EQ(warnings[0], "'" + path + "': dropped 2 malformed row(s) (line 5, 9)");
   EXPECT_EQ(warnings[1], "dropped 1 tracker sample(s) with a timestamp already seen");
   // Round trip.
   t.writeCsv(out + "/tracker-written.csv");
-  EXPECT_EQ(TrackerTrajectory::readCsv(out + "/tracker-written.csv").samples().size(), 4u);
+  const TrackerTrajectory again = TrackerTrajectory::readCsv(out + "/tracker-written.csv");
+  ASSERT_EQ(again.samples().size(), 3u);
+  ASSERT_TRUE(again.samples()[0].rotation.has_value());
+  EXPECT_TRUE(again.samples()[0].rotation->isIdentity(0.0));
+}
+
+TEST(TrackerTrajectory, ReadsASixDofSensorsRotationFromQuaternionColumns)
+{
+  // A sensor turning 90 degrees about z in a second; a quaternion written
+  // with three digits (length 0.9995) is taken, one of length 0.5 is no
+  // rotation and its row is dropped.
+  const std::string path = csv("tracker-6dof.csv",
+    "time_s,x_mm,y_mm,z_mm,qw,qx,qy,qz\n"
+    "0.0,0,0,0,1,0,0,0\n"
+    "0.5,1,0,0,0.5,0,0,0\n"
+    "1.0,2,0,0,0.707,0,0,0.707\n");
+  std::vector<std::string> warnings;
+  const TrackerTrajectory t = TrackerTrajectory::readCsv(path, &warnings);
+  ASSERT_EQ(t.samples().size(), 2u);
+  EXPECT_EQ(
+    warnings, std::vector<std::string>{ "'" + path + "': dropped 1 malformed row(s) (line 3)" });
+  const std::optional<Eigen::Matrix4d> halfway = t.poseAt(0.5);
+  ASSERT_TRUE(halfway.has_value());
+  const Eigen::Matrix3d expected = Eigen::AngleAxisd(M_PI / 4.0, Eigen::Vector3d::UnitZ()).matrix();
+  EXPECT_LT((halfway->topLeftCorner<3, 3>() - expected).norm(), 1e-9);
+  EXPECT_LT((halfway->topRightCorner<3, 1>() - Eigen::Vector3d(1, 0, 0)).norm(), 1e-12);
+
+  // The written file reads back the same rotations, to every digit.
+  t.writeCsv(out + "/tracker-6dof-written.csv");
+  const TrackerTrajectory again = TrackerTrajectory::readCsv(out + "/tracker-6dof-written.csv");
+  ASSERT_EQ(again.samples().size(), 2u);
+  EXPECT_LT((*again.samples()[1].rotation - *t.samples()[1].rotation).norm(), 1e-12);
+
+  // A position-only file has no pose.
+  const std::string positions =
+    csv("tracker-positions.csv", "time_s,x_mm,y_mm,z_mm\n0,0,0,0\n1,2,0,0\n");
+  EXPECT_FALSE(TrackerTrajectory::readCsv(positions).poseAt(0.5).has_value());
 }
 
 TEST(TrackerTrajectory, BadFilesAreNamedWithTheProblem)
@@ -217,6 +254,11 @@ TEST(TrackerTrajectory, BadFilesAreNamedWithTheProblem)
   const std::string noColumn = csv("tracker-no-z.csv", "time_s,x_mm,y_mm\n0.0,1,2\n");
   EXPECT_EQ(messageOf([&] { TrackerTrajectory::readCsv(noColumn); }),
     "'" + noColumn + "': no column 'z_mm' in the header (expected time_s,x_mm,y_mm,z_mm)");
+  const std::string someRotation =
+    csv("tracker-no-qz.csv", "time_s,x_mm,y_mm,z_mm,qw,qx,qy\n0,1,2,3,1,0,0\n1,1,2,3,1,0,0\n");
+  EXPECT_EQ(messageOf([&] { TrackerTrajectory::readCsv(someRotation); }),
+    "'" + someRotation +
+      "': the header has only 3 of the rotation's columns qw,qx,qy,qz (all four or none)");
   const std::string empty = csv("tracker-empty.csv", "");
   EXPECT_EQ(messageOf([&] { TrackerTrajectory::readCsv(empty); }),
     "'" + empty + "': the file is empty (expected a header: time_s,x_mm,y_mm,z_mm)");
