@@ -135,6 +135,13 @@ void addSimulationOptions(CLI::App& c, EndoscopeSimulationOptions& s)
   c.add_option("--tracker-rotation-noise-deg", s.trackerRotationNoiseDeg,
      "the 6-DOF tracker's rotation noise, degrees per axis")
     ->capture_default_str();
+  c.add_option("--tracker-position-bias-mm", s.trackerPositionBiasMm,
+     "the tracker's registration to the CT off by this shift, mm (every tip alike)")
+    ->capture_default_str();
+  c.add_option("--tracker-rotation-bias-deg", s.trackerRotationBiasDeg,
+     "the 6-DOF tracker's rotation off by this turn, degrees (registration and calibration to "
+     "the camera; every sample alike)")
+    ->capture_default_str();
   // The video artifacts: no range checks here, so that validate() names the
   // bad value in one message for the library and the command line alike.
   VideoArtifactOptions& a = s.artifacts;

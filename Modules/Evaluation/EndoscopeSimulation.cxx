@@ -2,6 +2,7 @@
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/FileError.h>
+#include <vimlop/Core/RandomDirection.h>
 #include <vimlop/Core/Rotation.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/LensDistortionRendering.h>
@@ -54,7 +55,8 @@ bool EndoscopeSimulationOptions::isIdealWorld() const
   return !this->intrinsics.hasDistortion() && this->fieldStop.isOff() &&
     this->calibrationFocalErrorRelative == 0.0 && this->calibrationDistortionErrorRelative == 0.0 &&
     this->calibrationPrincipalPointErrorPx.isZero(0.0) && this->trackerLatencyS == 0.0 &&
-    this->trackerClockOffsetS == 0.0 && this->artifacts.isOff() &&
+    this->trackerClockOffsetS == 0.0 && this->trackerPositionBiasMm == 0.0 &&
+    this->trackerRotationBiasDeg == 0.0 && this->artifacts.isOff() &&
     this->trajectory.jitterMm == 0.0 && this->trajectory.jitterDeg == 0.0;
 }
 
@@ -111,6 +113,16 @@ void EndoscopeSimulationOptions::validate() const
   {
     throw Error("the tracker's rotation noise must be a finite number >= 0 degrees, not " +
       formatText("%g", this->trackerRotationNoiseDeg));
+  }
+  if (!(this->trackerPositionBiasMm >= 0.0 && std::isfinite(this->trackerPositionBiasMm)))
+  {
+    throw Error("the tracker's position bias must be a finite number >= 0 mm, not " +
+      formatText("%g", this->trackerPositionBiasMm));
+  }
+  if (!(this->trackerRotationBiasDeg >= 0.0 && std::isfinite(this->trackerRotationBiasDeg)))
+  {
+    throw Error("the tracker's rotation bias must be a finite number >= 0 degrees, not " +
+      formatText("%g", this->trackerRotationBiasDeg));
   }
   if (!std::isfinite(this->trackerClockOffsetS))
   {
@@ -290,6 +302,12 @@ TrackerTrajectory simulateTrackerRecording(
   // the same with the rotation on.
   std::mt19937_64 turnRng(o.seed * 7919ull + 29ull);
   std::normal_distribution<double> unitNoise(0.0, 1.0);
+  // The navigation system's fixed error, from a generator of its own too.
+  std::mt19937_64 biasRng(o.seed * 7919ull + 41ull);
+  const Eigen::Vector3d positionBiasMm = o.trackerPositionBiasMm * randomDirection(biasRng);
+  const Eigen::Matrix3d rotationBias =
+    Eigen::AngleAxisd(o.trackerRotationBiasDeg * M_PI / 180.0, randomDirection(biasRng))
+      .toRotationMatrix();
   std::vector<TrackerTrajectory::Sample> samples;
   const double start = -o.trackerMarginS;
   const double end = (frames - 1) / o.framesPerSecond + o.trackerMarginS;
@@ -302,7 +320,8 @@ TrackerTrajectory simulateTrackerRecording(
     const int a = std::clamp(static_cast<int>(std::floor(frame)), 0, frames - 2);
     const double w = frame - a;
     const Eigen::Vector3d tip = (1.0 - w) * camerasCT[a].centre + w * camerasCT[a + 1].centre;
-    samples.push_back({ t, tip + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)) });
+    samples.push_back(
+      { t, tip + positionBiasMm + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)) });
     if (o.trackerRotation)
     {
       const double turn = std::clamp(w, 0.0, 1.0);
@@ -310,7 +329,8 @@ TrackerTrajectory simulateTrackerRecording(
                                      .slerp(turn, Eigen::Quaterniond(camerasCT[a + 1].rotation));
       const Eigen::Vector3d errorDeg = o.trackerRotationNoiseDeg *
         Eigen::Vector3d(unitNoise(turnRng), unitNoise(turnRng), unitNoise(turnRng));
-      samples.back().rotation = rotationFromVector(errorDeg * M_PI / 180.0) * q.toRotationMatrix();
+      samples.back().rotation =
+        rotationFromVector(errorDeg * M_PI / 180.0) * rotationBias * q.toRotationMatrix();
     }
   }
   return TrackerTrajectory(samples);

@@ -95,6 +95,16 @@ struct EndoscopeSimulationOptions
   /// tenths of a degree RMS in a clean field, Documentation/Simulation.md).
   /// At least 0.
   double trackerRotationNoiseDeg = 0.3;
+  /// A fixed error of the tracker in the CT frame, as a navigation system
+  /// leaves one: every tip shifted by this length in one random direction
+  /// (the registration of the tracker to the patient, mm; default 0: an
+  /// exact registration; about 1 mm clinically, Documentation/Simulation.md)
+  /// and, with trackerRotation, every rotation turned by this angle about
+  /// one random axis (that registration's rotation and the sensor's
+  /// calibration to the camera, degrees; default 0; about 1). Both drawn
+  /// from `seed`; at least 0.
+  double trackerPositionBiasMm = 0.0;
+  double trackerRotationBiasDeg = 0.0;
   /// Tracker latency, s: each sample reports where the tip was this long
   /// before its time stamp (default 0; electromagnetic trackers: tens of ms,
   /// Documentation/Simulation.md). At least 0.
@@ -185,6 +195,8 @@ SimulatedVideo simulateEndoscopeVideo(const RegistrationModel& model,
  * trackerRotation, each sample has the camera's rotation at that time too
  * (interpolated along the shorter arc between frames, held beyond them),
  * turned by a random rotation vector with trackerRotationNoiseDeg per axis.
+ * Every sample carries the same bias: trackerPositionBiasMm and
+ * trackerRotationBiasDeg, in directions drawn from `seed`.
  */
 TrackerTrajectory simulateTrackerRecording(
   const std::vector<CameraPose>& camerasCT, const EndoscopeSimulationOptions& options);

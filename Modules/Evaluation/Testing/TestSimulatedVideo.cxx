@@ -141,6 +141,45 @@ TEST(SimulatedVideo, ASixDofTrackerRecordsTheCamerasRotationWithItsNoise)
     "the tracker's rotation noise must be a finite number >= 0 degrees, not -1");
 }
 
+TEST(SimulatedVideo, ATrackerRegisteredWithAnErrorCarriesTheSameShiftAndTurnInEverySample)
+{
+  // The navigation system's error: every tip 1.5 mm off in one direction,
+  // every rotation 2 degrees off about one axis, the same for all samples.
+  std::vector<CameraPose> cameras = straightPath();
+  for (std::size_t f = 0; f < cameras.size(); ++f)
+  {
+    cameras[f].rotation =
+      Eigen::AngleAxisd(3.0 * f * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  }
+  EndoscopeSimulationOptions o;
+  o.trackerNoiseMm = 0.0;
+  o.trackerRotation = true;
+  o.trackerRotationNoiseDeg = 0.0;
+  const TrackerTrajectory exact = simulateTrackerRecording(cameras, o);
+  o.trackerPositionBiasMm = 1.5;
+  o.trackerRotationBiasDeg = 2.0;
+  const TrackerTrajectory biased = simulateTrackerRecording(cameras, o);
+  ASSERT_EQ(biased.samples().size(), exact.samples().size());
+  const Eigen::Vector3d shift = biased.samples()[0].positionMm - exact.samples()[0].positionMm;
+  const Eigen::Matrix3d turn =
+    *biased.samples()[0].rotation * exact.samples()[0].rotation->transpose();
+  EXPECT_NEAR(shift.norm(), 1.5, 1e-9);
+  EXPECT_NEAR(Eigen::AngleAxisd(turn).angle() * 180.0 / M_PI, 2.0, 1e-9);
+  for (std::size_t i = 1; i < biased.samples().size(); ++i)
+  {
+    EXPECT_LT(
+      (biased.samples()[i].positionMm - exact.samples()[i].positionMm - shift).norm(), 1e-9);
+    EXPECT_LT((*biased.samples()[i].rotation - turn * *exact.samples()[i].rotation).norm(), 1e-9);
+  }
+  o.trackerPositionBiasMm = -1.0;
+  EXPECT_EQ(
+    validationMessage(o), "the tracker's position bias must be a finite number >= 0 mm, not -1");
+  o.trackerPositionBiasMm = 0.0;
+  o.trackerRotationBiasDeg = std::nan("");
+  EXPECT_EQ(validationMessage(o),
+    "the tracker's rotation bias must be a finite number >= 0 degrees, not nan");
+}
+
 TEST(SimulatedVideo, TheDefaultWorldIsIdealAndEachErrorSourceMakesItReal)
 {
   EXPECT_TRUE(EndoscopeSimulationOptions().isIdealWorld());
@@ -160,6 +199,8 @@ TEST(SimulatedVideo, TheDefaultWorldIsIdealAndEachErrorSourceMakesItReal)
     { o.calibrationPrincipalPointErrorPx = Eigen::Vector2d(0.0, 2.0); }));
   EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.trackerLatencyS = 0.02; }));
   EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.trackerClockOffsetS = -0.1; }));
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.trackerPositionBiasMm = 1.0; }));
+  EXPECT_TRUE(real([](EndoscopeSimulationOptions& o) { o.trackerRotationBiasDeg = 1.0; }));
   EXPECT_TRUE(
     real([](EndoscopeSimulationOptions& o) { o.calibrationDistortionErrorRelative = 0.03; }));
   // Zero coefficients are no distortion, except for a fisheye: the
