@@ -84,6 +84,11 @@ void EndoscopeTrackerOptions::validate() const
     refuse(
       "the largest distance from the tracker's tip must be positive (mm)", this->maxTipDistanceMm);
   }
+  if (this->recastFromTrackerAfterFrames < 0)
+  {
+    refuse("the frames before features are cast from the tracker's pose must not be negative",
+      this->recastFromTrackerAfterFrames);
+  }
   if (!(this->maxTrackerTurnDeg > 0.0))
   {
     refuse("the largest turn from the tracker's rotation must be positive (degrees)",
@@ -123,6 +128,13 @@ struct EndoscopeTracker::Internals
   /// False once features were cast from a prediction (after a loss): the
   /// poses found from them are then not anchored to the registration.
   bool Anchored = true;
+  /// Where the features were cast from when not anchored, for the reason
+  /// given with each pose found from them.
+  std::string CastFrom;
+  /// Poses found in a row that disagree with a 6-DOF tracker (farther from
+  /// its tip than maxTipDistanceMm, or turned more than maxTrackerTurnDeg);
+  /// lost frames, which find none, leave the count as it is.
+  int AwayFromTrackerInARow = 0;
 
   Internals(const TriangleMesh& mesh, const PinholeCamera& k, const EndoscopeTrackerOptions& o)
     : Options(o)
@@ -280,6 +292,8 @@ int EndoscopeTracker::correct(const CameraPose& cameraToCT, bool anchored)
   s.Anchored = s.Anchored || anchored;
   if (anchored)
   {
+    // The CT has confirmed the video's world, whatever the tracker says.
+    s.AwayFromTrackerInARow = 0;
     if (s.LostInARow > 0)
     {
       // The motion between two predictions is no measured motion.
@@ -344,6 +358,7 @@ TrackedFrame EndoscopeTracker::start(
   s.Frame = 0;
   s.LostInARow = 0;
   s.Anchored = true;
+  s.AwayFromTrackerInARow = 0;
   s.Last = cameraToCT;
   s.BeforeLast = cameraToCT;
   TrackedFrame r;
@@ -403,6 +418,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
     s.Features.clear();
     r.newFeatures = s.addFeatures(r.cameraToCT);
     s.Anchored = false;
+    s.CastFrom = "a prediction after the tracker was lost";
     return finish();
   }
 
@@ -476,9 +492,13 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
     }
     const double tipMm = r.tipDistanceMm.value_or(0.0);
     const double trackerTurnDeg = r.trackerTurnDeg.value_or(0.0);
+    const bool awayFromTracker =
+      tipMm > s.Options.maxTipDistanceMm || trackerTurnDeg > s.Options.maxTrackerTurnDeg;
+    s.AwayFromTrackerInARow =
+      awayFromTracker && prior && prior->rotationCT ? s.AwayFromTrackerInARow + 1 : 0;
     if (!s.Anchored)
     {
-      r.reason = "its features were cast from a prediction after the tracker was lost";
+      r.reason = "its features were cast from " + s.CastFrom;
     }
     else if (r.inliers < s.Options.degradedInlierFraction * r.trackedFeatures)
     {
@@ -512,6 +532,32 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
     // frame sees whether they agree again.
     s.Features = std::move(followed);
     return finish();
+  }
+  const int recastAfter = s.Options.recastFromTrackerAfterFrames;
+  if (recastAfter > 0 && s.AwayFromTrackerInARow >= recastAfter)
+  {
+    // The features have made a world that a 6-DOF tracker has contradicted
+    // for that long (cast into a model that is not the anatomy, or from a
+    // wrong prediction after a loss): the frame is reported at the
+    // tracker's pose, and its corners, cast from there, are the next
+    // frames' features.
+    r.reason = formatText("the pose disagreed with the tracker for %d frames in a row: "
+                          "features cast again from the tracker's pose",
+      recastAfter);
+    r.cameraToCT.centre = prior->tipCT;
+    r.cameraToCT.rotation = *prior->rotationCT;
+    r.tipDistanceMm = 0.0;
+    r.trackerTurnDeg = 0.0;
+    s.Klt.reset(ideal);
+    s.Features.clear();
+    r.newFeatures = s.addFeatures(r.cameraToCT);
+    s.Anchored = false;
+    s.CastFrom = "the tracker's pose, which the video disagreed with";
+    s.AwayFromTrackerInARow = 0;
+    TrackedFrame done = finish();
+    // From rest: the move to the tracker's pose is no motion of the scope.
+    s.BeforeLast = s.Last;
+    return done;
   }
   s.Features = std::move(followed);
   if (static_cast<int>(s.Features.size()) < s.Options.redetectBelow)

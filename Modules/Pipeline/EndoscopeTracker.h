@@ -88,6 +88,12 @@ struct EndoscopeTrackerOptions
   /// calibration to the camera to a degree or two, so a larger disagreement
   /// means a wrong pose or a slipped sensor).
   double maxTrackerTurnDeg = 5.0;
+  /// After this many poses in a row that disagree with a 6-DOF tracker
+  /// (beyond maxTipDistanceMm or maxTrackerTurnDeg), the features are cast
+  /// again from the tracker's pose, at which that frame is reported
+  /// (Degraded); 0: never (default 5, a sixth of a second at 30 Hz: the
+  /// features then stand for a wrong world, which they would follow on).
+  int recastFromTrackerAfterFrames = 5;
   /// Frame-to-frame tracking and corner detection.
   KltFeatureTrackerOptions features;
 
@@ -107,8 +113,9 @@ struct TrackedFrame
   /// frames as tracked (see EndoscopeTrackerOptions::maxTrackingWidthPx).
   double reprojectionErrorPx = 0.0;
   int newFeatures = 0; ///< corners added after the pose was found
-  /// False when the features were cast from a prediction after a loss and
-  /// no check against the CT has confirmed a pose since (correct()).
+  /// False when the features were cast from a prediction after a loss, or
+  /// from a 6-DOF tracker's pose (recastFromTrackerAfterFrames), and no
+  /// check against the CT has confirmed a pose since (correct()).
   bool anchored = true;
   /// How far the pose found lies from the electromagnetic tracker's tip,
   /// mm; none without a tip, or when no pose was found (Lost).
@@ -140,7 +147,10 @@ struct TrackedFrame
  *      the prediction, the distance from the tip, the turn from a 6-DOF
  *      tracker's rotation),
  *   5. drops the outliers and, when few features are left, detects new
- *      corners and casts their rays into the model from the new pose.
+ *      corners and casts their rays into the model from the new pose; when
+ *      the poses have disagreed with a 6-DOF tracker for
+ *      recastFromTrackerAfterFrames frames, it casts new corners from the
+ *      tracker's pose instead, and reports the frame there.
  *
  * A frame where no pose is found, or none that agrees with enough features
  * after the refinement, or one too far from the prediction (a jump or a

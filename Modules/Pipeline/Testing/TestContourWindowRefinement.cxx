@@ -160,6 +160,11 @@ TEST(ContourWindowRefinement, RefusesACorrectionAboveItsBoundsOrWithTooFewPairs)
   EXPECT_EQ(fixtures::errorMessageOf([&] { ContourWindowRefinement{ bad }; }),
     "contour refinement: the anchoring distance from the tracker's tip must be positive (mm), "
     "not 0");
+  bad = {};
+  bad.anchorTrackerTurnDeg = 0.0;
+  EXPECT_EQ(fixtures::errorMessageOf([&] { ContourWindowRefinement{ bad }; }),
+    "contour refinement: the anchoring turn from the tracker's rotation must be positive "
+    "(degrees), not 0");
 }
 
 } // namespace

@@ -63,6 +63,16 @@ TEST(EndoscopeTracker, NamesEachStateAndRefusesOptionsOutOfRange)
   EXPECT_EQ(refusal(o),
     "endoscope tracker: the largest distance from the tracker's tip must be positive (mm), not 0");
   o = {};
+  o.maxTrackerTurnDeg = -1.0;
+  EXPECT_EQ(refusal(o),
+    "endoscope tracker: the largest turn from the tracker's rotation must be "
+    "positive (degrees), not -1");
+  o = {};
+  o.recastFromTrackerAfterFrames = -1;
+  EXPECT_EQ(refusal(o),
+    "endoscope tracker: the frames before features are cast from the "
+    "tracker's pose must not be negative, not -1");
+  o = {};
   o.features.windowPx = 4;
   EXPECT_EQ(
     refusal(o), "feature tracking: the window must be an odd number of pixels, at least 5, not 4");

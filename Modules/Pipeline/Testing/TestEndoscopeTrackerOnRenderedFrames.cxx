@@ -296,6 +296,58 @@ TEST(EndoscopeTracker, DegradesAPoseTurnedFromASixDofTrackersRotationByMoreThanA
     "endoscope tracker: the tracker's rotation is not a rotation matrix");
 }
 
+/// The largest camera error over frames 8-15 of the tracker started from
+/// frame 0 at a pose 4 mm sideways of the truth (a wrong registration,
+/// whose features make a world 4 mm off), given a 6-DOF tracker at the
+/// truth, with the features cast again from the tracker's pose after
+/// `recastAfter` frames that disagree with it (0: never).
+double largestErrorFromAWrongStartWithASixDofTracker(int recastAfter)
+{
+  const fixtures::Sequence& s = fixtures::sequence();
+  EndoscopeTrackerOptions o;
+  o.recastFromTrackerAfterFrames = recastAfter;
+  EndoscopeTracker tracker(s.mesh, s.intrinsics, o);
+  CameraPose wrong = s.poses[0];
+  wrong.centre += 4.0 * s.poses[0].rotation.col(0);
+  tracker.start(s.frames[0], wrong);
+  double largestMm = 0.0;
+  for (std::size_t f = 1; f < s.frames.size(); ++f)
+  {
+    const TrackedFrame r =
+      tracker.track(s.frames[f], TrackerPrior(s.poses[f].centre, s.poses[f].rotation));
+    const double mm = cameraPositionError(r.cameraToCT, s.poses[f]);
+    std::printf("frame %2zu: %s (%s), %.3f mm\n", f, toString(r.state), r.reason.c_str(), mm);
+    EXPECT_NE(r.state, TrackingState::Tracking) << f;
+    if (recastAfter > 0 && static_cast<int>(f) == recastAfter)
+    {
+      EXPECT_EQ(r.reason,
+        "the pose disagreed with the tracker for 5 frames in a row: features cast again from "
+        "the tracker's pose");
+      EXPECT_LT(mm, 1e-12);
+    }
+    if (f >= 8)
+    {
+      largestMm = std::max(largestMm, mm);
+    }
+  }
+  return largestMm;
+}
+
+TEST(EndoscopeTracker, CastsItsFeaturesAgainFromASixDofTrackerItHasDisagreedWithForFiveFrames)
+{
+  // Started 4 mm off, the features follow a world 4 mm off and every pose
+  // is degraded for its distance from the tracker's tip; after five such
+  // frames they are cast again from the tracker's pose, and the poses come
+  // back to the scope (still degraded: nothing has confirmed them against
+  // the CT).
+  const double never = largestErrorFromAWrongStartWithASixDofTracker(0);
+  const double recast = largestErrorFromAWrongStartWithASixDofTracker(5);
+  std::printf(
+    "largest error on frames 8-15: %.3f mm never cast again, %.3f mm cast again\n", never, recast);
+  EXPECT_GT(never, 3.0);
+  EXPECT_LT(recast, 0.5);
+}
+
 TEST(EndoscopeTracker, HoldsAFiniteRotationThroughALongLostStretch)
 {
   // After a few tracked frames the picture goes black for 200 frames. The
