@@ -13,11 +13,14 @@ namespace vimlop
 
 /**
  * @brief Positions of the endoscope tip recorded by an electromagnetic
- * tracker, with timestamps (V14).
+ * tracker, with timestamps (V14), and the sensor's rotations when it has
+ * six degrees of freedom.
  *
  * Positions are in mm in the tracker's own frame (which need not be the CT
- * frame: only lengths are used); times in seconds on the clock of the video
- * frames. Samples are kept sorted by time with distinct times.
+ * frame: the initial scale uses only lengths, tracking and the canonical
+ * starts' rotation prior the tracker's registration to the CT); times in
+ * seconds on the clock of the video frames. Samples are kept sorted by time
+ * with distinct times.
  */
 class TrackerTrajectory
 {
