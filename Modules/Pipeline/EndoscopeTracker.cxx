@@ -234,6 +234,16 @@ struct EndoscopeTracker::Internals
 
   /// Detects corners where no feature is and adds those whose ray from
   /// `pose` meets the model squarely enough; returns how many were added.
+  /// Forgets the features and casts new corners of `ideal` (a prepared
+  /// frame) from `pose`: the features of a new start, or of one after the
+  /// old ones stood for a wrong world. @return the features added.
+  int castAfresh(const cv::Mat& ideal, const CameraPose& pose)
+  {
+    this->Klt.reset(ideal);
+    this->Features.clear();
+    return this->addFeatures(pose);
+  }
+
   int addFeatures(const CameraPose& pose)
   {
     const int wanted = this->Options.maxFeatures - static_cast<int>(this->Features.size());
@@ -344,10 +354,8 @@ TrackedFrame EndoscopeTracker::start(
       cv::getStructuringElement(
         cv::MORPH_ELLIPSE, cv::Size(2 * halfWindow + 1, 2 * halfWindow + 1)));
   }
-  s.Klt.reset(s.prepare(frame));
-  s.Features.clear();
   s.Frame = -1;
-  const int added = s.addFeatures(cameraToCT);
+  const int added = s.castAfresh(s.prepare(frame), cameraToCT);
   if (added < s.Options.minInliers)
   {
     throw Error(formatText("endoscope tracker: only %d corners of the first frame stand for a "
@@ -414,9 +422,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
     r.reason = formatText("%zu features left, fewer than %d: new ones are cast from the "
                           "prediction",
       s.Features.size(), s.Options.minInliers);
-    s.Klt.reset(ideal);
-    s.Features.clear();
-    r.newFeatures = s.addFeatures(r.cameraToCT);
+    r.newFeatures = s.castAfresh(ideal, r.cameraToCT);
     s.Anchored = false;
     s.CastFrom = "a prediction after the tracker was lost";
     return finish();
@@ -548,9 +554,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
     r.cameraToCT.rotation = *prior->rotationCT;
     r.tipDistanceMm = 0.0;
     r.trackerTurnDeg = 0.0;
-    s.Klt.reset(ideal);
-    s.Features.clear();
-    r.newFeatures = s.addFeatures(r.cameraToCT);
+    r.newFeatures = s.castAfresh(ideal, r.cameraToCT);
     s.Anchored = false;
     s.CastFrom = "the tracker's pose, which the video disagreed with";
     s.AwayFromTrackerInARow = 0;
