@@ -305,10 +305,10 @@ void addRegisterCommand(CLI::App& app)
     "the transform of a tracked sequence that carries the scope, e.g. ProbeToTracker: read from "
     "--tracker, or from --frames when it is a tracked sequence and --tracker is not given");
   r->add_option("--tracker-to-ct", in.trackerToCTPath,
-     "the tracker registered to the patient, as 3D Slicer saves its TrackerToRAS transform (ITK "
-     ".tfm/.h5): the tracked camera (--tracker-transform, the camera's own frame) turns the "
-     "canonical starts and is one more start, a rotation prior")
-    ->needs("--tracker-transform");
+    "the tracker registered to the patient, as 3D Slicer saves its TrackerToRAS transform (ITK "
+    ".tfm/.h5): the tracked camera (a 6-DOF sensor in the camera's own frame: a tracked "
+    "sequence's transform, or a tracker CSV with qw,qx,qy,qz) turns the canonical starts and is "
+    "one more start, a rotation prior");
   r->add_option("--fps", in.framesPerSecond,
      "frame rate, for the frame times on the tracker's clock; overrides the frames' own "
      "timestamps (a tracked sequence) or rate (a video file), with a warning when they "

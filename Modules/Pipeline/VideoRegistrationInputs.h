@@ -50,10 +50,11 @@ struct VideoRegistrationInputs
   std::string trackerTransform;
   /// The tracker registered to the patient, as 3D Slicer saves its
   /// tracker-to-RAS transform (an ITK transform file, read by
-  /// intoLpsFromSlicerFile() in CoordinateFrames.h); empty: none. With a
-  /// tracked sequence whose transform is the camera's (x right, y down, z
-  /// forward), the tracked camera pose turns the canonical starts
-  /// (turnedAsTracked() in CanonicalStarts.h): a rotation prior.
+  /// intoLpsFromSlicerFile() in CoordinateFrames.h); empty: none. It needs
+  /// a 6-DOF sensor's rotation, in the camera's frame (x right, y down, z
+  /// forward): a tracked sequence's transform or a CSV with `qw,qx,qy,qz`.
+  /// The tracked camera pose turns the canonical starts (turnedAsTracked()
+  /// in CanonicalStarts.h): a rotation prior.
   std::string trackerToCTPath;
   double initialScale = 0.0;
   /// Frame times on the tracker's clock: the frames' own timestamps (a

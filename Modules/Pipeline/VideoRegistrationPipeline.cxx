@@ -416,11 +416,12 @@ void VideoRegistrationPipeline::prepare(const VideoRegistrationInputs& in)
   d.TrackerToCT.reset();
   if (!in.trackerToCTPath.empty())
   {
-    if (in.trackerTransform.empty())
+    if (!d.Tracker || !d.Tracker->hasRotations())
     {
       throwFileError(in.trackerToCTPath,
-        "a tracker registered to the CT turns the starts only with a tracked sequence's "
-        "transform (--tracker-transform): a CSV tracker records positions only");
+        "a tracker registered to the CT turns the starts only with a 6-DOF sensor's rotation: "
+        "a tracked sequence's transform (--tracker-transform) or a tracker CSV with the "
+        "columns qw,qx,qy,qz");
     }
     d.TrackerToCT = readTrackerToCT(in.trackerToCTPath);
   }

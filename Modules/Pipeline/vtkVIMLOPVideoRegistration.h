@@ -89,8 +89,10 @@ public:
   vtkSetStdStringFromCharMacro(TrackerTransformName);
   vtkGetCharFromStdStringMacro(TrackerTransformName);
   /// The tracker registered to the patient, as 3D Slicer saves its
-  /// TrackerToRAS transform (an ITK transform file): the tracked camera
-  /// turns the canonical starts, a rotation prior (empty, the default: none).
+  /// TrackerToRAS transform (an ITK transform file): the tracked camera (a
+  /// 6-DOF sensor: a tracked sequence's transform or a CSV with
+  /// qw,qx,qy,qz) turns the canonical starts, a rotation prior (empty, the
+  /// default: none).
   vtkSetStdStringFromCharMacro(TrackerToCTFileName);
   vtkGetCharFromStdStringMacro(TrackerToCTFileName);
   /// Frame times on the tracker's clock: the frames' own timestamps (a

@@ -306,13 +306,18 @@ TrackerTrajectory TrackerTrajectory::readCsv(
   }
 }
 
+bool TrackerTrajectory::hasRotations() const
+{
+  return std::all_of(this->Samples.begin(), this->Samples.end(),
+    [](const Sample& s) { return s.rotation.has_value(); });
+}
+
 void TrackerTrajectory::writeCsv(const std::string& path) const
 {
   std::ofstream out(path);
   // Every digit: a reader gets the very samples back (a rounded time stamp can move
   // a sample across the edge of the window that a position is fitted over).
-  const bool rotations = std::all_of(this->Samples.begin(), this->Samples.end(),
-    [](const Sample& s) { return s.rotation.has_value(); });
+  const bool rotations = this->hasRotations();
   out << (rotations ? "time_s,x_mm,y_mm,z_mm,qw,qx,qy,qz\n" : "time_s,x_mm,y_mm,z_mm\n")
       << std::setprecision(std::numeric_limits<double>::max_digits10);
   for (const Sample& s : this->Samples)

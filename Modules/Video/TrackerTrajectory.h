@@ -42,7 +42,7 @@ public:
     double timeS = 0.0;
     Eigen::Vector3d positionMm = Eigen::Vector3d::Zero();
     /// The sensor's rotation into the tracker's frame, when the recording
-    /// has it (a tracked sequence's transform; a CSV has positions only).
+    /// has it (a tracked sequence's transform; a CSV with `qw,qx,qy,qz`).
     std::optional<Eigen::Matrix3d> rotation;
   };
 
@@ -91,6 +91,8 @@ public:
   void writeCsv(const std::string& path) const;
 
   const std::vector<Sample>& samples() const { return this->Samples; }
+  /// @brief Whether every sample has a rotation (a 6-DOF sensor's recording).
+  bool hasRotations() const;
   double startS() const { return this->Samples.front().timeS; }
   double endS() const { return this->Samples.back().timeS; }
 

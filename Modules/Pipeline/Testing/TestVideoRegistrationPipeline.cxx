@@ -126,6 +126,35 @@ TEST(VideoRegistrationPipeline, ACancelledRunSaysSo)
   EXPECT_THROW(pipeline.run(), PipelineCancelled);
 }
 
+TEST(VideoRegistrationPipeline, TurnsTheStartsAsATrackerSaysOnlyWhenItRecordsASixDofSensorsRotation)
+{
+  // The tracker registered to the CT turns the canonical starts by the
+  // sensor's rotation: a tip CSV (or a scale alone) has none, and is refused
+  // before anything long is done; a CSV with a 6-DOF sensor's quaternion goes
+  // on to read the registration.
+  const fs::path dir = fixtures::freshTestFolder("pipeline-tracker-rotation");
+  std::ofstream(dir / "tip.csv") << "time_s,x_mm,y_mm,z_mm\n0,0,0,0\n1,1,0,0\n";
+  std::ofstream(dir / "sensor.csv")
+    << "time_s,x_mm,y_mm,z_mm,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n1,1,0,0,1,0,0,0\n";
+  const std::string trackerToCT = (dir / "TrackerToRAS.tfm").string();
+  VideoRegistrationInputs inputs;
+  inputs.trackerToCTPath = trackerToCT;
+  inputs.trackerPath = (dir / "tip.csv").string();
+  const std::string refusal = "'" + trackerToCT +
+    "': a tracker registered to the CT turns the starts only with a 6-DOF sensor's rotation: a "
+    "tracked sequence's transform (--tracker-transform) or a tracker CSV with the columns "
+    "qw,qx,qy,qz";
+  EXPECT_EQ(
+    fixtures::errorMessageOf([&] { VideoRegistrationPipeline().prepare(inputs); }), refusal);
+  inputs.trackerPath.clear();
+  inputs.initialScale = 0.5;
+  EXPECT_EQ(
+    fixtures::errorMessageOf([&] { VideoRegistrationPipeline().prepare(inputs); }), refusal);
+  inputs.trackerPath = (dir / "sensor.csv").string();
+  EXPECT_EQ(fixtures::errorMessageOf([&] { VideoRegistrationPipeline().prepare(inputs); }),
+    "'" + trackerToCT + "': no such file");
+}
+
 std::vector<std::string> stageNames(const StageTimings& timings)
 {
   std::vector<std::string> names;

@@ -76,7 +76,9 @@ def register_video(frames, intrinsics, ct=None, mesh=None, tracker=None, scale=0
     alone reads the tracker from the frames' file) or scale (mm per SfM unit)
     for the initial scale; tracker_to_ct: the tracker registered to the
     patient as 3D Slicer saves its TrackerToRAS transform (ITK .tfm/.h5), so
-    that the tracked camera turns the canonical starts (a rotation prior); fps overrides the frames' own timestamps or video
+    that the tracked camera (a 6-DOF sensor: a tracked sequence or a CSV
+    with qw,qx,qy,qz) turns the canonical starts (a rotation prior); fps
+    overrides the frames' own timestamps or video
     rate (0: them, else 30 fps); colmap: a COLMAP sparse model
     folder instead of the built-in SfM; sfm, contours: the outputs of `vimlop
     sfm` and `vimlop contours`, reused instead of computing them; start_poses: a FramePose JSON file of

@@ -224,6 +224,7 @@ TEST(TrackerTrajectory, ReadsASixDofSensorsRotationFromQuaternionColumns)
   std::vector<std::string> warnings;
   const TrackerTrajectory t = TrackerTrajectory::readCsv(path, &warnings);
   ASSERT_EQ(t.samples().size(), 2u);
+  EXPECT_TRUE(t.hasRotations());
   EXPECT_EQ(
     warnings, std::vector<std::string>{ "'" + path + "': dropped 1 malformed row(s) (line 3)" });
   const std::optional<Eigen::Matrix4d> halfway = t.poseAt(0.5);
@@ -242,6 +243,7 @@ TEST(TrackerTrajectory, ReadsASixDofSensorsRotationFromQuaternionColumns)
   const std::string positions =
     csv("tracker-positions.csv", "time_s,x_mm,y_mm,z_mm\n0,0,0,0\n1,2,0,0\n");
   EXPECT_FALSE(TrackerTrajectory::readCsv(positions).poseAt(0.5).has_value());
+  EXPECT_FALSE(TrackerTrajectory::readCsv(positions).hasRotations());
 }
 
 TEST(TrackerTrajectory, BadFilesAreNamedWithTheProblem)
