@@ -26,6 +26,7 @@ struct CTReadOptions;
 struct ContourWindowRefinementOptions;
 struct ContourRelocalisationOptions;
 struct EndoscopeSimulationOptions;
+struct EndoscopeTrackerOptions;
 struct PinholeCamera;
 struct PoseServingOptions;
 struct PoseStreamServerOptions;
@@ -125,6 +126,14 @@ void addPoseServerOptions(CLI::App& command, PoseStreamServerOptions& options);
  */
 void addTrackingRefinementOptions(
   CLI::App& command, bool& refine, ContourWindowRefinementOptions& options);
+
+/**
+ * @brief Adds --max-features, --max-tracking-width-px, --inlier-px,
+ * --tracker-offset-frames and --tracker-pull, stored into `options`: the
+ * frame-to-frame tracker and how it uses an electromagnetic tracker
+ * (`vimlop track`, `evaluate tracking`).
+ */
+void addEndoscopeTrackerOptions(CLI::App& command, EndoscopeTrackerOptions& options);
 
 /**
  * @brief Adds --no-relocalisation, --degraded-above-px, --relocalise-search-mm

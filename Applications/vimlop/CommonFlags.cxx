@@ -3,6 +3,7 @@
 #include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Pipeline/ContourRelocalisation.h>
 #include <vimlop/Pipeline/ContourWindowRefinement.h>
+#include <vimlop/Pipeline/EndoscopeTracker.h>
 #include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
 #include <vimlop/Server/PoseServing.h>
@@ -104,6 +105,33 @@ void addTrackingRefinementOptions(
       "nor one that turns it by more than this, degrees")
     ->capture_default_str()
     ->check(CLI::PositiveNumber);
+}
+
+void addEndoscopeTrackerOptions(CLI::App& command, EndoscopeTrackerOptions& options)
+{
+  command.add_option("--max-features", options.maxFeatures, "features tracked at most")
+    ->capture_default_str();
+  command
+    .add_option("--max-tracking-width-px", options.maxTrackingWidthPx,
+      "frames wider than this are tracked halved until they fit (the tracker's pixel settings "
+      "are for frames about 320 px wide)")
+    ->capture_default_str();
+  command
+    .add_option("--inlier-px", options.inlierThresholdPx,
+      "a feature agrees with a pose within this reprojection error, px")
+    ->capture_default_str();
+  command
+    .add_option("--tracker-offset-frames", options.trackerOffsetFrames,
+      "the electromagnetic tracker's error is learned from the frames tracked against the CT, "
+      "over about this many frames, and taken off its readings (0: taken as it reads)")
+    ->capture_default_str()
+    ->check(CLI::Range(0, 100000));
+  command
+    .add_option("--tracker-pull", options.trackerPull,
+      "while the video is not anchored to the CT, each pose is moved this fraction of the way to "
+      "the electromagnetic tracker's (0: never)")
+    ->capture_default_str()
+    ->check(CLI::Range(0.0, 1.0));
 }
 
 void addTrackingRelocalisationOptions(

@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -103,11 +104,25 @@ void runTrack(const TrackOptions& o)
       std::cerr << "vimlop: warning: " << warning.get<std::string>() << "\n";
     }
     const int without = tracker["frames_without_tip"].get<int>();
+    const char* given = tracker["rotation"].get<bool>() ? "tip and rotation" : "tip";
     summary.lines.push_back(without == 0
-        ? std::string("the tracker's tip was given for every frame")
+        ? formatText("the tracker's %s were given for every frame", given)
         : formatText("%d frames lie outside the tracker's recording and were tracked without "
-                     "its tip (--time-offset, --fps)",
-            without));
+                     "its %s (--time-offset, --fps)",
+            without, given));
+    if (tracker.contains("offset"))
+    {
+      const nlohmann::json& offset = tracker["offset"];
+      double squaredMm = 0.0;
+      for (const nlohmann::json& axis : offset["shift_mm"])
+      {
+        squaredMm += axis.get<double>() * axis.get<double>();
+      }
+      summary.lines.push_back(formatText("the tracker's error, as the video anchored to the CT "
+                                         "saw it in %d frames: %.2f mm, %.2f degrees",
+        offset["frames_learned"].get<int>(), std::sqrt(squaredMm),
+        offset["turn_deg"].get<double>()));
+    }
   }
   if (summary.json.contains("camera_position_error_mm"))
   {
@@ -204,15 +219,7 @@ void addTrackCommand(CLI::App& app)
     ->check(CLI::NonNegativeNumber)
     ->needs("--serve");
   addPoseServerOptions(*c, o->server);
-  c->add_option("--max-features", o->tracking.tracker.maxFeatures, "features tracked at most")
-    ->capture_default_str();
-  c->add_option("--max-tracking-width-px", o->tracking.tracker.maxTrackingWidthPx,
-     "frames wider than this are tracked halved until they fit (the tracker's pixel settings "
-     "are for frames about 320 px wide)")
-    ->capture_default_str();
-  c->add_option("--inlier-px", o->tracking.tracker.inlierThresholdPx,
-     "a feature agrees with a pose within this reprojection error, px")
-    ->capture_default_str();
+  addEndoscopeTrackerOptions(*c, o->tracking.tracker);
   addJsonFlag(*c, o->json);
   c->callback([o] { runTrack(*o); });
 }

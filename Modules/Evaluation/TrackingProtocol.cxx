@@ -123,7 +123,11 @@ nlohmann::json TrackingProtocolReport::toJson() const
         { "flagged", !this->registrationFailure.empty() },
         { "failure_reason", this->registrationFailure } } },
     { "start_frame", this->startFrame }, { "tracker_prior", this->trackerPrior },
-    { "tracker_rotation", this->trackerRotation }, { "latency_ms", summaryJson(this->latencyMs) },
+    { "tracker_rotation", this->trackerRotation },
+    { "tracker_offset",
+      { { "frames_learned", this->trackerOffsetFramesLearned },
+        { "shift_mm", this->trackerOffsetShiftMm }, { "turn_deg", this->trackerOffsetTurnDeg } } },
+    { "latency_ms", summaryJson(this->latencyMs) },
     { "camera_position_mm", summaryJson(this->positionErrorMm) },
     { "camera_angle_deg", summaryJson(this->angleErrorDeg) }, { "drift_mm", this->driftMm },
     { "tracked_fraction", this->trackedFraction }, { "degraded_frames", this->degradedFrames },
@@ -259,6 +263,9 @@ TrackingProtocolReport runTrackingProtocol(
       o.simulation.frames - 1 - report.startFrame);
   }
   const std::size_t tracked = report.perFrame.size();
+  report.trackerOffsetFramesLearned = tracker.trackerOffset().framesLearned();
+  report.trackerOffsetShiftMm = tracker.trackerOffset().shiftMm().norm();
+  report.trackerOffsetTurnDeg = tracker.trackerOffset().turnDeg();
   report.latencyMs = summarize(latency);
   report.positionErrorMm = summarize(position);
   report.angleErrorDeg = summarize(angle);

@@ -111,6 +111,12 @@ struct TrackingProtocolReport
   /// (TrackingProtocolOptions::trackerPrior), and its rotation.
   bool trackerPrior = false;
   bool trackerRotation = false;
+  /// The tracker's error as the tracker learned it at the end (frames
+  /// learned from, the shift's length in mm, the turn in degrees;
+  /// EndoscopeTracker::trackerOffset()), to set beside the simulated one.
+  int trackerOffsetFramesLearned = 0;
+  double trackerOffsetShiftMm = 0.0;
+  double trackerOffsetTurnDeg = 0.0;
   /// Over the tracked frames (all after the start frame).
   Summary latencyMs;
   Summary positionErrorMm;

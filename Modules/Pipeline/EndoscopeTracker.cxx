@@ -9,6 +9,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -89,6 +90,15 @@ void EndoscopeTrackerOptions::validate() const
     refuse("the frames before features are cast from the tracker's pose must not be negative",
       this->recastFromTrackerAfterFrames);
   }
+  if (this->trackerOffsetFrames < 0)
+  {
+    refuse("the frames the tracker's offset is learned over must not be negative",
+      this->trackerOffsetFrames);
+  }
+  if (!(this->trackerPull >= 0.0 && this->trackerPull <= 1.0))
+  {
+    refuse("the pull towards the tracker's pose must lie in [0, 1]", this->trackerPull);
+  }
   if (!(this->maxTrackerTurnDeg > 0.0))
   {
     refuse("the largest turn from the tracker's rotation must be positive (degrees)",
@@ -135,9 +145,12 @@ struct EndoscopeTracker::Internals
   /// its tip than maxTipDistanceMm, or turned more than maxTrackerTurnDeg);
   /// lost frames, which find none, leave the count as it is.
   int AwayFromTrackerInARow = 0;
+  /// The electromagnetic tracker's error, as the anchored video saw it.
+  TrackerOffset Offset;
 
   Internals(const TriangleMesh& mesh, const PinholeCamera& k, const EndoscopeTrackerOptions& o)
     : Options(o)
+    , Offset(std::max(o.trackerOffsetFrames, 1))
     , Undistorter(k)
     , Intrinsics(Undistorter.pinhole())
     , Scene(mesh)
@@ -232,6 +245,61 @@ struct EndoscopeTracker::Internals
     return hit->point;
   }
 
+  /// Sets `r`'s distance from the tracker's tip and turn from its rotation.
+  static void measureFromTracker(TrackedFrame& r, const std::optional<TrackerPrior>& sensor)
+  {
+    if (!sensor)
+    {
+      return;
+    }
+    r.tipDistanceMm = (r.cameraToCT.centre - sensor->tipCT).norm();
+    if (sensor->rotationCT)
+    {
+      r.trackerTurnDeg =
+        rotationAngleBetween(*sensor->rotationCT, r.cameraToCT.rotation) * 180.0 / M_PI;
+    }
+  }
+
+  /// Casts the model points of `features` (pixels of the last frame) again
+  /// from `pose`, dropping those whose ray now misses or grazes the wall.
+  void recast(const CameraPose& pose, std::vector<TrackedFeature>& features) const
+  {
+    std::vector<TrackedFeature> kept;
+    kept.reserve(features.size());
+    for (const TrackedFeature& f : features)
+    {
+      if (const std::optional<Eigen::Vector3d> point = this->castFeature(pose, f.pixel))
+      {
+        kept.push_back({ f.pixel, *point });
+      }
+    }
+    features = std::move(kept);
+  }
+
+  /// Moves `pose` trackerPull of the way to the tracker's, in what the
+  /// anchored video has measured of its error (its position once a frame
+  /// was learned from, its rotation once a frame with one was), and casts
+  /// `features` again from it. @return how far it moved, mm.
+  double pullTowards(
+    const TrackerPrior& sensor, CameraPose& pose, std::vector<TrackedFeature>& features) const
+  {
+    const double pull = this->Options.trackerPull;
+    const Eigen::Vector3d before = pose.centre;
+    if (this->Offset.framesLearned() > 0)
+    {
+      pose.centre += pull * (sensor.tipCT - pose.centre);
+    }
+    if (sensor.rotationCT && this->Offset.turnsLearned() > 0)
+    {
+      pose.rotation =
+        nearestRotation(rotationFromVector(
+                          pull * rotationToVector(*sensor.rotationCT * pose.rotation.transpose())) *
+          pose.rotation);
+    }
+    this->recast(pose, features);
+    return (pose.centre - before).norm();
+  }
+
   /// Detects corners where no feature is and adds those whose ray from
   /// `pose` meets the model squarely enough; returns how many were added.
   /// Forgets the features and casts new corners of `ideal` (a prepared
@@ -289,16 +357,7 @@ int EndoscopeTracker::correct(const CameraPose& cameraToCT, bool anchored)
   s.BeforeLast.centre = cameraToCT.centre + turn * (s.BeforeLast.centre - s.Last.centre);
   s.BeforeLast.rotation = nearestRotation(turn * s.BeforeLast.rotation);
   s.Last = cameraToCT;
-  std::vector<TrackedFeature> kept;
-  kept.reserve(s.Features.size());
-  for (const TrackedFeature& f : s.Features)
-  {
-    if (const std::optional<Eigen::Vector3d> point = s.castFeature(cameraToCT, f.pixel))
-    {
-      kept.push_back({ f.pixel, *point });
-    }
-  }
-  s.Features = std::move(kept);
+  s.recast(cameraToCT, s.Features);
   s.Anchored = s.Anchored || anchored;
   if (anchored)
   {
@@ -321,6 +380,11 @@ int EndoscopeTracker::correct(const CameraPose& cameraToCT, bool anchored)
 const EndoscopeTrackerOptions& EndoscopeTracker::options() const
 {
   return this->d->Options;
+}
+
+const TrackerOffset& EndoscopeTracker::trackerOffset() const
+{
+  return this->d->Offset;
 }
 
 const PinholeCamera& EndoscopeTracker::trackedCamera() const
@@ -367,6 +431,7 @@ TrackedFrame EndoscopeTracker::start(
   s.LostInARow = 0;
   s.Anchored = true;
   s.AwayFromTrackerInARow = 0;
+  s.Offset.clear();
   s.Last = cameraToCT;
   s.BeforeLast = cameraToCT;
   TrackedFrame r;
@@ -397,7 +462,10 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
   {
     throw Error("endoscope tracker: the tracker's rotation is not a rotation matrix");
   }
-  const CameraPose predicted = s.predict(prior);
+  // The tracker with the error the anchored video has taught it taken off.
+  const std::optional<TrackerPrior> sensor =
+    prior ? std::optional<TrackerPrior>(s.Offset.corrected(*prior)) : std::nullopt;
+  const CameraPose predicted = s.predict(sensor);
   TrackedFrame r;
   r.frame = ++s.Frame;
   // Until a pose is found: lost, at the prediction.
@@ -487,21 +555,13 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
     r.cameraToCT = pose->cameraToWorld;
     r.inliers = static_cast<int>(pose->inliers.size());
     r.reprojectionErrorPx = pose->rmsErrorPx;
-    if (prior)
-    {
-      r.tipDistanceMm = (r.cameraToCT.centre - prior->tipCT).norm();
-    }
-    if (prior && prior->rotationCT)
-    {
-      r.trackerTurnDeg =
-        rotationAngleBetween(*prior->rotationCT, r.cameraToCT.rotation) * 180.0 / M_PI;
-    }
+    s.measureFromTracker(r, sensor);
     const double tipMm = r.tipDistanceMm.value_or(0.0);
     const double trackerTurnDeg = r.trackerTurnDeg.value_or(0.0);
     const bool awayFromTracker =
       tipMm > s.Options.maxTipDistanceMm || trackerTurnDeg > s.Options.maxTrackerTurnDeg;
     s.AwayFromTrackerInARow =
-      awayFromTracker && prior && prior->rotationCT ? s.AwayFromTrackerInARow + 1 : 0;
+      awayFromTracker && sensor && sensor->rotationCT ? s.AwayFromTrackerInARow + 1 : 0;
     if (!s.Anchored)
     {
       r.reason = "its features were cast from " + s.CastFrom;
@@ -523,6 +583,10 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
           trackerTurnDeg, s.Options.maxTrackerTurnDeg);
     }
     r.state = r.reason.empty() ? TrackingState::Tracking : TrackingState::Degraded;
+    if (r.state == TrackingState::Tracking && prior && s.Options.trackerOffsetFrames > 0)
+    {
+      s.Offset.learn(r.cameraToCT, *prior);
+    }
     // Only the features that agree with the pose are worth following.
     std::vector<TrackedFeature> agreeing;
     agreeing.reserve(pose->inliers.size());
@@ -550,8 +614,8 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
     r.reason = formatText("the pose disagreed with the tracker for %d frames in a row: "
                           "features cast again from the tracker's pose",
       recastAfter);
-    r.cameraToCT.centre = prior->tipCT;
-    r.cameraToCT.rotation = *prior->rotationCT;
+    r.cameraToCT.centre = sensor->tipCT;
+    r.cameraToCT.rotation = *sensor->rotationCT;
     r.tipDistanceMm = 0.0;
     r.trackerTurnDeg = 0.0;
     r.newFeatures = s.castAfresh(ideal, r.cameraToCT);
@@ -562,6 +626,14 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
     // From rest: the move to the tracker's pose is no motion of the scope.
     s.BeforeLast = s.Last;
     return done;
+  }
+  if (!s.Anchored && sensor && s.Options.trackerPull > 0.0 && s.Offset.framesLearned() > 0)
+  {
+    // Nothing has checked this world against the CT: the tracker says where
+    // the scope is, the video how it moved since the last frame.
+    const double pulledMm = s.pullTowards(*sensor, r.cameraToCT, followed);
+    s.measureFromTracker(r, sensor);
+    r.reason += formatText(", pulled %.2f mm towards the tracker's pose", pulledMm);
   }
   s.Features = std::move(followed);
   if (static_cast<int>(s.Features.size()) < s.Options.redetectBelow)

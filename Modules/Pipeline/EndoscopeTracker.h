@@ -4,6 +4,7 @@
 #include <vimlop/Core/CameraPose.h>
 #include <vimlop/Core/PinholeCamera.h>
 #include <vimlop/Core/TriangleMesh.h>
+#include <vimlop/Pipeline/TrackerOffset.h>
 #include <vimlop/Pipeline/TrackerPrior.h>
 #include <vimlop/Video/KltFeatureTracker.h>
 
@@ -77,7 +78,8 @@ struct EndoscopeTrackerOptions
   /// 1, ideal world). Poses are those of the full frames' camera either way.
   int maxTrackingWidthPx = 480;
   /// A pose whose optical centre lies farther than this from the
-  /// electromagnetic tracker's tip (track()'s `tipCT`), mm, is Degraded
+  /// electromagnetic tracker's tip (track()'s prior, its learned error
+  /// taken off: trackerOffsetFrames), mm, is Degraded
   /// (default 3: clinical sinus navigation is off by 0.9 mm on average, so
   /// a larger disagreement means the video's pose, or the tracker's
   /// registration, is wrong).
@@ -94,6 +96,24 @@ struct EndoscopeTrackerOptions
   /// (Degraded); 0: never (default 5, a sixth of a second at 30 Hz: the
   /// features then stand for a wrong world, which they would follow on).
   int recastFromTrackerAfterFrames = 5;
+  /// The electromagnetic tracker's error is learned from the frames whose
+  /// pose is Tracking (anchored to the CT, its features agreeing), over
+  /// about this many frames (TrackerOffset), and taken off every prior
+  /// before it is used; 0: the tracker is taken as it reads (default 90,
+  /// 3 s at 30 Hz: long enough to average its noise, short enough to follow
+  /// an error that changes as the scope moves through the field).
+  int trackerOffsetFrames = 90;
+  /// While not anchored, each pose found is moved this fraction of the way
+  /// to the tracker's corrected pose, and its features' model points are
+  /// cast again from there, so that the video gives the motion between
+  /// frames and the tracker where the scope is; 0: never (default 0.1,
+  /// which averages the tracker's noise over about 10 frames). Only in what
+  /// the anchored video has measured of the tracker's error (its position,
+  /// and its rotation once learned from a frame with one): a tracker never
+  /// checked against the CT would pull the pose into agreeing with it, and
+  /// that agreement is what confirms a pose after a long loss
+  /// (TrackingSupervisor).
+  double trackerPull = 0.1;
   /// Frame-to-frame tracking and corner detection.
   KltFeatureTrackerOptions features;
 
@@ -151,6 +171,12 @@ struct TrackedFrame
  *      the poses have disagreed with a 6-DOF tracker for
  *      recastFromTrackerAfterFrames frames, it casts new corners from the
  *      tracker's pose instead, and reports the frame there.
+ *
+ * With an electromagnetic tracker, the video and the tracker correct each
+ * other: in Tracking frames the video, anchored to the CT, teaches the
+ * tracker's error (trackerOffsetFrames, TrackerOffset), which is taken off
+ * every prior; in frames not anchored, the pose found is pulled towards
+ * the corrected tracker's (trackerPull), its features with it.
  *
  * A frame where no pose is found, or none that agrees with enough features
  * after the refinement, or one too far from the prediction (a jump or a
@@ -230,6 +256,10 @@ public:
   int correct(const CameraPose& cameraToCT, bool anchored);
 
   const EndoscopeTrackerOptions& options() const;
+
+  /// @brief The electromagnetic tracker's error learned so far
+  /// (trackerOffsetFrames), taken off each prior.
+  const TrackerOffset& trackerOffset() const;
 
   /// @brief The pinhole camera of the frames as tracked: undistorted, and
   /// halved as maxTrackingWidthPx asks (pixel centres at (x + 0.5) / s - 0.5

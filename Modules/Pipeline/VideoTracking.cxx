@@ -524,9 +524,19 @@ nlohmann::json VideoTracking::report() const
   {
     report["tracker"] = {
       { "recording", d->inputs.trackerPath.empty() ? d->inputs.framesPath : d->inputs.trackerPath },
-      { "tracker_to_ct", d->inputs.trackerToCTPath }, { "frames_without_tip", d->framesWithoutTip },
-      { "warnings", d->trackerWarnings }
+      { "tracker_to_ct", d->inputs.trackerToCTPath },
+      { "rotation", d->emTracker->recording.hasRotations() },
+      { "frames_without_tip", d->framesWithoutTip }, { "warnings", d->trackerWarnings }
     };
+    if (d->tracker)
+    {
+      // What the video anchored to the CT saw of the tracker's error: its
+      // registration to the patient, as far as this run could tell.
+      const TrackerOffset& offset = d->tracker->trackerOffset();
+      const Eigen::Vector3d& shift = offset.shiftMm();
+      report["tracker"]["offset"] = { { "frames_learned", offset.framesLearned() },
+        { "shift_mm", { shift.x(), shift.y(), shift.z() } }, { "turn_deg", offset.turnDeg() } };
+    }
   }
   if (!d->stoppedBy.empty() || d->stopRequested)
   {

@@ -27,6 +27,8 @@ vtkVIMLOPVideoTracking::vtkVIMLOPVideoTracking()
   this->MaxFeatures = defaults.maxFeatures;
   this->MaxTrackingWidthPx = defaults.maxTrackingWidthPx;
   this->InlierThresholdPx = defaults.inlierThresholdPx;
+  this->TrackerOffsetFrames = defaults.trackerOffsetFrames;
+  this->TrackerPull = defaults.trackerPull;
   this->FramesPerSecond = vimlop::VideoTrackingOptions().videoFps;
 }
 
@@ -105,6 +107,8 @@ int vtkVIMLOPVideoTracking::RequestData(
   options.tracker.maxFeatures = this->MaxFeatures;
   options.tracker.maxTrackingWidthPx = this->MaxTrackingWidthPx;
   options.tracker.inlierThresholdPx = this->InlierThresholdPx;
+  options.tracker.trackerOffsetFrames = this->TrackerOffsetFrames;
+  options.tracker.trackerPull = this->TrackerPull;
   options.firstFrameIndex = this->FirstFrameIndex;
   options.allowFlagged = this->AllowFlagged;
   options.writeVideo = this->WriteVideo;
@@ -200,6 +204,8 @@ void vtkVIMLOPVideoTracking::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxFeatures: " << this->MaxFeatures << "\n";
   os << indent << "MaxTrackingWidthPx: " << this->MaxTrackingWidthPx << "\n";
   os << indent << "InlierThresholdPx: " << this->InlierThresholdPx << "\n";
+  os << indent << "TrackerOffsetFrames: " << this->TrackerOffsetFrames << "\n";
+  os << indent << "TrackerPull: " << this->TrackerPull << "\n";
   if (this->Tracking)
   {
     os << indent << "Result: " << this->Tracking->frames().size()

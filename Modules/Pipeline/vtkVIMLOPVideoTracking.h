@@ -147,6 +147,14 @@ public:
   vtkGetMacro(MaxTrackingWidthPx, int);
   vtkSetClampMacro(InlierThresholdPx, double, 0.01, 100.0);
   vtkGetMacro(InlierThresholdPx, double);
+  /// With an electromagnetic tracker: its error is learned from the frames
+  /// tracked against the CT over about TrackerOffsetFrames frames (90; 0:
+  /// taken as it reads), and a pose not anchored to the CT is moved
+  /// TrackerPull of the way to the corrected tracker's in each frame (0.1).
+  vtkSetClampMacro(TrackerOffsetFrames, int, 0, 100000);
+  vtkGetMacro(TrackerOffsetFrames, int);
+  vtkSetClampMacro(TrackerPull, double, 0.0, 1.0);
+  vtkGetMacro(TrackerPull, double);
   ///@}
 
   ///@{
@@ -200,6 +208,8 @@ private:
   int MaxFeatures;
   int MaxTrackingWidthPx;
   double InlierThresholdPx;
+  int TrackerOffsetFrames;
+  double TrackerPull;
   std::string LastFrameState;
   int LastFrameId = -1;
   std::unique_ptr<vimlop::VideoTracking> Tracking;

@@ -131,8 +131,10 @@ source = vimlop.vtkVIMLOPVideoTracking()
 for flag, value in (("--max-features", source.GetMaxFeatures()),
                     ("--max-tracking-width-px", source.GetMaxTrackingWidthPx()),
                     ("--inlier-px", source.GetInlierThresholdPx()),
+                    ("--tracker-offset-frames", source.GetTrackerOffsetFrames()),
+                    ("--tracker-pull", source.GetTrackerPull()),
                     ("--fps", source.GetFramesPerSecond())):
-    match = re.search(re.escape(flag) + r" [A-Z:]+=([0-9.]+)", text)
+    match = re.search(re.escape(flag) + r" [^=\n]+=([0-9.]+)", text)
     check(match is not None and float(match.group(1)) == float(value),
           "%s: vimlop track's default is the VTK source's (%s)" % (flag, value))
 

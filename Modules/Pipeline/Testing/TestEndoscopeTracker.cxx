@@ -73,6 +73,15 @@ TEST(EndoscopeTracker, NamesEachStateAndRefusesOptionsOutOfRange)
     "endoscope tracker: the frames before features are cast from the "
     "tracker's pose must not be negative, not -1");
   o = {};
+  o.trackerOffsetFrames = -2;
+  EXPECT_EQ(refusal(o),
+    "endoscope tracker: the frames the tracker's offset is learned over must not be negative, "
+    "not -2");
+  o = {};
+  o.trackerPull = 1.5;
+  EXPECT_EQ(refusal(o),
+    "endoscope tracker: the pull towards the tracker's pose must lie in [0, 1], not 1.5");
+  o = {};
   o.features.windowPx = 4;
   EXPECT_EQ(
     refusal(o), "feature tracking: the window must be an odd number of pixels, at least 5, not 4");

@@ -220,14 +220,17 @@ TEST(TrackingSupervisor, DoesNotLetContoursAnchorATrackerLostLongerThanItsPredic
 /// has a rotation too: the true one turned by that about the view axis,
 /// from the second frame after the stretch on (so that the first one's
 /// features are cast as with the tip alone, and the pose found is the
-/// same). -1 when it never anchors.
-int anchoredAfterALongLossWithTheTip(double offsetMm, std::optional<double> turnDeg = std::nullopt)
+/// same). The tracker's error is learned over `learnFrames` (0: it is
+/// taken as it reads). -1 when it never anchors.
+int anchoredAfterALongLossWithTheTip(double offsetMm, std::optional<double> turnDeg = std::nullopt,
+  int learnFrames = EndoscopeTrackerOptions().trackerOffsetFrames)
 {
   const fixtures::Sequence& s = fixtures::sequence();
   const FrameContourCheck check(*s.model, s.intrinsics, cv::Mat());
   TrackingSupervisor supervisor(check, ContourWindowRefinementOptions(), true, {}, 0.0);
   EndoscopeTrackerOptions holding;
   holding.maxCoastFrames = 0;
+  holding.trackerOffsetFrames = learnFrames;
   EndoscopeTracker tracker(s.mesh, s.intrinsics, holding);
   tracker.start(s.frames[0], s.poses[0]);
   const cv::Mat black = cv::Mat::zeros(s.frames[0].size(), s.frames[0].type());
@@ -268,12 +271,18 @@ TEST(TrackingSupervisor, LetsContoursAnchorATrackerAfterALongLossWhereTheTracker
   // With the electromagnetic tracker's tip at the true centre, a pose within
   // 1 mm of it whose contours agree is anchored again after the loss. With
   // the tip 2 mm off (a poorly registered tracker: near enough not to
-  // degrade the poses, too far to confirm one), the tracker stays
-  // unanchored, as without a tracker.
+  // degrade the poses, too far to confirm one) taken as it reads, the
+  // tracker stays unanchored, as without a tracker. When the tracked frames
+  // before the loss have taught it that error, the corrected tip confirms
+  // the pose as the exact one does (and the pose is within 0.5 mm of the
+  // truth: anchoredAfterALongLossWithTheTip() checks).
   const int withTip = anchoredAfterALongLossWithTheTip(0.0);
   EXPECT_GE(withTip, 7 + 3);
   EXPECT_LE(withTip, 7 + 3 + 4);
-  EXPECT_EQ(anchoredAfterALongLossWithTheTip(2.0), -1);
+  EXPECT_EQ(anchoredAfterALongLossWithTheTip(2.0, std::nullopt, 0), -1);
+  const int learned = anchoredAfterALongLossWithTheTip(2.0);
+  EXPECT_GE(learned, 7 + 3);
+  EXPECT_LE(learned, 7 + 3 + 4);
 }
 
 TEST(TrackingSupervisor,
@@ -282,7 +291,10 @@ TEST(TrackingSupervisor,
   // A 6-DOF tracker at the true pose anchors as the tip does; one whose
   // rotation is 3 degrees off the pose found (within the 5 that degrade a
   // pose, beyond the 2 that confirm one) keeps the tracker unanchored,
-  // although the pose is the same and the contours agree with it.
+  // although the pose is the same and the contours agree with it. (Its
+  // rotation comes only after the loss, so no tracked frame has measured
+  // its error: the pose is not pulled towards it, which would make them
+  // agree.)
   const int withPose = anchoredAfterALongLossWithTheTip(0.0, 0.0);
   EXPECT_GE(withPose, 7 + 3);
   EXPECT_LE(withPose, 7 + 3 + 4);
