@@ -202,7 +202,8 @@ void addTrackCommand(CLI::App& app)
     "the tracker registered to the patient, as 3D Slicer saves its TrackerToRAS transform (ITK "
     ".tfm/.h5)");
   c->add_option("--time-offset", o->inputs.timeOffsetS,
-     "time of the first frame of --frames on the tracker's clock, s")
+     "added to each frame's time on the tracker's clock: a tracked sequence's own timestamp, "
+     "else the frame's place at --fps from 0, s")
     ->capture_default_str();
   c->add_option("--fps", o->tracking.videoFps,
      "the frames' rate, frames per second: the tracked video's, and the frames' times on the "

@@ -82,17 +82,21 @@ struct VideoTracking::Internals
 
   bool stopAsked() const { return this->stopRequest && this->stopRequest(); }
 
-  /// What the tracker says at frame `id`'s time, in the CT: its tip, and
+  /// What the tracker says at the frame's time, in the CT: its tip, and
   /// the camera's rotation when the recording has the sensor's; none
-  /// without a tracker, or outside its recording.
-  std::optional<TrackerPrior> priorAt(int id)
+  /// without a tracker, or outside its recording. The time is the frame's
+  /// own timestamp when its source records one (a tracked sequence, whose
+  /// tracker is on the same clock), else its place at the video's rate;
+  /// plus the time offset either way.
+  std::optional<TrackerPrior> priorAt(const StreamedFrame& frame)
   {
     if (!this->emTracker)
     {
       return std::nullopt;
     }
-    const double timeS =
-      frameTimeS(id, *this->firstId, this->options.videoFps, this->inputs.timeOffsetS);
+    const double timeS = frame.timestampS
+      ? *frame.timestampS + this->inputs.timeOffsetS
+      : frameTimeS(frame.id, *this->firstId, this->options.videoFps, this->inputs.timeOffsetS);
     std::optional<TrackerPrior> prior =
       trackerPriorAt(this->emTracker->recording, this->emTracker->toCT, timeS);
     this->framesWithoutTip += prior ? 0 : 1;
@@ -285,7 +289,7 @@ void VideoTracking::run()
       TrackedVideoFrame frame;
       frame.frameId = f.id;
       frame.source = f.name;
-      frame.tracked = d->tracker->track(ideal, d->priorAt(f.id));
+      frame.tracked = d->tracker->track(ideal, d->priorAt(f));
       // The check against the CT judges the pose before it is handed on.
       FrameContourAgreement agreement;
       if (d->supervisor)

@@ -117,6 +117,7 @@ bool FrameStream::next(StreamedFrame& frame)
   frame.index = index;
   frame.id = index;
   frame.name = "frame" + std::to_string(index);
+  frame.timestampS.reset();
   switch (s.kind)
   {
     case Source::Folder:
@@ -153,6 +154,9 @@ bool FrameStream::next(StreamedFrame& frame)
       frame.image = s.sequence.frame(index);
       frame.name = s.sequence.name(index);
       frame.id = s.sequence.ids()[static_cast<std::size_t>(index)];
+      frame.timestampS = s.sequence.timestampsS().empty()
+        ? std::nullopt
+        : std::optional<double>(s.sequence.timestampsS()[static_cast<std::size_t>(index)]);
       break;
     case Source::Camera:
       if (!s.camera.read(frame.image) || frame.image.empty())

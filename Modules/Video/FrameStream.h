@@ -22,6 +22,9 @@ struct StreamedFrame
   int id = 0;
   /// Position in the stream, from 0.
   int index = 0;
+  /// The time the source recorded for the frame, s (a tracked sequence's
+  /// timestamp); none for a folder, a video file or a camera.
+  std::optional<double> timestampS;
 };
 
 /**

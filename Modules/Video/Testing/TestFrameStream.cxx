@@ -40,6 +40,7 @@ TEST(FrameStream, GivesAFoldersFramesOneAtATimeInNaturalOrderWithTheirNumbersAsI
   {
     EXPECT_EQ(f.image.type(), CV_8UC3);
     EXPECT_EQ(f.image.at<cv::Vec3b>(0, 0)[0], f.id) << f.name;
+    EXPECT_FALSE(f.timestampS.has_value()) << "a folder records no time";
     got.push_back(f.name + ":" + std::to_string(f.id) + "@" + std::to_string(f.index));
   }
   EXPECT_EQ(

@@ -4,6 +4,7 @@
 
 #include <vimlop/Core/Error.h>
 #include <vimlop/Video/FrameSequence.h>
+#include <vimlop/Video/FrameStream.h>
 #include <vimlop/Video/TrackerTrajectory.h>
 #include <vimlop/Video/VideoInput.h>
 
@@ -193,6 +194,24 @@ TEST(TrackedSequence, LoadsTheFramesOfAPlusRecordingWithTheirTimestamps)
   const FrameSequence greyFrames = FrameSequence::load(writeRecording(dir + "/grey.seq.mha", grey));
   EXPECT_EQ(greyFrames.frame(2).at<cv::Vec3b>(1, 1), cv::Vec3b::all(pixel(2, 1, 1, 0)));
   EXPECT_EQ(FrameSequence::load(dir + "/grey.seq.mha", 2).size(), 2);
+}
+
+TEST(TrackedSequence, StreamsItsFramesWithTheirTimestamps)
+{
+  // A tracker reading the frames one at a time needs each frame's time on
+  // the tracker's clock, as the whole sequence has them.
+  const std::string dir = fixtures::freshTestFolder("tracked-sequence-stream").string();
+  Recording r;
+  r.status = { "OK", "INVALID", "OK" };
+  FrameStream stream = FrameStream::open(writeRecording(dir + "/recording.igs.mha", r));
+  StreamedFrame f;
+  std::vector<double> times;
+  while (stream.next(f))
+  {
+    ASSERT_TRUE(f.timestampS.has_value()) << f.name;
+    times.push_back(*f.timestampS);
+  }
+  EXPECT_EQ(times, (std::vector<double>{ 100.0, 100.08 }));
 }
 
 TEST(TrackedSequence, RefusesRecordingsItCannotReadWithTheReason)
