@@ -95,6 +95,11 @@ void EndoscopeTrackerOptions::validate() const
     refuse("the frames the tracker's offset is learned over must not be negative",
       this->trackerOffsetFrames);
   }
+  if (this->trackerOffsetPriorFrames < 0)
+  {
+    refuse(
+      "the tracker's offset prior frames must not be negative", this->trackerOffsetPriorFrames);
+  }
   if (!(this->trackerPull >= 0.0 && this->trackerPull <= 1.0))
   {
     refuse("the pull towards the tracker's pose must lie in [0, 1]", this->trackerPull);
@@ -150,7 +155,7 @@ struct EndoscopeTracker::Internals
 
   Internals(const TriangleMesh& mesh, const PinholeCamera& k, const EndoscopeTrackerOptions& o)
     : Options(o)
-    , Offset(std::max(o.trackerOffsetFrames, 1))
+    , Offset(std::max(o.trackerOffsetFrames, 1), o.trackerOffsetPriorFrames)
     , Undistorter(k)
     , Intrinsics(Undistorter.pinhole())
     , Scene(mesh)
@@ -277,19 +282,19 @@ struct EndoscopeTracker::Internals
   }
 
   /// Moves `pose` trackerPull of the way to the tracker's, in what the
-  /// anchored video has measured of its error (its position once a frame
-  /// was learned from, its rotation once a frame with one was), and casts
+  /// anchored video has checked of it (TrackerOffset::positionChecked(),
+  /// rotationChecked()), and casts
   /// `features` again from it. @return how far it moved, mm.
   double pullTowards(
     const TrackerPrior& sensor, CameraPose& pose, std::vector<TrackedFeature>& features) const
   {
     const double pull = this->Options.trackerPull;
     const Eigen::Vector3d before = pose.centre;
-    if (this->Offset.framesLearned() > 0)
+    if (this->Offset.positionChecked())
     {
       pose.centre += pull * (sensor.tipCT - pose.centre);
     }
-    if (sensor.rotationCT && this->Offset.turnsLearned() > 0)
+    if (sensor.rotationCT && this->Offset.rotationChecked())
     {
       pose.rotation =
         nearestRotation(rotationFromVector(
@@ -627,7 +632,7 @@ TrackedFrame EndoscopeTracker::track(const cv::Mat& frame, const std::optional<T
     s.BeforeLast = s.Last;
     return done;
   }
-  if (!s.Anchored && sensor && s.Options.trackerPull > 0.0 && s.Offset.framesLearned() > 0)
+  if (!s.Anchored && sensor && s.Options.trackerPull > 0.0 && s.Offset.positionChecked())
   {
     // Nothing has checked this world against the CT: the tracker says where
     // the scope is, the video how it moved since the last frame.

@@ -103,16 +103,22 @@ struct EndoscopeTrackerOptions
   /// 3 s at 30 Hz: long enough to average its noise, short enough to follow
   /// an error that changes as the scope moves through the field).
   int trackerOffsetFrames = 90;
+  /// The learned error is shrunk towards none as if this many frames had
+  /// seen none, and a pose is pulled towards the tracker (trackerPull) only
+  /// once this many frames have measured it (default 30, 1 s at 30 Hz: a
+  /// tracker that lags the video shows an offset during a fast move, which
+  /// a few frames would take for its error; TrackerOffset).
+  int trackerOffsetPriorFrames = 30;
   /// While not anchored, each pose found is moved this fraction of the way
   /// to the tracker's corrected pose, and its features' model points are
   /// cast again from there, so that the video gives the motion between
   /// frames and the tracker where the scope is; 0: never (default 0.1,
   /// which averages the tracker's noise over about 10 frames). Only in what
   /// the anchored video has measured of the tracker's error (its position,
-  /// and its rotation once learned from a frame with one): a tracker never
-  /// checked against the CT would pull the pose into agreeing with it, and
-  /// that agreement is what confirms a pose after a long loss
-  /// (TrackingSupervisor).
+  /// and its rotation, each once trackerOffsetPriorFrames frames have
+  /// measured it): a tracker never checked against the CT would pull the
+  /// pose into agreeing with it, and that agreement is what confirms a pose
+  /// after a long loss (TrackingSupervisor).
   double trackerPull = 0.1;
   /// Frame-to-frame tracking and corner detection.
   KltFeatureTrackerOptions features;

@@ -10,13 +10,19 @@
 namespace vimlop
 {
 
-TrackerOffset::TrackerOffset(int memoryFrames)
+TrackerOffset::TrackerOffset(int memoryFrames, int priorFrames)
   : Memory(memoryFrames)
+  , PriorFrames(priorFrames)
 {
   if (memoryFrames < 1)
   {
     throw Error(
       "tracker offset: its memory must be at least 1 frame, not " + std::to_string(memoryFrames));
+  }
+  if (priorFrames < 0)
+  {
+    throw Error(
+      "tracker offset: its prior frames must not be negative, not " + std::to_string(priorFrames));
   }
 }
 
@@ -39,25 +45,56 @@ void TrackerOffset::learn(const CameraPose& videoCT, const TrackerPrior& prior)
   }
 }
 
+namespace
+{
+
+/// The share of a mean over `n` frames kept under a prior of `prior` frames of none.
+double shrinkage(int n, int prior)
+{
+  return n == 0 ? 0.0 : static_cast<double>(n) / (n + prior);
+}
+
+} // namespace
+
 TrackerPrior TrackerOffset::corrected(const TrackerPrior& prior) const
 {
   TrackerPrior r = prior;
-  r.tipCT += this->Shift;
+  r.tipCT += this->shiftMm();
   if (r.rotationCT)
   {
-    r.rotationCT = nearestRotation(this->Turn * *r.rotationCT);
+    r.rotationCT = nearestRotation(rotationFromVector(this->turnVector()) * *r.rotationCT);
   }
   return r;
 }
 
+bool TrackerOffset::positionChecked() const
+{
+  return this->Learned >= std::max(this->PriorFrames, 1);
+}
+
+bool TrackerOffset::rotationChecked() const
+{
+  return this->LearnedTurns >= std::max(this->PriorFrames, 1);
+}
+
 void TrackerOffset::clear()
 {
-  *this = TrackerOffset(this->Memory);
+  *this = TrackerOffset(this->Memory, this->PriorFrames);
+}
+
+Eigen::Vector3d TrackerOffset::shiftMm() const
+{
+  return shrinkage(this->Learned, this->PriorFrames) * this->Shift;
+}
+
+Eigen::Vector3d TrackerOffset::turnVector() const
+{
+  return shrinkage(this->LearnedTurns, this->PriorFrames) * rotationToVector(this->Turn);
 }
 
 double TrackerOffset::turnDeg() const
 {
-  return rotationToVector(this->Turn).norm() * 180.0 / M_PI;
+  return this->turnVector().norm() * 180.0 / M_PI;
 }
 
 } // namespace vimlop

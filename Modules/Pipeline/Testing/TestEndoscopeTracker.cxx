@@ -78,6 +78,10 @@ TEST(EndoscopeTracker, NamesEachStateAndRefusesOptionsOutOfRange)
     "endoscope tracker: the frames the tracker's offset is learned over must not be negative, "
     "not -2");
   o = {};
+  o.trackerOffsetPriorFrames = -1;
+  EXPECT_EQ(refusal(o),
+    "endoscope tracker: the tracker's offset prior frames must not be negative, not -1");
+  o = {};
   o.trackerPull = 1.5;
   EXPECT_EQ(refusal(o),
     "endoscope tracker: the pull towards the tracker's pose must lie in [0, 1], not 1.5");

@@ -172,16 +172,17 @@ struct TrackerError
 /// tracker's), or not, each off by `error`; the prediction holds the last
 /// pose from the first lost frame on (maxCoastFrames 0), as it does after a
 /// long loss. The tracker's error is learned over `offsetFrames` (0: not
-/// learned). Also checks, for an exact tracker taken as it reads, that each
-/// lost frame after the first is reported at the tip, and turned as the
-/// tracker says when it has a rotation.
+/// learned), shrunk as if `priorFrames` had seen none. Also checks, for an exact tracker taken as
+/// it reads, that each lost frame after the first is reported at the tip, and turned as the tracker
+/// says when it has a rotation.
 LargestErrors largestErrorAfterABlackStretch(
-  GivenPrior given, const TrackerError& error = {}, int offsetFrames = 0)
+  GivenPrior given, const TrackerError& error = {}, int offsetFrames = 0, int priorFrames = 0)
 {
   const fixtures::Sequence& s = fixtures::sequence();
   EndoscopeTrackerOptions o;
   o.maxCoastFrames = 0;
   o.trackerOffsetFrames = offsetFrames;
+  o.trackerOffsetPriorFrames = priorFrames;
   EndoscopeTracker tracker(s.mesh, s.intrinsics, o);
   const Eigen::Matrix3d turn =
     Eigen::AngleAxisd(error.turnDeg * M_PI / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
@@ -260,20 +261,26 @@ TEST(EndoscopeTracker, LearnsASixDofTrackersErrorWhileAnchoredAndTakesItOffAfter
   // A 6-DOF tracker 1 mm and 2 degrees off, as a navigation system's
   // registration leaves it. Taken as it reads, the frames after the black
   // stretch are cast from its pose and keep its error; learned over the
-  // four tracked frames before the stretch, its error is taken off, and
-  // they are cast from where the scope is.
+  // four tracked frames before the stretch, taken as enough (no
+  // shrinkage), its error is taken off, and they are cast from where the
+  // scope is. Shrunk as by default (as if 30 frames had seen no error), 4
+  // frames take off little of it.
   TrackerError error;
   error.shiftMm = Eigen::Vector3d(0.6, -0.48, 0.64);
   error.turnDeg = 2.0;
   const LargestErrors asRead = largestErrorAfterABlackStretch(GivenPrior::TipAndRotation, error, 0);
   const LargestErrors learned =
-    largestErrorAfterABlackStretch(GivenPrior::TipAndRotation, error, 90);
+    largestErrorAfterABlackStretch(GivenPrior::TipAndRotation, error, 90, 0);
+  const LargestErrors shrunk = largestErrorAfterABlackStretch(
+    GivenPrior::TipAndRotation, error, 90, EndoscopeTrackerOptions().trackerOffsetPriorFrames);
   std::printf("largest error after the stretch, the tracker 1 mm and 2 deg off: %.3f mm, %.3f deg "
-              "as it reads; %.3f mm, %.3f deg with its error learned\n",
-    asRead.mm, asRead.deg, learned.mm, learned.deg);
+              "as it reads; %.3f mm, %.3f deg with its error learned; %.3f mm, %.3f deg "
+              "learned and shrunk\n",
+    asRead.mm, asRead.deg, learned.mm, learned.deg, shrunk.mm, shrunk.deg);
   EXPECT_GT(asRead.mm, 0.5);
   EXPECT_LT(learned.mm, 0.5 * asRead.mm);
   EXPECT_LT(learned.deg, 0.5 * asRead.deg);
+  EXPECT_GT(shrunk.mm, 0.7 * asRead.mm);
 }
 
 TEST(EndoscopeTracker, DegradesAPoseFartherThanAllowedFromTheTrackersTip)

@@ -66,6 +66,36 @@ TEST(TrackerOffset, LearnsATrackersShiftAndTurnThroughItsNoiseAndTakesThemOff)
   EXPECT_EQ(offset.corrected(raw).tipCT, raw.tipCT);
 }
 
+TEST(TrackerOffset, TakesOffOnlyAShareOfWhatAFewFramesSawUntilItIsChecked)
+{
+  // Shrunk as if 30 frames had seen no error: 3 frames of a 2 mm shift take
+  // off 3/33 of it, 30 frames half of it, 300 frames 10/11; the position is
+  // checked once 30 frames have measured it, the rotation of a tracker
+  // without one never.
+  TrackerOffset offset(1000, 30);
+  const Eigen::Vector3d shiftMm(0.0, 2.0, 0.0);
+  int f = 0;
+  const auto learnUpTo = [&](int frames)
+  {
+    for (; f < frames; ++f)
+    {
+      const CameraPose truth = cameraAt(f);
+      offset.learn(truth, TrackerPrior(truth.centre - shiftMm));
+    }
+  };
+  learnUpTo(3);
+  EXPECT_NEAR(offset.shiftMm().y(), 2.0 * 3.0 / 33.0, 1e-12);
+  EXPECT_FALSE(offset.positionChecked());
+  learnUpTo(30);
+  EXPECT_NEAR(offset.shiftMm().y(), 1.0, 1e-12);
+  EXPECT_TRUE(offset.positionChecked());
+  EXPECT_FALSE(offset.rotationChecked());
+  learnUpTo(300);
+  EXPECT_NEAR(offset.shiftMm().y(), 2.0 * 300.0 / 330.0, 1e-12);
+  EXPECT_EQ(fixtures::errorMessageOf([] { TrackerOffset(10, -1); }),
+    "tracker offset: its prior frames must not be negative, not -1");
+}
+
 TEST(TrackerOffset, FollowsAnErrorThatChangesOverItsMemory)
 {
   // The error jumps from 1 mm one way to 1 mm the other: with a memory of

@@ -221,9 +221,11 @@ TEST(TrackingSupervisor, DoesNotLetContoursAnchorATrackerLostLongerThanItsPredic
 /// from the second frame after the stretch on (so that the first one's
 /// features are cast as with the tip alone, and the pose found is the
 /// same). The tracker's error is learned over `learnFrames` (0: it is
-/// taken as it reads). -1 when it never anchors.
+/// taken as it reads), shrunk as if `priorFrames` had seen none. -1 when it
+/// never anchors.
 int anchoredAfterALongLossWithTheTip(double offsetMm, std::optional<double> turnDeg = std::nullopt,
-  int learnFrames = EndoscopeTrackerOptions().trackerOffsetFrames)
+  int learnFrames = EndoscopeTrackerOptions().trackerOffsetFrames,
+  int priorFrames = EndoscopeTrackerOptions().trackerOffsetPriorFrames)
 {
   const fixtures::Sequence& s = fixtures::sequence();
   const FrameContourCheck check(*s.model, s.intrinsics, cv::Mat());
@@ -231,6 +233,7 @@ int anchoredAfterALongLossWithTheTip(double offsetMm, std::optional<double> turn
   EndoscopeTrackerOptions holding;
   holding.maxCoastFrames = 0;
   holding.trackerOffsetFrames = learnFrames;
+  holding.trackerOffsetPriorFrames = priorFrames;
   EndoscopeTracker tracker(s.mesh, s.intrinsics, holding);
   tracker.start(s.frames[0], s.poses[0]);
   const cv::Mat black = cv::Mat::zeros(s.frames[0].size(), s.frames[0].type());
@@ -272,15 +275,18 @@ TEST(TrackingSupervisor, LetsContoursAnchorATrackerAfterALongLossWhereTheTracker
   // 1 mm of it whose contours agree is anchored again after the loss. With
   // the tip 2 mm off (a poorly registered tracker: near enough not to
   // degrade the poses, too far to confirm one) taken as it reads, the
-  // tracker stays unanchored, as without a tracker. When the tracked frames
-  // before the loss have taught it that error, the corrected tip confirms
-  // the pose as the exact one does (and the pose is within 0.5 mm of the
-  // truth: anchoredAfterALongLossWithTheTip() checks).
+  // tracker stays unanchored, as without a tracker; so it does when the 7
+  // tracked frames before the loss are all that measured its error (shrunk
+  // as if 30 frames had seen none, 0.38 mm of the 2 are taken off). When
+  // those frames are taken as enough (no shrinkage), the corrected tip
+  // confirms the pose as the exact one does (and the pose is within 0.5 mm
+  // of the truth: anchoredAfterALongLossWithTheTip() checks).
   const int withTip = anchoredAfterALongLossWithTheTip(0.0);
   EXPECT_GE(withTip, 7 + 3);
   EXPECT_LE(withTip, 7 + 3 + 4);
   EXPECT_EQ(anchoredAfterALongLossWithTheTip(2.0, std::nullopt, 0), -1);
-  const int learned = anchoredAfterALongLossWithTheTip(2.0);
+  EXPECT_EQ(anchoredAfterALongLossWithTheTip(2.0), -1);
+  const int learned = anchoredAfterALongLossWithTheTip(2.0, std::nullopt, 90, 0);
   EXPECT_GE(learned, 7 + 3);
   EXPECT_LE(learned, 7 + 3 + 4);
 }
