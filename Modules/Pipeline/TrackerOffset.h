@@ -28,7 +28,7 @@ namespace vimlop
  * apply n / (n + priorFrames) of it. A few frames do not make an error: a
  * tracker that lags the video shows, during a fast move, an offset that is
  * its motion over the lag (the clinical world of evaluate tracking learned
- * 2.2 mm and 4.4 degrees from three frames before a fast move, against a
+ * 2.2 mm and 4.0 degrees from three frames before a fast move, against a
  * sensor registered exactly).
  */
 class TrackerOffset
