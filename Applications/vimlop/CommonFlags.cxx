@@ -3,7 +3,7 @@
 #include <vimlop/Imaging/CTVolumeIO.h>
 #include <vimlop/Pipeline/ContourRelocalisation.h>
 #include <vimlop/Pipeline/ContourWindowRefinement.h>
-#include <vimlop/Pipeline/EndoscopeTracker.h>
+#include <vimlop/Pipeline/EndoscopeTrackerOptions.h>
 #include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
 #include <vimlop/Server/PoseServing.h>

@@ -77,4 +77,11 @@ Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& m)
   return svd.matrixU() * d * svd.matrixV().transpose();
 }
 
+Eigen::Matrix3d rotationTowards(
+  const Eigen::Matrix3d& from, const Eigen::Matrix3d& to, double fraction)
+{
+  return nearestRotation(
+    rotationFromVector(fraction * rotationToVector(to * from.transpose())) * from);
+}
+
 } // namespace vimlop

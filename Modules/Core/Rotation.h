@@ -31,6 +31,11 @@ bool isRotation(const Eigen::Matrix3d& m, double tolerance = 1e-6);
 /// @brief The rotation closest to `m` in the Frobenius norm (polar decomposition).
 Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& m);
 
+/// @brief `from` turned `fraction` of the way to `to` along the shorter
+/// geodesic (fraction 0: `from`, 1: `to`), about an axis fixed in space.
+Eigen::Matrix3d rotationTowards(
+  const Eigen::Matrix3d& from, const Eigen::Matrix3d& to, double fraction);
+
 } // namespace vimlop
 
 #endif

@@ -39,9 +39,7 @@ void TrackerOffset::learn(const CameraPose& videoCT, const TrackerPrior& prior)
     const double turnWeight = 1.0 / std::min(this->LearnedTurns, this->Memory);
     const Eigen::Matrix3d seen = videoCT.rotation * prior.rotationCT->transpose();
     // Along the geodesic from the mean so far towards this frame's turn.
-    this->Turn = nearestRotation(
-      rotationFromVector(turnWeight * rotationToVector(seen * this->Turn.transpose())) *
-      this->Turn);
+    this->Turn = rotationTowards(this->Turn, seen, turnWeight);
   }
 }
 

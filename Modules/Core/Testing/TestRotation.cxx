@@ -70,3 +70,19 @@ TEST(Rotation, NearestRotationRemovesNoise)
   // A reflection is mapped to a proper rotation, never to itself.
   EXPECT_TRUE(isRotation(nearestRotation(-Eigen::Matrix3d::Identity()), 1e-12));
 }
+
+TEST(Rotation, TowardsTurnsAFractionOfTheWayAlongTheShorterArc)
+{
+  // Eigen's quaternion slerp is the reference: the same arc, the same point on it.
+  const Eigen::Matrix3d from =
+    Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 0).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d to =
+    Eigen::AngleAxisd(-1.1, Eigen::Vector3d(0, 1, 3).normalized()).toRotationMatrix();
+  for (const double fraction : { 0.0, 0.1, 0.5, 1.0 })
+  {
+    const Eigen::Matrix3d reference =
+      Eigen::Quaterniond(from).slerp(fraction, Eigen::Quaterniond(to)).toRotationMatrix();
+    EXPECT_LT((rotationTowards(from, to, fraction) - reference).cwiseAbs().maxCoeff(), 1e-12)
+      << fraction;
+  }
+}
