@@ -27,6 +27,7 @@ struct ContourWindowRefinementOptions;
 struct ContourRelocalisationOptions;
 struct EndoscopeSimulationOptions;
 struct EndoscopeTrackerOptions;
+struct TrackerLagOptions;
 struct PinholeCamera;
 struct PoseServingOptions;
 struct PoseStreamServerOptions;
@@ -129,11 +130,12 @@ void addTrackingRefinementOptions(
 
 /**
  * @brief Adds --max-features, --max-tracking-width-px, --inlier-px,
- * --tracker-offset-frames and --tracker-pull, stored into `options`: the
- * frame-to-frame tracker and how it uses an electromagnetic tracker
- * (`vimlop track`, `evaluate tracking`).
+ * --tracker-offset-frames and --tracker-pull, stored into `options`, and
+ * --tracker-max-lag-s, stored into `lag`: the frame-to-frame tracker and how
+ * it uses an electromagnetic tracker (`vimlop track`, `evaluate tracking`).
  */
-void addEndoscopeTrackerOptions(CLI::App& command, EndoscopeTrackerOptions& options);
+void addEndoscopeTrackerOptions(
+  CLI::App& command, EndoscopeTrackerOptions& options, TrackerLagOptions& lag);
 
 /**
  * @brief Adds --no-relocalisation, --degraded-above-px, --relocalise-search-mm

@@ -4,6 +4,7 @@
 #include <vimlop/Pipeline/ContourRelocalisation.h>
 #include <vimlop/Pipeline/ContourWindowRefinement.h>
 #include <vimlop/Pipeline/EndoscopeTrackerOptions.h>
+#include <vimlop/Pipeline/TrackerLag.h>
 #include <vimlop/Pipeline/VideoRegistrationOptionTable.h>
 #include <vimlop/Pipeline/VideoRegistrationOptions.h>
 #include <vimlop/Server/PoseServing.h>
@@ -107,7 +108,8 @@ void addTrackingRefinementOptions(
     ->check(CLI::PositiveNumber);
 }
 
-void addEndoscopeTrackerOptions(CLI::App& command, EndoscopeTrackerOptions& options)
+void addEndoscopeTrackerOptions(
+  CLI::App& command, EndoscopeTrackerOptions& options, TrackerLagOptions& lag)
 {
   command.add_option("--max-features", options.maxFeatures, "features tracked at most")
     ->capture_default_str();
@@ -132,6 +134,13 @@ void addEndoscopeTrackerOptions(CLI::App& command, EndoscopeTrackerOptions& opti
       "the electromagnetic tracker's (0: never)")
     ->capture_default_str()
     ->check(CLI::Range(0.0, 1.0));
+  command
+    .add_option("--tracker-max-lag-s", lag.maxLagS,
+      "the electromagnetic tracker's lag behind the frames' times is measured from the frames "
+      "tracked against the CT, up to this much either way, and its readings are taken that much "
+      "later (0: read at the frames' times)")
+    ->capture_default_str()
+    ->check(CLI::Range(0.0, 2.0));
 }
 
 void addTrackingRelocalisationOptions(

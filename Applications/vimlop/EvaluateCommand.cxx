@@ -309,7 +309,7 @@ CLI::App* addEvaluateCommand(CLI::App& app)
     ->add_option("--registration-frames", trackingOptions.registrationFrames,
       "frames registered by the main job before tracking")
     ->capture_default_str();
-  addEndoscopeTrackerOptions(*track, trackingOptions.tracker);
+  addEndoscopeTrackerOptions(*track, trackingOptions.tracker, trackingOptions.trackerLag);
   track->add_flag("--tracker-prior", trackingOptions.trackerPrior,
     "give the tracker the simulated electromagnetic tracker's tip at each frame (the prediction "
     "after a lost frame, and frames farther from it than 3 mm degraded); with --tracker-rotation, "

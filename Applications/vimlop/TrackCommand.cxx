@@ -123,6 +123,14 @@ void runTrack(const TrackOptions& o)
         offset["frames_learned"].get<int>(), std::sqrt(squaredMm),
         offset["turn_deg"].get<double>()));
     }
+    if (!tracker["lag"].is_null())
+    {
+      // The lag found is what --time-offset would take off in another run.
+      summary.lines.push_back(formatText("the tracker's lag, as the video's motion showed it "
+                                         "over %d pairs of frames: %.1f ms (its readings were "
+                                         "taken that much later from then on)",
+        tracker["lag"]["pairs"].get<int>(), 1000.0 * tracker["lag"]["lag_s"].get<double>()));
+    }
   }
   if (summary.json.contains("camera_position_error_mm"))
   {
@@ -220,7 +228,7 @@ void addTrackCommand(CLI::App& app)
     ->check(CLI::NonNegativeNumber)
     ->needs("--serve");
   addPoseServerOptions(*c, o->server);
-  addEndoscopeTrackerOptions(*c, o->tracking.tracker);
+  addEndoscopeTrackerOptions(*c, o->tracking.tracker, o->tracking.trackerLag);
   addJsonFlag(*c, o->json);
   c->callback([o] { runTrack(*o); });
 }

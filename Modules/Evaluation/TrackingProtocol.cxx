@@ -8,7 +8,7 @@
 #include <vimlop/Evaluation/SimulatedVideoCase.h>
 #include <vimlop/Evaluation/SimulatedWorld.h>
 #include <vimlop/Pipeline/FrameContourCheck.h>
-#include <vimlop/Pipeline/TrackerRecording.h>
+#include <vimlop/Pipeline/TrackerLag.h>
 #include <vimlop/Pipeline/TrackingSupervisor.h>
 #include <vimlop/Pipeline/VideoRegistrationPipeline.h>
 #include <vimlop/Raycast/EmbreeRegistrationModel.h>
@@ -79,6 +79,7 @@ void TrackingProtocolOptions::validate() const
   }
   registrationOf(*this).validate();
   this->tracker.validate();
+  this->trackerLag.validate();
   if (!(this->flagErrorMm > 0.0))
   {
     throw Error(formatText(
@@ -127,6 +128,7 @@ nlohmann::json TrackingProtocolReport::toJson() const
     { "tracker_offset",
       { { "frames_learned", this->trackerOffsetFramesLearned },
         { "shift_mm", this->trackerOffsetShiftMm }, { "turn_deg", this->trackerOffsetTurnDeg } } },
+    { "tracker_lag", { { "lag_s", this->trackerLagS }, { "pairs", this->trackerLagPairs } } },
     { "latency_ms", summaryJson(this->latencyMs) },
     { "camera_position_mm", summaryJson(this->positionErrorMm) },
     { "camera_angle_deg", summaryJson(this->angleErrorDeg) }, { "drift_mm", this->driftMm },
@@ -140,7 +142,7 @@ nlohmann::json TrackingProtocolReport::toJson() const
 
 std::vector<std::string> TrackingProtocolReport::summaryLines() const
 {
-  return {
+  std::vector<std::string> lines{
     formatText("tracking: %d frames, registered on the first %d (camera %.3f mm, %.1f s%s), "
                "tracked from frame %d%s",
       this->frames, this->registrationFrames, this->registrationErrorMm, this->registrationSeconds,
@@ -159,6 +161,15 @@ std::vector<std::string> TrackingProtocolReport::summaryLines() const
       this->latencyMs.median, this->latencyMs.p99, 100.0 * this->trackedFraction,
       this->degradedFrames, this->lostFrames, this->unflaggedFramesOverLimit, this->flagErrorMm),
   };
+  if (this->trackerPrior)
+  {
+    lines.push_back(this->trackerLagPairs > 0
+        ? formatText("tracking: the tracker's lag, as the video's motion showed it: %.1f ms (%d "
+                     "pairs of frames)",
+            1000.0 * this->trackerLagS, this->trackerLagPairs)
+        : std::string("tracking: the video measured no lag of the tracker"));
+  }
+  return lines;
 }
 
 TrackingProtocolReport runTrackingProtocol(
@@ -213,6 +224,12 @@ TrackingProtocolReport runTrackingProtocol(
   TrackingSupervisor supervisor(contourCheck,
     o.refineAgainstCT ? std::optional(o.refinement) : std::nullopt, o.relocalise, o.relocalisation,
     registered.contourErrorPx);
+  // The simulated tracker records in the CT frame.
+  std::optional<TrackerLag> emTracker;
+  if (o.trackerPrior)
+  {
+    emTracker.emplace(video.tracker, Eigen::Matrix4d::Identity(), o.trackerLag);
+  }
   std::vector<double> latency, position, angle;
   for (int f = report.startFrame + 1; f < o.simulation.frames; ++f)
   {
@@ -220,11 +237,8 @@ TrackingProtocolReport runTrackingProtocol(
     // vimlop track: undistortion, tracking and the check against the CT.
     const auto decoded = std::chrono::steady_clock::now();
     const cv::Mat ideal = undistorter.undistort(video.frames[static_cast<std::size_t>(f)]);
-    // The simulated tracker records in the CT frame.
-    TrackedFrame t = tracker.track(ideal,
-      o.trackerPrior ? trackerPriorAt(video.tracker, Eigen::Matrix4d::Identity(),
-                         video.frameTimesS[static_cast<std::size_t>(f)])
-                     : std::nullopt);
+    const double timeS = video.frameTimesS[static_cast<std::size_t>(f)];
+    TrackedFrame t = tracker.track(ideal, emTracker ? emTracker->priorAt(timeS) : std::nullopt);
     const FrameContourAgreement agreement = supervisor.judge(ideal, t);
     t.latencyMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decoded).count();
@@ -245,6 +259,10 @@ TrackingProtocolReport runTrackingProtocol(
     r.searched = checked.searched;
     r.relocalised = checked.relocalised;
     r.searchMs = checked.searchMs;
+    if (emTracker)
+    {
+      emTracker->learn(timeS, t);
+    }
     report.correctedFrames += checked.corrected && !checked.relocalised ? 1 : 0;
     report.relocalisationsSearched += checked.searched ? 1 : 0;
     report.relocalisationsFound += checked.relocalised ? 1 : 0;
@@ -266,6 +284,11 @@ TrackingProtocolReport runTrackingProtocol(
   report.trackerOffsetFramesLearned = tracker.trackerOffset().framesLearned();
   report.trackerOffsetShiftMm = tracker.trackerOffset().shiftMm().norm();
   report.trackerOffsetTurnDeg = tracker.trackerOffset().turnDeg();
+  if (emTracker && emTracker->estimate())
+  {
+    report.trackerLagS = emTracker->lagS();
+    report.trackerLagPairs = emTracker->estimate()->pairs;
+  }
   report.latencyMs = summarize(latency);
   report.positionErrorMm = summarize(position);
   report.angleErrorDeg = summarize(angle);

@@ -7,6 +7,7 @@
 #include <vimlop/Pipeline/ContourRelocalisation.h>
 #include <vimlop/Pipeline/ContourWindowRefinement.h>
 #include <vimlop/Pipeline/EndoscopeTracker.h>
+#include <vimlop/Pipeline/TrackerLag.h>
 
 #include <nlohmann/json.hpp>
 
@@ -52,6 +53,9 @@ struct TrackingProtocolOptions
   /// registration of the tracker to the CT. With the simulation's
   /// trackerRotation, the tracker's rotation too (a 6-DOF sensor).
   bool trackerPrior = false;
+  /// With the prior: how the tracker's lag is measured and taken off, as
+  /// vimlop track does (TrackerLag).
+  TrackerLagOptions trackerLag;
   /// A frame farther than this from the truth is a failure the tracker must
   /// flag (degraded or lost), mm (default 2, issue 16).
   double flagErrorMm = 2.0;
@@ -117,6 +121,11 @@ struct TrackingProtocolReport
   int trackerOffsetFramesLearned = 0;
   double trackerOffsetShiftMm = 0.0;
   double trackerOffsetTurnDeg = 0.0;
+  /// The lag the video measured at the end, s, and the pairs of frames of
+  /// that estimate (0 pairs: none was made, or none showed a lag), to set
+  /// beside the simulation's latency and clock offset.
+  double trackerLagS = 0.0;
+  int trackerLagPairs = 0;
   /// Over the tracked frames (all after the start frame).
   Summary latencyMs;
   Summary positionErrorMm;

@@ -9,6 +9,7 @@
 #include <vimlop/Imaging/FramePoseIO.h>
 #include <vimlop/Pipeline/FrameContourCheck.h>
 #include <vimlop/Pipeline/TrackedVideoWriter.h>
+#include <vimlop/Pipeline/TrackerLag.h>
 #include <vimlop/Pipeline/TrackerRecording.h>
 #include <vimlop/Pipeline/TrackingStart.h>
 #include <vimlop/Pipeline/TrackingSupervisor.h>
@@ -30,6 +31,7 @@ namespace vimlop
 void VideoTrackingOptions::validate() const
 {
   this->tracker.validate();
+  this->trackerLag.validate();
   this->refinement.validate();
   this->relocalisation.validate();
   if (this->firstFrameIndex < -1)
@@ -60,13 +62,11 @@ struct VideoTracking::Internals
   std::optional<RegistrationModel> model;
   std::unique_ptr<FrameContourCheck> contourCheck;
   std::unique_ptr<TrackingSupervisor> supervisor;
-  /// The electromagnetic tracker's recording and its map into the CT.
-  struct RegisteredTracker
-  {
-    TrackerTrajectory recording;
-    Eigen::Matrix4d toCT;
-  };
-  std::optional<RegisteredTracker> emTracker;
+  /// The electromagnetic tracker's recording, and it read in the CT at
+  /// each frame's time plus the lag the video measures (which holds the
+  /// recording by reference, so is made after it).
+  std::optional<TrackerTrajectory> emRecording;
+  std::optional<TrackerLag> emTracker;
   /// The id of the stream's first frame, time timeOffsetS on the tracker's clock.
   std::optional<int> firstId;
   /// Frames outside the tracker's recording, tracked without its tip.
@@ -82,23 +82,26 @@ struct VideoTracking::Internals
 
   bool stopAsked() const { return this->stopRequest && this->stopRequest(); }
 
-  /// What the tracker says at the frame's time, in the CT: its tip, and
-  /// the camera's rotation when the recording has the sensor's; none
-  /// without a tracker, or outside its recording. The time is the frame's
-  /// own timestamp when its source records one (a tracked sequence, whose
-  /// tracker is on the same clock), else its place at the video's rate;
-  /// plus the time offset either way.
+  /// The frame's time on the tracker's clock: its own timestamp when its
+  /// source records one (a tracked sequence, whose tracker is on the same
+  /// clock), else its place at the video's rate; plus the time offset
+  /// either way.
+  double trackerTimeS(const StreamedFrame& frame) const
+  {
+    return frame.timestampS
+      ? *frame.timestampS + this->inputs.timeOffsetS
+      : frameTimeS(frame.id, *this->firstId, this->options.videoFps, this->inputs.timeOffsetS);
+  }
+  /// What the tracker says at the frame's time (and its lag), in the CT:
+  /// its tip, and the camera's rotation when the recording has the
+  /// sensor's; none without a tracker, or outside its recording.
   std::optional<TrackerPrior> priorAt(const StreamedFrame& frame)
   {
     if (!this->emTracker)
     {
       return std::nullopt;
     }
-    const double timeS = frame.timestampS
-      ? *frame.timestampS + this->inputs.timeOffsetS
-      : frameTimeS(frame.id, *this->firstId, this->options.videoFps, this->inputs.timeOffsetS);
-    std::optional<TrackerPrior> prior =
-      trackerPriorAt(this->emTracker->recording, this->emTracker->toCT, timeS);
+    std::optional<TrackerPrior> prior = this->emTracker->priorAt(this->trackerTimeS(frame));
     this->framesWithoutTip += prior ? 0 : 1;
     return prior;
   }
@@ -193,11 +196,12 @@ void VideoTracking::open(const VideoTrackingInputs& inputs)
   // The tracker's small files before the frames.
   d->trackerWarnings.clear();
   d->emTracker.reset();
-  if (std::optional<TrackerTrajectory> recording =
-        readTrackerRecording(inputs.trackerPath, inputs.trackerTransform, inputs.framesPath,
-          [&](const std::string& warning) { d->trackerWarnings.push_back(warning); }))
+  d->emRecording = readTrackerRecording(inputs.trackerPath, inputs.trackerTransform,
+    inputs.framesPath, [&](const std::string& warning) { d->trackerWarnings.push_back(warning); });
+  if (d->emRecording)
   {
-    d->emTracker = { std::move(*recording), readTrackerToCT(inputs.trackerToCTPath) };
+    d->emTracker.emplace(
+      *d->emRecording, readTrackerToCT(inputs.trackerToCTPath), d->options.trackerLag);
   }
   d->firstId.reset();
   d->framesWithoutTip = 0;
@@ -328,6 +332,11 @@ void VideoTracking::run()
       else if (video)
       {
         modelContours = visibleModelContours(*d->model, start.intrinsics, frame.tracked.cameraToCT);
+      }
+      if (d->emTracker)
+      {
+        // The frame as finally judged teaches the tracker's lag.
+        d->emTracker->learn(d->trackerTimeS(f), frame.tracked);
       }
       d->frames.push_back(frame);
       if (video)
@@ -529,8 +538,8 @@ nlohmann::json VideoTracking::report() const
     report["tracker"] = {
       { "recording", d->inputs.trackerPath.empty() ? d->inputs.framesPath : d->inputs.trackerPath },
       { "tracker_to_ct", d->inputs.trackerToCTPath },
-      { "rotation", d->emTracker->recording.hasRotations() },
-      { "frames_without_tip", d->framesWithoutTip }, { "warnings", d->trackerWarnings }
+      { "rotation", d->emRecording->hasRotations() }, { "frames_without_tip", d->framesWithoutTip },
+      { "warnings", d->trackerWarnings }
     };
     if (d->tracker)
     {
@@ -541,6 +550,13 @@ nlohmann::json VideoTracking::report() const
       report["tracker"]["offset"] = { { "frames_learned", offset.framesLearned() },
         { "shift_mm", { shift.x(), shift.y(), shift.z() } }, { "turn_deg", offset.turnDeg() } };
     }
+    // The lag the video measured, which the recording was read with from
+    // its estimate on (none: no estimate was made, or none showed a lag).
+    const std::optional<TrackerLagEstimate>& lag = d->emTracker->estimate();
+    report["tracker"]["lag"] = lag ? nlohmann::json{ { "lag_s", lag->lagS },
+      { "pairs", lag->pairs }, { "disagreement_mm", lag->disagreementMm },
+      { "disagreement_at_zero_mm", lag->disagreementAtZeroMm } }
+                                   : nlohmann::json();
   }
   if (!d->stoppedBy.empty() || d->stopRequested)
   {

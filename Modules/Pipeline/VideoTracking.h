@@ -5,6 +5,7 @@
 #include <vimlop/Pipeline/ContourRelocalisation.h>
 #include <vimlop/Pipeline/ContourWindowRefinement.h>
 #include <vimlop/Pipeline/EndoscopeTracker.h>
+#include <vimlop/Pipeline/TrackerLag.h>
 
 #include <nlohmann/json.hpp>
 
@@ -62,6 +63,9 @@ struct VideoTrackingInputs
 struct VideoTrackingOptions
 {
   EndoscopeTrackerOptions tracker;
+  /// How the electromagnetic tracker's lag is measured from the frames
+  /// tracked against the CT and taken off its readings (TrackerLag).
+  TrackerLagOptions trackerLag;
   /// Index of the first frame to track; -1 (default): the one after the
   /// registered frame of the same name, else 0.
   int firstFrameIndex = -1;

@@ -29,6 +29,7 @@ vtkVIMLOPVideoTracking::vtkVIMLOPVideoTracking()
   this->InlierThresholdPx = defaults.inlierThresholdPx;
   this->TrackerOffsetFrames = defaults.trackerOffsetFrames;
   this->TrackerPull = defaults.trackerPull;
+  this->TrackerMaxLagS = vimlop::TrackerLagOptions().maxLagS;
   this->FramesPerSecond = vimlop::VideoTrackingOptions().videoFps;
 }
 
@@ -109,6 +110,7 @@ int vtkVIMLOPVideoTracking::RequestData(
   options.tracker.inlierThresholdPx = this->InlierThresholdPx;
   options.tracker.trackerOffsetFrames = this->TrackerOffsetFrames;
   options.tracker.trackerPull = this->TrackerPull;
+  options.trackerLag.maxLagS = this->TrackerMaxLagS;
   options.firstFrameIndex = this->FirstFrameIndex;
   options.allowFlagged = this->AllowFlagged;
   options.writeVideo = this->WriteVideo;
@@ -206,6 +208,7 @@ void vtkVIMLOPVideoTracking::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InlierThresholdPx: " << this->InlierThresholdPx << "\n";
   os << indent << "TrackerOffsetFrames: " << this->TrackerOffsetFrames << "\n";
   os << indent << "TrackerPull: " << this->TrackerPull << "\n";
+  os << indent << "TrackerMaxLagS: " << this->TrackerMaxLagS << "\n";
   if (this->Tracking)
   {
     os << indent << "Result: " << this->Tracking->frames().size()

@@ -155,6 +155,11 @@ public:
   vtkGetMacro(TrackerOffsetFrames, int);
   vtkSetClampMacro(TrackerPull, double, 0.0, 1.0);
   vtkGetMacro(TrackerPull, double);
+  /// Its lag behind the frames' times is measured from the frames tracked
+  /// against the CT, up to TrackerMaxLagS either way (0.2; 0: read at the
+  /// frames' times), and its readings taken that much later.
+  vtkSetClampMacro(TrackerMaxLagS, double, 0.0, 2.0);
+  vtkGetMacro(TrackerMaxLagS, double);
   ///@}
 
   ///@{
@@ -210,6 +215,7 @@ private:
   double InlierThresholdPx;
   int TrackerOffsetFrames;
   double TrackerPull;
+  double TrackerMaxLagS;
   std::string LastFrameState;
   int LastFrameId = -1;
   std::unique_ptr<vimlop::VideoTracking> Tracking;

@@ -133,6 +133,7 @@ for flag, value in (("--max-features", source.GetMaxFeatures()),
                     ("--inlier-px", source.GetInlierThresholdPx()),
                     ("--tracker-offset-frames", source.GetTrackerOffsetFrames()),
                     ("--tracker-pull", source.GetTrackerPull()),
+                    ("--tracker-max-lag-s", source.GetTrackerMaxLagS()),
                     ("--fps", source.GetFramesPerSecond())):
     match = re.search(re.escape(flag) + r" [^=\n]+=([0-9.]+)", text)
     check(match is not None and float(match.group(1)) == float(value),
