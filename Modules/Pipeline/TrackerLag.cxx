@@ -26,6 +26,11 @@ void TrackerLagOptions::validate() const
   {
     refuse("the search's step must be positive (s)", this->stepS);
   }
+  if (this->maxLagS > 0.0 && this->maxLagS < 2.0 * this->stepS)
+  {
+    // The least must lie inside the grid, between two neighbours.
+    refuse("the largest lag searched must be 0 or at least two steps", this->maxLagS);
+  }
   if (this->maxLagS > 0.0 && this->maxLagS / this->stepS > 10000.0)
   {
     refuse("the search must have at most 10000 steps either way", this->maxLagS / this->stepS);

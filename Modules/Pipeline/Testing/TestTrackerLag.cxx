@@ -184,6 +184,8 @@ TEST(TrackerLag, RefusesSettingsThatCannotMakeAnEstimate)
   };
   EXPECT_EQ(messageWith([](TrackerLagOptions& o) { o.maxLagS = -0.1; }),
     "tracker lag: the largest lag searched must lie in [0, 2] s, not -0.1");
+  EXPECT_EQ(messageWith([](TrackerLagOptions& o) { o.maxLagS = 0.005; }),
+    "tracker lag: the largest lag searched must be 0 or at least two steps, not 0.005");
   EXPECT_EQ(messageWith([](TrackerLagOptions& o) { o.stepS = 0.0; }),
     "tracker lag: the search's step must be positive (s), not 0");
   EXPECT_EQ(messageWith([](TrackerLagOptions& o) { o.spanS = 0.0; }),
