@@ -4,6 +4,7 @@
 #include <vimlop/Evaluation/PerturbationProtocol.h>
 #include <vimlop/Evaluation/SyntheticProtocol.h>
 #include <vimlop/Evaluation/TemplateWarpProtocol.h>
+#include <vimlop/Evaluation/TrackingProtocol.h>
 #include <vimlop/Evaluation/VideoProtocol.h>
 
 #include <gtest/gtest.h>
@@ -180,4 +181,21 @@ TEST(ProtocolSummaries, TemplateWarpComparesItsMeanAndRuntimeWithElastixs)
   report.elastix->runtimeS = 6.0;
   report.elastix->runtimeRatio = 0.75;
   EXPECT_EQ(errorOf(), "the registration took 8.0 s, longer than elastix's 6.0 s");
+}
+
+TEST(ProtocolSummaries, TrackingEndsWithTheTrackersLagOnlyWhenItHadATracker)
+{
+  TrackingProtocolReport report;
+  report.frames = 600;
+  report.registrationFrames = 30;
+  ASSERT_EQ(report.summaryLines().size(), 4u);
+  report.trackerPrior = true;
+  EXPECT_EQ(report.summaryLines().back(), "tracking: the video measured no lag of the tracker");
+  report.trackerLagS = 0.0795;
+  report.trackerLagPairs = 270;
+  ASSERT_EQ(report.summaryLines().size(), 5u);
+  EXPECT_EQ(report.summaryLines().back(),
+    "tracking: the tracker's lag, as the video's motion showed it: 79.5 ms (270 pairs of frames)");
+  EXPECT_EQ(report.toJson()["tracker_lag"]["lag_s"].get<double>(), 0.0795);
+  EXPECT_EQ(report.toJson()["tracker_lag"]["pairs"].get<int>(), 270);
 }
