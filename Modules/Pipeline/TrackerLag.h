@@ -72,9 +72,9 @@ struct TrackerLagEstimate
  * running offset (TrackerOffset) cannot take off since it changes with the
  * motion, and which a quick move turns into millimetres.
  *
- * The lag is found from the scope's displacements, not its positions: the
- * video's pose over a fraction of a second moves as the scope does even
- * where it is not anchored to the CT (its features cast into a model that
+ * The lag is found from the scope's displacements, not its positions: over
+ * a second the video's pose moves as the scope does even where it is not
+ * anchored to the CT (its features cast into a model that
  * is not the anatomy drift over seconds, and the clinical world anchors
  * almost no frame), while its position may be millimetres off. For each
  * pair of frames spanS apart (neither lost), the tracker's displacement
