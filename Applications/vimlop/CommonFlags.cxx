@@ -136,9 +136,9 @@ void addEndoscopeTrackerOptions(
     ->check(CLI::Range(0.0, 1.0));
   command
     .add_option("--tracker-max-lag-s", lag.maxLagS,
-      "the electromagnetic tracker's lag behind the frames' times is measured from the frames "
-      "tracked against the CT, up to this much either way, and its readings are taken that much "
-      "later (0: read at the frames' times)")
+      "the electromagnetic tracker's lag behind the frames' times is measured from the video's "
+      "motion (its frames not lost), up to this much either way, and its readings are taken that "
+      "much later (0: read at the frames' times)")
     ->capture_default_str()
     ->check(CLI::Range(0.0, 2.0));
 }

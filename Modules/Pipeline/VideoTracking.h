@@ -41,7 +41,8 @@ struct VideoTrackingInputs
   /// The electromagnetic tracker's recording of the scope's tip: a CSV
   /// (time_s, x_mm, y_mm, z_mm), or a tracked sequence with
   /// `trackerTransform` (readTrackerRecording()); empty: none. Its tip at
-  /// each frame's time is the tracker's prior (EndoscopeTracker::track()).
+  /// each frame's time plus the lag measured (TrackerLag) is the tracker's
+  /// prior (EndoscopeTracker::track()).
   std::string trackerPath;
   /// The transform of a tracked sequence that carries the scope (e.g.
   /// "ProbeToTracker"), read from `trackerPath`, or from the frames when
@@ -63,8 +64,8 @@ struct VideoTrackingInputs
 struct VideoTrackingOptions
 {
   EndoscopeTrackerOptions tracker;
-  /// How the electromagnetic tracker's lag is measured from the frames
-  /// tracked against the CT and taken off its readings (TrackerLag).
+  /// How the electromagnetic tracker's lag is measured from the video's
+  /// motion (its frames not lost) and taken off its readings (TrackerLag).
   TrackerLagOptions trackerLag;
   /// Index of the first frame to track; -1 (default): the one after the
   /// registered frame of the same name, else 0.

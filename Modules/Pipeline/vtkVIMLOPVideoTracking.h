@@ -155,9 +155,9 @@ public:
   vtkGetMacro(TrackerOffsetFrames, int);
   vtkSetClampMacro(TrackerPull, double, 0.0, 1.0);
   vtkGetMacro(TrackerPull, double);
-  /// Its lag behind the frames' times is measured from the frames tracked
-  /// against the CT, up to TrackerMaxLagS either way (0.2; 0: read at the
-  /// frames' times), and its readings taken that much later.
+  /// Its lag behind the frames' times is measured from the video's motion
+  /// (its frames not lost), up to TrackerMaxLagS either way (0.2; 0: read
+  /// at the frames' times), and its readings taken that much later.
   vtkSetClampMacro(TrackerMaxLagS, double, 0.0, 2.0);
   vtkGetMacro(TrackerMaxLagS, double);
   ///@}

@@ -157,8 +157,9 @@ def track_video(result, frames=None, intrinsics=None, out=None, camera=-1, first
     6-DOF sensor's rotation) at each frame's time is the prediction after a
     lost frame, and a pose more than 3 mm from it (or turned more than 5
     degrees from the sensor) is degraded (`--tracker`, `--tracker-to-ct`);
-    its lag behind the frames is measured from the frames tracked against
-    the CT and its readings taken that much later, as `vimlop track` does.
+    its lag behind the frames is measured from the video's motion (its
+    frames not lost) and its readings taken that much later, as `vimlop
+    track` does.
     Frame id i is at time_offset + (i - the first id) / fps on its clock
     (fps: the frames' rate, `--fps`; None: vimlop track's default).
     on_frame(frame_id, state, camera_to_ct): called as each pose is
