@@ -52,14 +52,21 @@ endfunction()
 # JSON_VALUES check a --json run: a successful one whose standard output is
 # one JSON object alone, with those keys and values (check-json-output.cmake).
 function(vimlop_add_cli_test name)
-  cmake_parse_arguments(arg "RENDERING" "PASS_REGEX;EXPECT_ERROR" "COMMAND;JSON_KEYS;JSON_VALUES"
-    ${ARGN})
+  # PARSE_ARGV keeps a ';' inside one argument (a regular expression's);
+  # parsing ${ARGN} would split it there and drop the rest unchecked.
+  cmake_parse_arguments(PARSE_ARGV 1 arg "RENDERING" "PASS_REGEX;EXPECT_ERROR"
+    "COMMAND;JSON_KEYS;JSON_VALUES")
+  if(arg_UNPARSED_ARGUMENTS)
+    message(FATAL_ERROR "vimlop_add_cli_test(${name}): unexpected arguments ${arg_UNPARSED_ARGUMENTS}")
+  endif()
   set(command $<TARGET_FILE:vimlop> ${arg_COMMAND})
   if(arg_RENDERING)
     set(command "${VIMLOP_DISPLAY_LAUNCHER}" ${command})
   endif()
   if(DEFINED arg_EXPECT_ERROR)
-    set(command "${PROJECT_SOURCE_DIR}/CMake/expect-error.sh" "${arg_EXPECT_ERROR}" ${command})
+    # A ';' would split the expression into two arguments: any character instead.
+    string(REPLACE ";" "." expect_error "${arg_EXPECT_ERROR}")
+    set(command "${PROJECT_SOURCE_DIR}/CMake/expect-error.sh" "${expect_error}" ${command})
   endif()
   if(DEFINED arg_JSON_KEYS OR DEFINED arg_JSON_VALUES)
     # Commas between the items: a list would be split into arguments.

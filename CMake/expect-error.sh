@@ -1,7 +1,8 @@
 #!/bin/sh
 # Usage: expect-error.sh REGEX COMMAND [ARGS...]
 # Succeeds when COMMAND exits with a non-zero code (not a crash) and its output
-# matches the extended regular expression REGEX.
+# matches the extended regular expression REGEX (on one of its lines, or
+# across them: the lines joined by spaces).
 re=$1
 shift
 out=$("$@" 2>&1)
@@ -15,7 +16,9 @@ if [ "$rc" -ge 128 ]; then
   echo "expect-error.sh: the command crashed (exit code $rc)" >&2
   exit 1
 fi
-if ! printf '%s\n' "$out" | grep -Eq -- "$re"; then
+# On one line, or across lines (".*" between them) with the lines joined by spaces.
+joined=$(printf '%s' "$out" | tr '\n' ' ')
+if ! printf '%s\n' "$out" | grep -Eq -- "$re" && ! printf '%s\n' "$joined" | grep -Eq -- "$re"; then
   echo "expect-error.sh: output does not match: $re" >&2
   exit 1
 fi
