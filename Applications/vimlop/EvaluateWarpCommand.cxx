@@ -135,6 +135,18 @@ void addEvaluateWarpCommand(CLI::App& evaluate)
     ->add_option("--edits", edits.count,
       "Local edits of the patient's anatomy (tissue grown, shrunk, air filled, in turn)")
     ->capture_default_str();
+  warp
+    ->add_option_function<std::string>(
+      "--edit-sites",
+      [&edits](const std::string& sites)
+      {
+        edits.placement = sites == "anatomical" ? AnatomyEditPlacement::AnatomicalSites
+                                                : AnatomyEditPlacement::RandomWall;
+      },
+      "Where the edits go: random (points of the airway wall, default) or anatomical (a "
+      "deviated septum, a larger inferior turbinate, a smaller middle turbinate, a filled "
+      "maxillary sinus, in that order; at most 4)")
+    ->check(CLI::IsMember({ "random", "anatomical" }));
   warp->add_option("--edit-radius-mm", edits.radiusMm, "Radius of each edit (mm)")
     ->capture_default_str();
   warp->add_option("--edit-depth-mm", edits.depthMm, "How far an edit grows or shrinks tissue (mm)")

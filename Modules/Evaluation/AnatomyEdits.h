@@ -1,6 +1,7 @@
 #ifndef vimlop_AnatomyEdits_h
 #define vimlop_AnatomyEdits_h
 
+#include <vimlop/Core/TriangleMesh.h>
 #include <vimlop/Imaging/CTVolume.h>
 
 #include <array>
@@ -27,11 +28,22 @@ enum class AnatomyEditKind
 /// @brief "grow", "shrink" or "fill".
 std::string anatomyEditKindName(AnatomyEditKind kind);
 
+/// @brief Where the edits go.
+enum class AnatomyEditPlacement
+{
+  /// Random points of the airway wall, kinds in turn.
+  RandomWall,
+  /// Named sites of the nose, one kind each (placeAnatomicalEdits()).
+  AnatomicalSites
+};
+
 /// @brief Settings of the local edits of P4's harder pairs (issue 18).
 struct AnatomyEditOptions
 {
-  /// Number of edits. Default 0: none. In [0, 20].
+  /// Number of edits. Default 0: none. In [0, 20]; at most 4 at anatomical sites.
   int count = 0;
+  /// Random points of the wall (default) or the named sites.
+  AnatomyEditPlacement placement = AnatomyEditPlacement::RandomWall;
   /// Radius of each edit's sphere, mm. Default 6 (a turbinate's width). In [1, 20].
   double radiusMm = 6.0;
   /// How far tissue grows or shrinks, mm. Default 2. In [0.5, 5].
@@ -50,11 +62,14 @@ struct AnatomyEditOptions
   void validate() const;
 };
 
-/// @brief One edit: its kind and its sphere's centre (CT frame, mm).
+/// @brief One edit: its kind, its sphere's centre (CT frame, mm) and where it is.
 struct AnatomyEdit
 {
   AnatomyEditKind kind = AnatomyEditKind::GrowTissue;
   std::array<double, 3> centreMm{ 0.0, 0.0, 0.0 };
+  /// "wall" for a random point of the wall, else the site's name
+  /// (placeAnatomicalEdits()).
+  std::string site = "wall";
 };
 
 /**
@@ -67,6 +82,43 @@ struct AnatomyEdit
  */
 std::vector<AnatomyEdit> placeAnatomyEdits(
   const std::vector<std::array<double, 3>>& wallPointsMm, const AnatomyEditOptions& options);
+
+/**
+ * @brief Up to `options.count` (at most 4) edits at named sites of a nasal
+ * airway in the CT frame (LPS: +x left, +y posterior, +z superior), in this
+ * order:
+ *  1. "septum": tissue grown on one side of the nasal septum (a deviated
+ *     septum);
+ *  2. "inferior turbinate": tissue grown on the lateral wall of the other
+ *     passage's lower half (the larger turbinate that faces a deviation);
+ *  3. "middle turbinate": tissue shrunk on the lateral wall of the first
+ *     passage's upper half (a smaller turbinate);
+ *  4. "maxillary sinus": the air at the floor of the sinus beside the other
+ *     passage filled (fluid in a sinus).
+ *
+ * How the sites are found: the nasal cavity is the box of
+ * NasalCavityRegion::inBounds() of the airway's bounds. Its near-sagittal
+ * wall vertices (normal within about 45 degrees of left-right) tell the
+ * septum: the septum is the plane x = c where most such vertices lie within
+ * 3 mm and face away from it (air on both sides of a thin wall). Vertices
+ * within 3 mm of c facing away from it are the septum's sides; those 4-12 mm
+ * out facing back towards it, behind the front fifth of the box (the
+ * vestibule), are the turbinates' medial faces, split at the box's middle
+ * height into the inferior and middle turbinates. The maxillary sinus is air
+ * of `ct` 12-35 mm to the side of the septum, in the box's length and
+ * height or up to 10 mm below it (the sinus's floor lies below the nasal
+ * floor), with air 4 mm away along each axis (a large air space, not a
+ * cell) and tissue along each axis before the volume's edge (inside the
+ * head); whether it joins the airway or not does not matter. The edit is
+ * centred on its lowest such point, so the fluid fills the sinus's floor.
+ * The seed chooses the side of the deviation and the vertex of each site,
+ * at least two radii plus two depths from the edits before. A site not
+ * found (or without room) is skipped, so there may be fewer edits.
+ * @throws vimlop::Error for options out of range, or when the airway has no
+ * near-sagittal walls in the nasal cavity (not a nasal airway in LPS).
+ */
+std::vector<AnatomyEdit> placeAnatomicalEdits(
+  const TriangleMesh& airway, const CTVolume& ct, const AnatomyEditOptions& options);
 
 /**
  * @brief Applies the edits to `ct` inside their spheres: grow sets air

@@ -4,6 +4,7 @@
 #include <vimlop/Core/MeshTree.h>
 #include <vimlop/Core/RayClearance.h>
 #include <vimlop/Core/TextFormat.h>
+#include <vimlop/Evaluation/NasalCavityRegion.h>
 
 #include <algorithm>
 #include <cmath>
@@ -78,13 +79,8 @@ SwollenSurface swellMucosa(const TriangleMesh& airway, const MucosalSwellingOpti
     out.mesh = airway;
     return out;
   }
-  const Eigen::Matrix<double, 3, 2> bounds = airway.bounds();
-  const Eigen::Vector3d low = bounds.col(0);
-  const Eigen::Vector3d high = bounds.col(1);
-  const Eigen::Vector3d extent = high - low;
-  const double yEnd = low.y() + o.anteriorFraction * extent.y();
-  const double zLow = low.z() + o.lowFraction * extent.z();
-  const double zHigh = low.z() + o.highFraction * extent.z();
+  const NasalCavityRegion nose =
+    NasalCavityRegion::inBounds(airway.bounds(), o.anteriorFraction, o.lowFraction, o.highFraction);
 
   // Weighted normal displacements, then smoothed over the mesh: the normals
   // of a segmented surface turn from vertex to vertex, and unsmoothed
@@ -95,8 +91,9 @@ SwollenSurface swellMucosa(const TriangleMesh& airway, const MucosalSwellingOpti
   for (std::size_t i = 0; i < n; ++i)
   {
     const Eigen::Vector3d& v = vertices[i];
-    const double w = insideWeight(v.y(), low.y() - o.edgeMm, yEnd, o.edgeMm) *
-      insideWeight(v.z(), zLow, zHigh, o.edgeMm) * smoothStep(0.4, 0.7, std::abs(normals[i].x()));
+    const double w = insideWeight(v.y(), nose.yFrontMm - o.edgeMm, nose.yBackMm, o.edgeMm) *
+      insideWeight(v.z(), nose.zLowMm, nose.zHighMm, o.edgeMm) *
+      smoothStep(0.4, 0.7, std::abs(normals[i].x()));
     inRegion += w > 0.0 ? 1 : 0;
     d[i] = w * normals[i];
   }

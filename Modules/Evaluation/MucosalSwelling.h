@@ -13,8 +13,9 @@ namespace vimlop
  * the airway wall moved into the air along its normal, in the regions where
  * the turbinates and the septum are.
  *
- * The regions are found by position along the airway, in the CT frame (LPS:
- * +y posterior, +z superior), relative to the airway mesh's bounding box:
+ * The regions are found by position along the airway (NasalCavityRegion.h),
+ * in the CT frame (LPS: +y posterior, +z superior), relative to the airway
+ * mesh's bounding box:
  * the nasal cavity is the part in the anterior `anteriorFraction` of its
  * length (y) and between `lowFraction` and `highFraction` of its height (z)
  * (on the bundled CT that is y 16-75 mm, z 21-63 mm: the nostrils to the

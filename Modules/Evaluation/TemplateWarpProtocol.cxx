@@ -4,6 +4,7 @@
 #include <vimlop/Core/Error.h>
 #include <vimlop/Core/RegistrationMetrics.h>
 #include <vimlop/Core/Rotation.h>
+#include <vimlop/Core/SimilarityEstimation.h>
 #include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TextFormat.h>
 #include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
@@ -65,12 +66,19 @@ nlohmann::json errorsJson(const VertexErrorSummary& s)
   return { { "mean_mm", s.meanMm }, { "p95_mm", s.p95Mm }, { "max_mm", s.maxMm } };
 }
 
+nlohmann::json wallOrientationJson(const WallOrientationSummary& s)
+{
+  return { { "poses", s.poses }, { "mean_deg", s.meanDeg }, { "p95_deg", s.p95Deg },
+    { "max_deg", s.maxDeg } };
+}
+
 nlohmann::json poseErrorsJson(const PoseErrorSummary& s)
 {
   return { { "poses", s.poses }, { "mean_mm", s.meanMm }, { "p95_mm", s.p95Mm },
     { "max_mm", s.maxMm }, { "mean_deg", s.meanDeg }, { "p95_deg", s.p95Deg },
     { "max_deg", s.maxDeg }, { "max_deg_at_mm", s.maxDegAtMm },
-    { "max_deg_wall_distance_mm", s.maxDegWallDistanceMm } };
+    { "max_deg_wall_distance_mm", s.maxDegWallDistanceMm },
+    { "by_walls", wallOrientationJson(s.byWalls) } };
 }
 
 /// Step (mm) of the frame points that carry a pose's orientation through a
@@ -156,6 +164,85 @@ PoseErrorSummary summarizePoseErrors(const std::vector<CameraPose>& estimate,
   return s;
 }
 
+/// Radius (mm) of the walls that turn a pose in WallOrientationSummary, and
+/// the fewest vertices that do.
+constexpr double kWallRadiusMm = 15.0;
+constexpr std::size_t kFewestWallVertices = 10;
+
+/// Per pose, the scored vertices within kWallRadiusMm of its centre (none
+/// when fewer than kFewestWallVertices).
+std::vector<std::vector<std::size_t>> wallsAround(const std::vector<CameraPose>& poses,
+  const std::vector<Point>& vertices, const std::vector<std::size_t>& scored)
+{
+  std::vector<std::vector<std::size_t>> walls(poses.size());
+  for (std::size_t k = 0; k < poses.size(); ++k)
+  {
+    for (std::size_t i : scored)
+    {
+      const Eigen::Vector3d v(vertices[i][0], vertices[i][1], vertices[i][2]);
+      if ((v - poses[k].centre).norm() <= kWallRadiusMm)
+      {
+        walls[k].push_back(i);
+      }
+    }
+    if (walls[k].size() < kFewestWallVertices)
+    {
+      walls[k].clear();
+    }
+  }
+  return walls;
+}
+
+/// The pose's orientation turned by the rotation that best carries its walls
+/// to their images.
+Eigen::Matrix3d turnedByWalls(const CameraPose& pose, const std::vector<std::size_t>& walls,
+  const std::vector<Point>& vertices, const std::vector<Point>& images)
+{
+  std::vector<Eigen::Vector3d> from, to;
+  for (std::size_t i : walls)
+  {
+    from.emplace_back(vertices[i][0], vertices[i][1], vertices[i][2]);
+    to.emplace_back(images[i][0], images[i][1], images[i][2]);
+  }
+  return estimateSimilarity(from, to).rotation * pose.rotation;
+}
+
+/// The angles between two orientations of each pose that has walls; a null
+/// `imagesB` takes `rotationsB` instead of turning by B's images.
+WallOrientationSummary compareOrientations(const std::vector<CameraPose>& poses,
+  const std::vector<std::vector<std::size_t>>& walls, const std::vector<Point>& vertices,
+  const std::vector<Point>& imagesA, const std::vector<Point>* imagesB,
+  const std::vector<CameraPose>& rotationsB)
+{
+  std::vector<double> deg;
+  for (std::size_t k = 0; k < poses.size(); ++k)
+  {
+    if (walls[k].empty())
+    {
+      continue;
+    }
+    CameraPose a = poses[k];
+    CameraPose b = rotationsB[k];
+    a.rotation = turnedByWalls(poses[k], walls[k], vertices, imagesA);
+    if (imagesB)
+    {
+      b.rotation = turnedByWalls(poses[k], walls[k], vertices, *imagesB);
+    }
+    a.centre = b.centre;
+    deg.push_back(cameraAngleErrorDeg(a, b));
+  }
+  WallOrientationSummary s;
+  s.poses = deg.size();
+  if (!deg.empty())
+  {
+    const Summary summary = summarize(deg);
+    s.meanDeg = summary.mean;
+    s.p95Deg = summary.p95;
+    s.maxDeg = summary.max;
+  }
+  return s;
+}
+
 double secondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -195,8 +282,15 @@ std::string TemplateWarpProtocolReport::summaryText() const
   }
   if (!this->edits.empty())
   {
-    text += formatText(
-      "; %zu anatomy edits (%zu vertices left out)", this->edits.size(), this->verticesNearEdits);
+    std::string where;
+    for (const AnatomyEdit& e : this->edits)
+    {
+      where += (where.empty() ? " (" : ", ") + anatomyEditKindName(e.kind) + " " + e.site;
+    }
+    text += formatText("; %zu anatomy edits%s (%zu vertices left out)", this->edits.size(),
+      this->editOptions.placement == AnatomyEditPlacement::AnatomicalSites ? (where + ")").c_str()
+                                                                           : "",
+      this->verticesNearEdits);
   }
   if (this->poseErrors.poses > 0)
   {
@@ -210,6 +304,15 @@ std::string TemplateWarpProtocolReport::summaryText() const
       text += formatText(" (elastix %.2f mm, %.2f deg)", this->elastix->poseErrors.meanMm,
         this->elastix->poseErrors.meanDeg);
     }
+    text += formatText("; turned by the walls: mean %.2f deg, max %.2f deg",
+      this->poseErrors.byWalls.meanDeg, this->poseErrors.byWalls.maxDeg);
+    if (this->elastix)
+    {
+      text += formatText(" (elastix %.2f deg, %.2f deg)", this->elastix->poseErrors.byWalls.meanDeg,
+        this->elastix->poseErrors.byWalls.maxDeg);
+    }
+    text += formatText(" (the truth's walls against its Jacobian: mean %.2f deg)",
+      this->truthWallsAgainstJacobian.meanDeg);
   }
   return text;
 }
@@ -267,13 +370,19 @@ nlohmann::json TemplateWarpProtocolReport::toJson() const
   nlohmann::json placed = nlohmann::json::array();
   for (const AnatomyEdit& e : this->edits)
   {
-    placed.push_back({ { "kind", anatomyEditKindName(e.kind) }, { "centre_mm", e.centreMm } });
+    placed.push_back(
+      { { "kind", anatomyEditKindName(e.kind) }, { "site", e.site }, { "centre_mm", e.centreMm } });
   }
   report["edits"] = { { "count", this->editOptions.count },
+    { "sites",
+      this->editOptions.placement == AnatomyEditPlacement::AnatomicalSites ? "anatomical"
+                                                                           : "random" },
     { "radius_mm", this->editOptions.radiusMm }, { "depth_mm", this->editOptions.depthMm },
     { "placed", placed }, { "voxels_changed", this->editedVoxels },
     { "vertices_left_out", this->verticesNearEdits }, { "poses_left_out", this->posesNearEdits } };
   report["canonical_poses"] = poseErrorsJson(this->poseErrors);
+  report["canonical_poses"]["truth_by_walls_against_jacobian"] =
+    wallOrientationJson(this->truthWallsAgainstJacobian);
   report["before_registration"] = errorsJson(this->beforeRegistration);
   report["affine_only"] = errorsJson(this->affineOnly);
   report["registration"] = { { "affine_s", this->affineS }, { "bspline_s", this->bsplineS },
@@ -340,7 +449,11 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
   // The local edits, on the template's anatomy before the deformation.
   AnatomyEditOptions editOptions = options.edits;
   editOptions.seed = options.seed;
-  const std::vector<AnatomyEdit> edits = placeAnatomyEdits(vertices, editOptions);
+  const TriangleMesh templateMesh = toTriangleMesh(surface.surface);
+  const std::vector<AnatomyEdit> edits =
+    editOptions.placement == AnatomyEditPlacement::AnatomicalSites
+    ? placeAnatomicalEdits(templateMesh, ct, editOptions)
+    : placeAnatomyEdits(vertices, editOptions);
   CTVolume edited;
   std::size_t editedVoxels = 0;
   if (!edits.empty())
@@ -389,7 +502,7 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
   report(0.045, "canonical poses");
   std::vector<CameraPose> poses;
   std::size_t posesNearEdits = 0;
-  const auto templateModel = makeEmbreeRegistrationModel(toTriangleMesh(surface.surface));
+  const auto templateModel = makeEmbreeRegistrationModel(templateMesh);
   for (const CameraPose& pose : makeCanonicalPoses(templateModel, {}))
   {
     if (nearAnatomyEdit({ pose.centre.x(), pose.centre.y(), pose.centre.z() }, edits, editOptions))
@@ -447,6 +560,11 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
     warpedPoses.push_back(warpCameraPose(pose, result.templateToPatient));
   }
   r.poseErrors = summarizePoseErrors(warpedPoses, truePoses, poses, templateModel);
+  const std::vector<std::vector<std::size_t>> walls = wallsAround(poses, vertices, scored);
+  r.poseErrors.byWalls = compareOrientations(poses, walls, vertices, warped, &truth, truePoses);
+  r.truthWallsAgainstJacobian =
+    compareOrientations(poses, walls, vertices, truth, nullptr, truePoses);
+
   std::size_t worst = 0;
   r.errors = summarizeErrors(scoredOnly(warped), scoredTruth, &worst);
   r.maxAtMm = vertices[scored[worst]];
@@ -501,6 +619,8 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
     e.errors = summarizeErrors(scoredOnly(movedVertices), scoredTruth);
     e.poseErrors = summarizePoseErrors(
       carriedPoses(poses, peer.movingPoints, vertices.size()), truePoses, poses, templateModel);
+    e.poseErrors.byWalls =
+      compareOrientations(poses, walls, vertices, movedVertices, &truth, truePoses);
     e.runtimeS = peer.registrationSeconds + peer.transformSeconds;
     e.runtimeRatio = e.runtimeS / r.runtimeS;
     e.parameterFiles = elastix.parameterFiles;

@@ -60,6 +60,23 @@ struct VertexErrorSummary
   double maxMm = 0.0;
 };
 
+/**
+ * @brief Orientation errors of carried poses, with both poses turned by the
+ * walls around them instead of the map's Jacobian at the centre: the
+ * rotation that best carries (least squares, no scale) the template's wall
+ * vertices within 15 mm of the centre, away from every edit, to their
+ * images. The walls are what the camera sees and where image edges fix the
+ * map; the centre lies in the air, where none does. Poses with fewer than 10
+ * such vertices are left out.
+ */
+struct WallOrientationSummary
+{
+  std::size_t poses = 0;
+  double meanDeg = 0.0;
+  double p95Deg = 0.0;
+  double maxDeg = 0.0;
+};
+
 /// @brief Errors of carried camera poses against the poses the known map carries.
 struct PoseErrorSummary
 {
@@ -78,6 +95,8 @@ struct PoseErrorSummary
   /// fixes there.
   std::array<double, 3> maxDegAtMm{ 0.0, 0.0, 0.0 };
   double maxDegWallDistanceMm = 0.0;
+  /// The orientation errors with both poses turned by the walls.
+  WallOrientationSummary byWalls;
 };
 
 /// @brief The result of P4.
@@ -108,6 +127,12 @@ struct TemplateWarpProtocolReport
   /// The template's canonical poses (makeCanonicalPoses() with its
   /// defaults) carried by the registration as `vimlop warp` carries them.
   PoseErrorSummary poseErrors;
+  /// How far the known map's own two orientations of each pose lie apart:
+  /// turned by the walls against turned by its Jacobian at the centre. A
+  /// large deformation turns the walls around a camera by other angles than
+  /// the air at its centre, so the true orientation of a carried pose is
+  /// only defined to about this.
+  WallOrientationSummary truthWallsAgainstJacobian;
   /// The errors with no registration, and with its affine part alone.
   VertexErrorSummary beforeRegistration;
   VertexErrorSummary affineOnly;

@@ -125,12 +125,26 @@ TEST(TemplateWarpProtocol, ScoresAScannedAndEditedPatientAndTheCarriedCanonicalP
   const nlohmann::json j = scanned.toJson();
   EXPECT_EQ(j["scan"]["slice_spacing_mm"].get<double>(), 1.5);
   EXPECT_EQ(j["edits"]["placed"][1]["kind"].get<std::string>(), "shrink");
+  EXPECT_EQ(j["edits"]["placed"][1]["site"].get<std::string>(), "wall");
+  EXPECT_EQ(j["edits"]["sites"].get<std::string>(), "random");
   EXPECT_EQ(j["edits"]["vertices_left_out"].get<std::size_t>(), scanned.verticesNearEdits);
   EXPECT_EQ(j["canonical_poses"]["poses"].get<std::size_t>(), scanned.poseErrors.poses);
   EXPECT_EQ(j["canonical_poses"]["p95_deg"].get<double>(), scanned.poseErrors.p95Deg);
   EXPECT_EQ(j["canonical_poses"]["max_deg_wall_distance_mm"].get<double>(),
     scanned.poseErrors.maxDegWallDistanceMm);
+  // The orientation turned by the walls: every pose of the phantom has walls
+  // within 15 mm.
+  EXPECT_EQ(scanned.poseErrors.byWalls.poses, scanned.poseErrors.poses);
+  EXPECT_LE(scanned.poseErrors.byWalls.meanDeg, scanned.poseErrors.byWalls.p95Deg);
+  EXPECT_LE(scanned.poseErrors.byWalls.p95Deg, scanned.poseErrors.byWalls.maxDeg);
+  EXPECT_LT(scanned.poseErrors.byWalls.meanDeg, o.scan.rotationDeg);
+  EXPECT_EQ(scanned.truthWallsAgainstJacobian.poses, scanned.poseErrors.poses);
+  EXPECT_EQ(
+    j["canonical_poses"]["by_walls"]["max_deg"].get<double>(), scanned.poseErrors.byWalls.maxDeg);
+  EXPECT_EQ(j["canonical_poses"]["truth_by_walls_against_jacobian"]["mean_deg"].get<double>(),
+    scanned.truthWallsAgainstJacobian.meanDeg);
   EXPECT_NE(scanned.summaryText().find(" canonical poses: mean "), std::string::npos);
+  EXPECT_NE(scanned.summaryText().find("; turned by the walls: mean "), std::string::npos);
 }
 
 TEST(TemplateWarpProtocol, RefusesANonPositiveDisplacementNegativeNoiseOrNoElastixFolder)
