@@ -276,9 +276,13 @@ std::vector<AnatomyEdit> placeAnatomicalEdits(
       }
     }
   }
-  // The maxillary sinus beside the other passage.
+  // The maxillary sinus beside the other passage (a scan of the whole CT:
+  // only when its edit is asked for).
   std::vector<std::array<double, 3>> sinus;
-  if (const auto floor = sinusFloor(ct, options.airThresholdHU, nose, septumX, -side))
+  const auto floor = options.count >= 4
+    ? sinusFloor(ct, options.airThresholdHU, nose, septumX, -side)
+    : std::nullopt;
+  if (floor)
   {
     sinus.push_back(*floor);
   }

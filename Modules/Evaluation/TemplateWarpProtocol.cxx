@@ -2,11 +2,8 @@
 
 #include <vimlop/Core/CanonicalPoses.h>
 #include <vimlop/Core/Error.h>
-#include <vimlop/Core/RegistrationMetrics.h>
-#include <vimlop/Core/Rotation.h>
-#include <vimlop/Core/SimilarityEstimation.h>
-#include <vimlop/Core/Statistics.h>
 #include <vimlop/Core/TextFormat.h>
+#include <vimlop/Evaluation/CarriedPoseErrors.h>
 #include <vimlop/Evaluation/Peers/ElastixParameterFiles.h>
 #include <vimlop/Evaluation/Peers/ElastixRegistration.h>
 #include <vimlop/Evaluation/SyntheticDeformation.h>
@@ -79,168 +76,6 @@ nlohmann::json poseErrorsJson(const PoseErrorSummary& s)
     { "max_deg", s.maxDeg }, { "max_deg_at_mm", s.maxDegAtMm },
     { "max_deg_wall_distance_mm", s.maxDegWallDistanceMm },
     { "by_walls", wallOrientationJson(s.byWalls) } };
-}
-
-/// Step (mm) of the frame points that carry a pose's orientation through a
-/// map known only at points (the truth, elastix's).
-constexpr double kFrameStepMm = 1.0;
-
-/// Four points per pose: its centre and the centre 1 mm along each CT axis.
-std::vector<Point> framePoints(const std::vector<CameraPose>& poses)
-{
-  std::vector<Point> points;
-  for (const CameraPose& pose : poses)
-  {
-    for (int a = -1; a < 3; ++a)
-    {
-      Eigen::Vector3d p = pose.centre;
-      if (a >= 0)
-      {
-        p[a] += kFrameStepMm;
-      }
-      points.push_back({ p.x(), p.y(), p.z() });
-    }
-  }
-  return points;
-}
-
-/// The poses carried by a map, from their frame points' images (from
-/// `first` on): the centre's image, and the rotation part of the map's
-/// Jacobian from forward differences, as warpCameraPose() turns them.
-std::vector<CameraPose> carriedPoses(
-  const std::vector<CameraPose>& poses, const std::vector<Point>& images, std::size_t first)
-{
-  std::vector<CameraPose> carried;
-  for (std::size_t i = 0; i < poses.size(); ++i)
-  {
-    auto image = [&](std::size_t k)
-    {
-      const Point& p = images[first + 4 * i + k];
-      return Eigen::Vector3d(p[0], p[1], p[2]);
-    };
-    Eigen::Matrix3d jacobian;
-    for (int a = 0; a < 3; ++a)
-    {
-      jacobian.col(a) = (image(static_cast<std::size_t>(a) + 1) - image(0)) / kFrameStepMm;
-    }
-    CameraPose pose;
-    pose.centre = image(0);
-    pose.rotation = nearestRotation(jacobian) * poses[i].rotation;
-    carried.push_back(pose);
-  }
-  return carried;
-}
-
-PoseErrorSummary summarizePoseErrors(const std::vector<CameraPose>& estimate,
-  const std::vector<CameraPose>& truth, const std::vector<CameraPose>& templatePoses,
-  const RegistrationModel& templateModel)
-{
-  PoseErrorSummary s;
-  s.poses = truth.size();
-  if (truth.empty())
-  {
-    return s;
-  }
-  std::vector<double> mm(truth.size());
-  std::vector<double> deg(truth.size());
-  for (std::size_t i = 0; i < truth.size(); ++i)
-  {
-    mm[i] = cameraPositionError(estimate[i], truth[i]);
-    deg[i] = cameraAngleErrorDeg(estimate[i], truth[i]);
-  }
-  const std::size_t worst =
-    static_cast<std::size_t>(std::max_element(deg.begin(), deg.end()) - deg.begin());
-  const Eigen::Vector3d at = templatePoses[worst].centre;
-  s.maxDegAtMm = { at.x(), at.y(), at.z() };
-  s.maxDegWallDistanceMm = templateModel.locator().closestPoint(at).distanceMm;
-  const Summary position = summarize(mm);
-  const Summary orientation = summarize(deg);
-  s.meanMm = position.mean;
-  s.p95Mm = position.p95;
-  s.maxMm = position.max;
-  s.meanDeg = orientation.mean;
-  s.p95Deg = orientation.p95;
-  s.maxDeg = orientation.max;
-  return s;
-}
-
-/// Radius (mm) of the walls that turn a pose in WallOrientationSummary, and
-/// the fewest vertices that do.
-constexpr double kWallRadiusMm = 15.0;
-constexpr std::size_t kFewestWallVertices = 10;
-
-/// Per pose, the scored vertices within kWallRadiusMm of its centre (none
-/// when fewer than kFewestWallVertices).
-std::vector<std::vector<std::size_t>> wallsAround(const std::vector<CameraPose>& poses,
-  const std::vector<Point>& vertices, const std::vector<std::size_t>& scored)
-{
-  std::vector<std::vector<std::size_t>> walls(poses.size());
-  for (std::size_t k = 0; k < poses.size(); ++k)
-  {
-    for (std::size_t i : scored)
-    {
-      const Eigen::Vector3d v(vertices[i][0], vertices[i][1], vertices[i][2]);
-      if ((v - poses[k].centre).norm() <= kWallRadiusMm)
-      {
-        walls[k].push_back(i);
-      }
-    }
-    if (walls[k].size() < kFewestWallVertices)
-    {
-      walls[k].clear();
-    }
-  }
-  return walls;
-}
-
-/// The pose's orientation turned by the rotation that best carries its walls
-/// to their images.
-Eigen::Matrix3d turnedByWalls(const CameraPose& pose, const std::vector<std::size_t>& walls,
-  const std::vector<Point>& vertices, const std::vector<Point>& images)
-{
-  std::vector<Eigen::Vector3d> from, to;
-  for (std::size_t i : walls)
-  {
-    from.emplace_back(vertices[i][0], vertices[i][1], vertices[i][2]);
-    to.emplace_back(images[i][0], images[i][1], images[i][2]);
-  }
-  return estimateSimilarity(from, to).rotation * pose.rotation;
-}
-
-/// The angles between two orientations of each pose that has walls; a null
-/// `imagesB` takes `rotationsB` instead of turning by B's images.
-WallOrientationSummary compareOrientations(const std::vector<CameraPose>& poses,
-  const std::vector<std::vector<std::size_t>>& walls, const std::vector<Point>& vertices,
-  const std::vector<Point>& imagesA, const std::vector<Point>* imagesB,
-  const std::vector<CameraPose>& rotationsB)
-{
-  std::vector<double> deg;
-  for (std::size_t k = 0; k < poses.size(); ++k)
-  {
-    if (walls[k].empty())
-    {
-      continue;
-    }
-    CameraPose a = poses[k];
-    CameraPose b = rotationsB[k];
-    a.rotation = turnedByWalls(poses[k], walls[k], vertices, imagesA);
-    if (imagesB)
-    {
-      b.rotation = turnedByWalls(poses[k], walls[k], vertices, *imagesB);
-    }
-    a.centre = b.centre;
-    deg.push_back(cameraAngleErrorDeg(a, b));
-  }
-  WallOrientationSummary s;
-  s.poses = deg.size();
-  if (!deg.empty())
-  {
-    const Summary summary = summarize(deg);
-    s.meanDeg = summary.mean;
-    s.p95Deg = summary.p95;
-    s.maxDeg = summary.max;
-  }
-  return s;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start)
@@ -512,7 +347,7 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
     }
     poses.push_back(pose);
   }
-  const std::vector<Point> poseFrames = framePoints(poses);
+  const std::vector<Point> poseFrames = poseFramePoints(poses);
   std::vector<Point> poseFrameImages(poseFrames.size());
   std::transform(poseFrames.begin(), poseFrames.end(), poseFrameImages.begin(), truthMap);
   const std::vector<CameraPose> truePoses = carriedPoses(poses, poseFrameImages, 0);
@@ -560,10 +395,9 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
     warpedPoses.push_back(warpCameraPose(pose, result.templateToPatient));
   }
   r.poseErrors = summarizePoseErrors(warpedPoses, truePoses, poses, templateModel);
-  const std::vector<std::vector<std::size_t>> walls = wallsAround(poses, vertices, scored);
-  r.poseErrors.byWalls = compareOrientations(poses, walls, vertices, warped, &truth, truePoses);
-  r.truthWallsAgainstJacobian =
-    compareOrientations(poses, walls, vertices, truth, nullptr, truePoses);
+  const WallOrientations byWalls(poses, vertices, scored, truth, truePoses);
+  r.poseErrors.byWalls = byWalls.errorsOf(warped);
+  r.truthWallsAgainstJacobian = byWalls.truthAgainstJacobian();
 
   std::size_t worst = 0;
   r.errors = summarizeErrors(scoredOnly(warped), scoredTruth, &worst);
@@ -619,8 +453,7 @@ TemplateWarpProtocolReport runTemplateWarpProtocol(const CTVolume& ct,
     e.errors = summarizeErrors(scoredOnly(movedVertices), scoredTruth);
     e.poseErrors = summarizePoseErrors(
       carriedPoses(poses, peer.movingPoints, vertices.size()), truePoses, poses, templateModel);
-    e.poseErrors.byWalls =
-      compareOrientations(poses, walls, vertices, movedVertices, &truth, truePoses);
+    e.poseErrors.byWalls = byWalls.errorsOf(peer.movingPoints);
     e.runtimeS = peer.registrationSeconds + peer.transformSeconds;
     e.runtimeRatio = e.runtimeS / r.runtimeS;
     e.parameterFiles = elastix.parameterFiles;
